@@ -1,0 +1,140 @@
+r"""Peer method: the explicit finite-difference wave equation (Kass & Miller 1990).
+
+.. math::
+
+    \eta^{n+1} = (2 - d)\,\eta^n - (1 - d)\,\eta^{n-1} + C^2\,\Delta_h \eta^n,
+    \qquad C = c\,\Delta t/\Delta x
+
+with the periodic 5-point Laplacian Δ_h (grid units) and an optional damping d ∈ [0, 1)
+(d = 0: the undamped scheme of Gomez 2000, used by Baboud & Décoret 2006). Every
+wavelength moves at the single speed c (plus the scheme's own numerical dispersion),
+so it cannot make capillary ripples or a Kelvin wake: the physics is wrong for deep
+water whatever the step. Its discrete dispersion relation is
+
+.. math::
+
+    \sin^2(\omega\Delta t/2) = C^2\left[\sin^2(k_x\Delta x/2) + \sin^2(k_y\Delta x/2)\right],
+
+so it is stable only for C ≤ 1/√2 (the checkerboard mode has the bracket equal to 2);
+:func:`find_stability_limit` measures the boundary by bisection.
+"""
+
+from __future__ import annotations
+
+import math
+
+import jax
+import jax.numpy as jnp
+
+from wavephys._inputs import check_array, check_scalar, check_int
+from wavephys.params import Grid
+
+__all__ = [
+    "STABILITY_LIMIT",
+    "courant_number",
+    "laplacian",
+    "fd_step",
+    "fd_run",
+    "fd_angular_frequency",
+    "find_stability_limit",
+]
+
+STABILITY_LIMIT = 1.0 / math.sqrt(2.0)
+"""Largest stable Courant number c·Δt/Δx of the explicit 2-D 5-point scheme."""
+
+
+def courant_number(speed, dt, dx):
+    """C = c·Δt/Δx (dimensionless) for wave speed c (m/s), step Δt (s), spacing Δx (m)."""
+    check_scalar("speed", speed, lo=0.0, lo_open=True)
+    check_scalar("dt", dt, lo=0.0, lo_open=True)
+    check_scalar("dx", dx, lo=0.0, lo_open=True)
+    return speed * dt / dx
+
+
+def laplacian(eta):
+    """Periodic 5-point Laplacian on the last two axes, in grid units (1/Δx² omitted)."""
+    return (jnp.roll(eta, 1, -1) + jnp.roll(eta, -1, -1) + jnp.roll(eta, 1, -2)
+            + jnp.roll(eta, -1, -2) - 4.0 * eta)
+
+
+def fd_step(eta, eta_prev, courant, damping=0.0):
+    """One explicit step: returns η^{n+1} from η^n (``eta``) and η^{n−1} (``eta_prev``), m."""
+    return (2.0 - damping) * eta - (1.0 - damping) * eta_prev + courant**2 * laplacian(eta)
+
+
+def fd_run(eta, eta_prev, courant, steps: int, damping=0.0, check_stability: bool = True):
+    """Run ``steps`` steps; returns (η^{N}, η^{N−1}, stacked heights of every step).
+
+    Parameters
+    ----------
+    eta, eta_prev : array_like
+        Heights at the last two times, m, same shape ``(..., ny, nx)``.
+    courant : float
+        C = cΔt/Δx, > 0. With ``check_stability`` (default) C > 1/√2 is rejected; pass
+        ``check_stability=False`` to explore the unstable side (it blows up).
+    steps : int
+        ≥ 1.
+    damping : float
+        d in [0, 1).
+    """
+    check_array("eta", eta, min_ndim=2)
+    check_array("eta_prev", eta_prev, min_ndim=2)
+    if jnp.shape(eta) != jnp.shape(eta_prev):
+        raise ValueError(f"eta and eta_prev must have one shape, got {jnp.shape(eta)} and {jnp.shape(eta_prev)}")
+    check_scalar("courant", courant, lo=0.0, lo_open=True)
+    if check_stability:
+        check_scalar("courant", courant, lo=0.0, hi=STABILITY_LIMIT, lo_open=True)
+    check_scalar("damping", damping, lo=0.0, hi=1.0, hi_open=True)
+    steps = check_int("steps", steps, lo=1)
+    return _fd_run(jnp.asarray(eta), jnp.asarray(eta_prev), courant, damping, steps)
+
+
+@jax.jit
+def _fd_scan(eta, eta_prev, courant, damping, xs):
+    def body(carry, _):
+        a, b = carry
+        c = fd_step(a, b, courant, damping)
+        return (c, a), c
+    (a, b), hist = jax.lax.scan(body, (eta, eta_prev), xs)
+    return a, b, hist
+
+
+def _fd_run(eta, eta_prev, courant, damping, steps):
+    return _fd_scan(eta, eta_prev, courant, damping, jnp.zeros((steps, 0)))
+
+
+def fd_angular_frequency(kx, ky, speed, dt, dx):
+    """The scheme's own ω(k), rad/s, from its discrete dispersion relation (module doc).
+
+    NaN where the scheme is unstable for that mode (right-hand side > 1).
+    """
+    c2 = (speed * dt / dx) ** 2
+    rhs = c2 * (jnp.sin(kx * dx / 2) ** 2 + jnp.sin(ky * dx / 2) ** 2)
+    return 2.0 / dt * jnp.arcsin(jnp.sqrt(jnp.where(rhs <= 1.0, rhs, jnp.nan)))
+
+
+def find_stability_limit(n: int = 32, steps: int = 400, growth: float = 10.0,
+                         tolerance: float = 1e-4, seed: int = 0):
+    """Measure the largest stable Courant number by bisection on a random field.
+
+    A run is unstable when max|η| grows by more than ``growth`` in ``steps`` steps
+    (random initial data excite every mode, the checkerboard included). Returns the
+    measured boundary C* (compare with :data:`STABILITY_LIMIT` = 1/√2).
+    """
+    n = check_int("n", n, lo=4)
+    steps = check_int("steps", steps, lo=10)
+    eta0 = jax.random.normal(jax.random.PRNGKey(seed), (n, n))
+    amp0 = float(jnp.max(jnp.abs(eta0)))
+
+    def unstable(c):
+        a, _, _ = _fd_run(eta0, eta0, c, 0.0, steps)
+        amp = float(jnp.max(jnp.abs(a)))
+        return not math.isfinite(amp) or amp > growth * amp0
+
+    lo, hi = 0.5, 1.0
+    if unstable(lo) or not unstable(hi):
+        raise RuntimeError("stability boundary not bracketed by C in [0.5, 1.0]")
+    while hi - lo > tolerance:
+        mid = 0.5 * (lo + hi)
+        lo, hi = (lo, mid) if unstable(mid) else (mid, hi)
+    return 0.5 * (lo + hi)

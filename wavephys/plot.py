@@ -1,0 +1,93 @@
+"""Figures: functions that take data and return a matplotlib ``Figure`` (no physics here)."""
+
+from __future__ import annotations
+
+import numpy as np
+
+__all__ = ["plot_surface", "plot_dispersion", "plot_error_vs_time", "plot_curves"]
+
+
+def _figure(**kw):
+    import matplotlib
+
+    matplotlib.use("Agg", force=False)
+    from matplotlib.figure import Figure
+
+    return Figure(**kw)
+
+
+def plot_surface(eta, dx: float, title: str = ""):
+    """Height field η (m) on a grid of spacing dx (m), centred axes in metres."""
+    eta = np.asarray(eta)
+    n = eta.shape[-1]
+    ext = np.array([-n / 2, n / 2, -n / 2, n / 2]) * dx
+    fig = _figure(figsize=(5.5, 4.5))
+    ax = fig.add_subplot()
+    lim = float(np.abs(eta).max()) or 1.0
+    im = ax.imshow(eta * 1000, origin="lower", extent=ext, cmap="RdBu_r", vmin=-lim * 1000, vmax=lim * 1000)
+    fig.colorbar(im, ax=ax, label="η (mm)")
+    ax.set_xlabel("x (m)")
+    ax.set_ylabel("y (m)")
+    ax.set_title(title)
+    fig.tight_layout()
+    return fig
+
+
+def plot_dispersion(samples, theory_k=None, theory_omega=None, title: str = ""):
+    """Measured (k, ω) samples against a theory curve."""
+    fig = _figure(figsize=(5.5, 4))
+    ax = fig.add_subplot()
+    ax.loglog(samples.k, samples.omega, ".", ms=3, label="measured ridge")
+    if theory_k is not None:
+        ax.loglog(theory_k, theory_omega, "-", lw=1, label="theory")
+    ax.set_xlabel("k (rad/m)")
+    ax.set_ylabel("ω (rad/s)")
+    ax.set_title(title)
+    ax.legend()
+    fig.tight_layout()
+    return fig
+
+
+def plot_error_vs_time(rows, title: str = "error against cost"):
+    """Log-log error against seconds, one line per method; ``rows`` are dicts with
+    ``method``, ``seconds``, ``error`` and optionally ``label``."""
+    fig = _figure(figsize=(6, 4.5))
+    ax = fig.add_subplot()
+    methods = sorted({r["method"] for r in rows})
+    for m in methods:
+        pts = sorted((r["seconds"], r["error"], r.get("label", "")) for r in rows if r["method"] == m)
+        xs, ys, labels = zip(*pts)
+        ax.loglog(xs, ys, "o-", label=m)
+        for x, y, lab in pts:
+            if lab:
+                ax.annotate(lab, (x, y), fontsize=7, xytext=(3, 3), textcoords="offset points")
+    ax.set_xlabel("seconds (median)")
+    ax.set_ylabel("relative L2 error of η")
+    ax.set_title(title)
+    ax.grid(True, which="both", alpha=0.3)
+    ax.legend()
+    fig.tight_layout()
+    return fig
+
+
+def plot_curves(curves: dict, xlabel: str, ylabel: str, title: str = "", logx=False, logy=True,
+                hlines: dict | None = None):
+    """Several (x, y) curves by label, e.g. a failure boundary; ``hlines`` label→y."""
+    fig = _figure(figsize=(6, 4.2))
+    ax = fig.add_subplot()
+    for label, (x, y) in curves.items():
+        ax.plot(x, y, "o-", ms=3, label=label)
+    for label, y in (hlines or {}).items():
+        ax.axhline(y, ls="--", lw=0.8, color="gray")
+        ax.annotate(label, (ax.get_xlim()[0], y), fontsize=7, xytext=(2, 2), textcoords="offset points")
+    if logx:
+        ax.set_xscale("log")
+    if logy:
+        ax.set_yscale("log")
+    ax.set_xlabel(xlabel)
+    ax.set_ylabel(ylabel)
+    ax.set_title(title)
+    ax.grid(True, which="both", alpha=0.3)
+    ax.legend()
+    fig.tight_layout()
+    return fig
