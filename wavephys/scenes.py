@@ -20,10 +20,12 @@ def default_scene(n: int = 256, steps: int = 120, progress: Optional[Callable[[s
     and ``energy_ratio`` (energy after / before the steps with the cutoff off, as a
     sanity figure: 1 to rounding).
     """
+    if n < 128:
+        raise ValueError(f"n must be ≥ 128 for the default scene (stones need dx ≤ 0.125 m), got {n}")
     grid = Grid(n, 16.0)
     water = Water()
     sim = Simulation(grid, water, dt=1.0 / 30.0, margin=max(1, n // 8))
-    stones = Stones([-3.0, 2.0, 0.5], [1.0, -2.5, 3.0], [0.15, 0.1, 0.2], [0.05, 0.03, 0.06])
+    stones = Stones([-3.0, 2.0, 0.5], [1.0, -2.5, 3.0], [0.25, 0.15, 0.3], [0.05, 0.03, 0.06])
     state = sim.drop(sim.initial_state(), stones)
     free = Simulation(grid, water, dt=sim.dt)
     e0 = float(free.energy(state))

@@ -1,7 +1,7 @@
 """The spectral wave simulation: Loviscach (2003), §3, on real FFTs.
 
-State: the complex wave field ψ = φ + iχ (m²/s) stored as its two real parts, so each
-step needs only real transforms. One step (``Simulation.step``) does, in order:
+State: the complex wave field ψ = φ + iχ (m²/s) stored as its two real parts, stacked,
+so each step needs only real transforms, batched. One step (``Simulation.step``) does, in order:
 
 1. the open-ocean cutoff h(p)·h(q) on ψ (if ``margin`` > 0; :mod:`wavephys.boundary`);
 2. one batched ``rfft2`` of (φ, χ);
@@ -9,7 +9,8 @@ step needs only real transforms. One step (``Simulation.step``) does, in order:
 4. the surface of this state: η = −F⁻¹[(K/ω)χ̂] (+ the second-order term if enabled) and
    η̇ = F⁻¹[Kφ̂] (:mod:`wavephys.heights`);
 5. exact propagation by Δt, a rotation of (φ̂, χ̂) by ωΔt (:mod:`wavephys.ring_waves`);
-6. one batched ``irfft2`` of (φ', χ', η̂, η̇̂ [, q̂, Λη̂, Λq̂]).
+6. two batched ``irfft2``: (φ', χ') → the next state, (η̂, η̇̂) → the surface
+   [and (q̂, Λη̂, Λq̂) for the second-order term].
 
 It returns the state at t + Δt and the surface at t. This is the paper's loop
 (propagate, add disturbances, cut off) with the cutoff moved to the front, so that the
@@ -41,11 +42,24 @@ __all__ = ["State", "Surface", "Simulation"]
 
 @dataclass(frozen=True)
 class State:
-    """Simulation state: ψ = φ + iχ on the grid (m²/s, real arrays ``(n, n)``) at time t (s)."""
+    """Simulation state: ψ = φ + iχ on the grid at time t.
 
-    phi: jax.Array
-    chi: jax.Array
+    ``fields`` holds (φ, χ) stacked, shape ``(..., 2, n, n)``, m²/s, so that one batched
+    real FFT transforms both; ``time`` in s.
+    """
+
+    fields: jax.Array
     time: jax.Array
+
+    @property
+    def phi(self):
+        """Real part φ of ψ (the surface velocity potential), m²/s."""
+        return self.fields[..., 0, :, :]
+
+    @property
+    def chi(self):
+        """Imaginary part χ of ψ, m²/s."""
+        return self.fields[..., 1, :, :]
 
     @property
     def psi(self):
@@ -55,15 +69,24 @@ class State:
 
 @dataclass(frozen=True)
 class Surface:
-    """The water surface at one time: height η (m), vertical velocity η̇ (m/s), time (s)."""
+    """The water surface at one time: ``fields`` = (η in m, η̇ in m/s) stacked, ``time`` in s."""
 
-    eta: jax.Array
-    eta_dot: jax.Array
+    fields: jax.Array
     time: jax.Array
 
+    @property
+    def eta(self):
+        """Height η, m, shape ``(..., n, n)``."""
+        return self.fields[..., 0, :, :]
 
-_register(State, ("phi", "chi", "time"))
-_register(Surface, ("eta", "eta_dot", "time"))
+    @property
+    def eta_dot(self):
+        """Vertical surface velocity η̇, m/s."""
+        return self.fields[..., 1, :, :]
+
+
+_register(State, ("fields", "time"))
+_register(Surface, ("fields", "time"))
 
 
 def _check_dtype(dtype):
@@ -141,8 +164,7 @@ class Simulation:
     # -- states ---------------------------------------------------------------
     def initial_state(self, time: float = 0.0) -> State:
         """Still water at ``time`` (s)."""
-        z = jnp.zeros((self.grid.n, self.grid.n), self.dtype)
-        return State(z, z, jnp.asarray(time, self.dtype))
+        return State(jnp.zeros((2, self.grid.n, self.grid.n), self.dtype), jnp.asarray(time, self.dtype))
 
     def state_from_psi(self, psi, time: float = 0.0) -> State:
         """A state from a complex field ψ (m²/s, shape ``(n, n)``)."""
@@ -152,12 +174,10 @@ class Simulation:
             raise ValueError(f"psi must have shape ({n}, {n}), got {jnp.shape(psi)}")
         check_scalar("time", time)
         psi = jnp.asarray(psi)
-        return State(psi.real.astype(self.dtype), psi.imag.astype(self.dtype),
-                     jnp.asarray(time, self.dtype))
+        return State(jnp.stack([psi.real, psi.imag]).astype(self.dtype), jnp.asarray(time, self.dtype))
 
     def _add_psi(self, state: State, psi) -> State:
-        return State(state.phi + psi.real.astype(self.dtype),
-                     state.chi + psi.imag.astype(self.dtype), state.time)
+        return State(state.fields + jnp.stack([psi.real, psi.imag]).astype(self.dtype), state.time)
 
     def add_height(self, state: State, eta) -> State:
         """Add a height disturbance η (m, ``(n, n)``) with the fluid at rest (its mean drops)."""
@@ -194,25 +214,25 @@ class Simulation:
     # -- stepping -------------------------------------------------------------
     def _step_impl(self, state: State, stones: Optional[Stones]):
         ops, n = self._ops, self.grid.n
-        phi, chi = state.phi, state.chi
-        if ops["mask"] is not None:
-            phi, chi = phi * ops["mask"], chi * ops["mask"]
-        spec = jnp.fft.rfft2(jnp.stack([phi, chi]))
+        fields = state.fields if ops["mask"] is None else state.fields * ops["mask"]
+        spec = jnp.fft.rfft2(fields)
         ph, ch = spec[0], spec[1]
         if stones is not None:
             eta_stone = stone_height_spectrum(stones, self.grid).astype(ch.dtype)
             ch = ch - ops["inverse_height"] * eta_stone
         eta_hat = -ops["height"] * ch
-        outs = [*rotate_pair(ph, ch, ops["cos"], ops["sin"]), eta_hat, ops["K"] * ph]
+        # two batched inverse transforms whose outputs are the new state and the surface
+        # as they are (no slicing copies)
+        new = jnp.fft.irfft2(jnp.stack(rotate_pair(ph, ch, ops["cos"], ops["sin"])), s=(n, n))
+        surf = jnp.fft.irfft2(jnp.stack([eta_hat, ops["K"] * ph]), s=(n, n))
         if self.second_order:
             q_hat = ops["height"] * ph
-            outs += [q_hat, ops["lam"] * eta_hat, ops["lam"] * q_hat]
-        fields = jnp.fft.irfft2(jnp.stack(outs), s=(n, n)).astype(self.dtype)
-        eta = fields[2]
-        if self.second_order:
-            eta = eta + second_order_correction(fields[2], fields[4], fields[5], fields[6])
-        new = State(fields[0], fields[1], state.time + jnp.asarray(self.dt, self.dtype))
-        return new, Surface(eta, fields[3], state.time)
+            extra = jnp.fft.irfft2(jnp.stack([q_hat, ops["lam"] * eta_hat, ops["lam"] * q_hat]), s=(n, n))
+            eta = surf[0] + second_order_correction(surf[0], extra[0], extra[1], extra[2])
+            surf = jnp.stack([eta, surf[1]])
+        dt = jnp.asarray(self.dt, self.dtype)
+        return (State(new.astype(self.dtype), state.time + dt),
+                Surface(surf.astype(self.dtype), state.time))
 
     def step(self, state: State, stones: Optional[Stones] = None):
         """Advance by Δt: returns ``(state at t + Δt, surface at t)``.
@@ -253,6 +273,5 @@ class Simulation:
         """
         K = self._ops["K"]
         n = self.grid.n
-        spec = jnp.fft.rfft2(jnp.stack([state.phi, state.chi]))
-        kf = jnp.fft.irfft2(K * spec, s=(n, n))
-        return 0.5 * self.water.rho * jnp.mean(state.phi * kf[0] + state.chi * kf[1])
+        kf = jnp.fft.irfft2(K * jnp.fft.rfft2(state.fields), s=(n, n))
+        return 0.5 * self.water.rho * jnp.mean(state.fields * kf) * 2

@@ -1,0 +1,1 @@
+"""Benchmarks: speed against accuracy for every family of methods (``python -m bench``)."""

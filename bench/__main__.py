@@ -1,0 +1,68 @@
+"""``python -m bench {propagation,boundaries} [--json PATH] [--quick]``.
+
+Each writes its rows as JSON and its charts as PNG next to it (default
+``bench/results/``) and prints a table.
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import sys
+from pathlib import Path
+
+
+def _say(msg: str) -> None:
+    print(msg, file=sys.stderr, flush=True)
+
+
+def _write(rows, figures, path: Path) -> None:
+    path.parent.mkdir(parents=True, exist_ok=True)
+    path.write_text(json.dumps(rows, indent=2, default=float))
+    for name, fig in figures.items():
+        fig.savefig(path.with_name(f"{path.stem}_{name}.png"), dpi=120)
+    print(f"wrote {path} and {len(figures)} chart(s) beside it")
+
+
+def run_propagation(args) -> None:
+    from bench.propagation import accuracy_rows, step_rows
+    from wavephys.plot import plot_error_vs_time
+
+    sizes = (256, 512) if args.quick else (256, 512, 1024, 2048)
+    steps = step_rows(sizes, progress=_say)
+    acc = accuracy_rows(progress=_say)
+    print(f"{'method':<18}{'n':>6}{'seconds':>12}{'baseline s':>12}{'ratio':>8}{'error':>11}")
+    for r in steps:
+        print(f"{r['method']:<18}{r['n']:>6}{r['seconds']:>12.5f}{r['baseline_seconds']:>12.5f}"
+              f"{r['ratio']:>8.2f}{r['error']:>11.2e}  (baseline {r['baseline']})")
+    for r in acc:
+        print(f"{r['method']:<18}{r['n']:>6}{r['seconds']:>12.5f}{'':>12}{'':>8}{r['error']:>11.2e}  {r['label']}")
+    fig = plot_error_vs_time(acc, "deep-water packet after 8 s: error against time")
+    _write(steps + acc, {"error_vs_time": fig}, Path(args.json or "bench/results/propagation.json"))
+
+
+def run_boundaries(args) -> None:
+    from bench.boundaries import boundary_data
+
+    rows, figures = boundary_data(quick=args.quick, progress=_say)
+    for r in rows:
+        print(r)
+    _write(rows, figures, Path(args.json or "bench/results/boundaries.json"))
+
+
+def main(argv=None) -> int:
+    p = argparse.ArgumentParser(prog="python -m bench", description=__doc__.split("\n\n")[0])
+    sub = p.add_subparsers(dest="which", required=True)
+    for name, fn, help_ in (("propagation", run_propagation, "step vs bare FFT; error vs time"),
+                            ("boundaries", run_boundaries, "measured failure boundaries")):
+        s = sub.add_parser(name, help=help_)
+        s.add_argument("--json", metavar="PATH")
+        s.add_argument("--quick", action="store_true", help="smaller sizes (for CI smoke runs)")
+        s.set_defaults(func=fn)
+    args = p.parse_args(argv)
+    args.func(args)
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

@@ -1,0 +1,123 @@
+"""``python -m bench propagation``: the simulation step against the bare FFT work it needs,
+and error against time for the spectral, finite-difference and truncated-kernel methods.
+
+Rows (JSON): method, n, dtype, seconds, baseline_seconds, ratio, error, and details.
+"""
+
+from __future__ import annotations
+
+import math
+import statistics
+
+import jax.numpy as jnp
+import numpy as np
+
+from bench.timing import fft_work, interleaved, median_seconds, paired_ratio
+from wavephys import Grid, Simulation, Stones, Water
+from wavephys import dispersion as disp
+from wavephys.finite_difference import fd_run
+from wavephys.heights import first_order_height
+from wavephys.ring_waves import propagate
+from wavephys.truncated_kernel import kernel_run, max_stable_dt, truncated_kernel
+
+
+def step_rows(sizes=(256, 512, 1024, 2048), progress=print) -> list[dict]:
+    """Full step (cutoff + propagate + η + η̇) vs the bare FFTs it needs (2 rfft2 + 4 irfft2).
+
+    ``error``: max |ψ_step − ψ_exact| / max |ψ_exact| of the float32 step against the
+    complex-FFT propagation of the same cut-off field. ``ratio``: median over rounds of
+    step time / fastest bare-FFT time in the same round (runs interleaved).
+    """
+    rows = []
+    water = Water()
+    for n in sizes:
+        progress(f"step timing n={n}")
+        grid = Grid(n, 16.0)
+        sim = Simulation(grid, water, dt=1 / 30, margin=n // 8)
+        state = sim.drop(sim.initial_state(), Stones(0.0, 0.0, 0.2, 0.01))
+        work = fft_work(n, 2, 4)
+        times = interleaved({"step": lambda: sim.step(state), **work}, repeats=31 if n <= 1024 else 9)
+        base = {k: statistics.median(times[k]) for k in work}
+        best = min(base, key=base.get)
+        seconds = statistics.median(times["step"])
+        ratio = paired_ratio(times, "step", list(work))
+        new, _ = sim.step(state)
+        exact = propagate(state.psi * sim._ops["mask"], grid, water, 1 / 30)
+        err = float(jnp.max(jnp.abs(new.psi - exact)) / jnp.max(jnp.abs(exact)))
+        rows.append(dict(method="spectral step", n=n, dtype="float32", seconds=seconds,
+                         baseline_seconds=base[best], baseline=best, ratio=ratio,
+                         error=err, baselines=base))
+    return rows
+
+
+# -- error against time on a wave packet ---------------------------------------------------
+LENGTH, WAVELENGTH, WIDTH, DURATION = 64.0, 4.0, 4.0, 8.0
+"""Packet scene: 64 m domain, 4 m carrier, 4 m Gaussian envelope, 8 s (5 periods)."""
+WATER = Water(sigma=0.0)
+
+
+def _packet_at(grid: Grid, t: float):
+    """Exact ψ(t) of a deep-water packet that starts at x = −16 m moving in +x (any t)."""
+    x, y = grid.mesh()
+    k0 = 2 * math.pi / WAVELENGTH
+    env = jnp.exp(-0.5 * ((x + 16.0) ** 2 + y**2) / WIDTH**2)
+    a = 0.01 * float(disp.angular_frequency(k0, WATER)) / k0  # 1 cm height amplitude
+    psi = a * env * jnp.exp(1j * k0 * x)
+    omega = disp.angular_frequency(grid.wavenumber_magnitude(), WATER)
+    return jnp.fft.ifft2(jnp.fft.fft2(psi) * jnp.exp(-1j * omega * t))
+
+
+def _height_at(grid: Grid, t: float):
+    return np.asarray(first_order_height(_packet_at(grid, t), grid, WATER))
+
+
+def _rel_l2(a, b):
+    return float(np.linalg.norm(np.asarray(a) - b) / np.linalg.norm(b))
+
+
+def accuracy_rows(progress=print) -> list[dict]:
+    """Relative L2 error of η after 8 s against the exact packet, and the seconds it took."""
+    rows = []
+    k0 = 2 * math.pi / WAVELENGTH
+    c0 = float(disp.phase_speed(k0, WATER))
+    for n in (128, 256, 512):
+        grid = Grid(n, LENGTH)
+        dx = float(grid.dx)
+        exact = _height_at(grid, DURATION)
+        # spectral: exact for any Δt; stepped at 30 frames per second of output
+        steps = int(DURATION * 30)
+        sim = Simulation(grid, WATER, dt=DURATION / steps)
+        st = sim.state_from_psi(_packet_at(grid, 0.0))
+        progress(f"spectral n={n}")
+        seconds = median_seconds(lambda: sim.run(st, steps), 3)
+        end, _ = sim.run(st, steps)
+        rows.append(dict(method="spectral", n=n, dtype="float32", seconds=seconds, label=f"n={n}",
+                         error=_rel_l2(sim.surface(end).eta, exact), steps=steps))
+        # finite differences at the carrier's phase speed (their best case)
+        e0 = _height_at(grid, 0.0)
+        for courant in (0.5, 0.25):
+            steps = int(round(DURATION / (courant * dx / c0)))
+            dt = DURATION / steps
+            em = _height_at(grid, -dt)
+            c = c0 * dt / dx
+            progress(f"finite differences n={n} C={courant}")
+            seconds = median_seconds(lambda: fd_run(e0, em, c, steps), 3)
+            out, _, _ = fd_run(e0, em, c, steps)
+            rows.append(dict(method="finite difference", n=n, dtype="float32", seconds=seconds,
+                             label=f"n={n} C={courant}", error=_rel_l2(out, exact), steps=steps))
+    grid = Grid(256, LENGTH)
+    exact = _height_at(grid, DURATION)
+    e0 = _height_at(grid, 0.0)
+    for size in (3, 9, 17, 33, 65):
+        stencil = truncated_kernel(grid, WATER, size)
+        steps = int(math.ceil(DURATION / min(0.5 * max_stable_dt(stencil, grid), 0.02)))
+        dt = DURATION / steps
+        em = _height_at(grid, -dt)
+        progress(f"truncated kernel P={size}")
+        seconds = median_seconds(lambda: kernel_run(e0, em, stencil, dt, steps), 3)
+        out, _ = kernel_run(e0, em, stencil, dt, steps)
+        rows.append(dict(method="truncated kernel", n=256, dtype="float32", seconds=seconds,
+                         label=f"P={size}", error=_rel_l2(out, exact), steps=steps))
+    for r in rows:
+        r["baseline_seconds"] = None
+    return rows

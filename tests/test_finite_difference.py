@@ -1,0 +1,64 @@
+import math
+
+import jax
+import jax.numpy as jnp
+import numpy as np
+import pytest
+
+from wavephys import checks
+from wavephys.finite_difference import (STABILITY_LIMIT, courant_number, fd_angular_frequency, fd_run,
+                                        find_stability_limit, laplacian)
+
+
+def test_laplacian_of_plane_wave():
+    n, m = 32, 3
+    x = np.arange(n)
+    f = np.cos(2 * np.pi * m * x / n)[None, :] * np.ones((n, 1))
+    expected = -4 * np.sin(np.pi * m / n) ** 2 * f
+    np.testing.assert_allclose(laplacian(jnp.asarray(f)), expected, atol=1e-6)
+
+
+def test_stability_boundary_within_2_percent():
+    c = find_stability_limit()
+    assert abs(c / STABILITY_LIMIT - 1) < 0.02
+
+
+def test_blows_up_past_the_limit_and_stays_bounded_below():
+    eta0 = jax.random.normal(jax.random.PRNGKey(0), (32, 32))
+    below, _, _ = fd_run(eta0, eta0, 0.98 * STABILITY_LIMIT, 400)
+    above, _, _ = fd_run(eta0, eta0, 1.02 * STABILITY_LIMIT, 400, check_stability=False)
+    assert float(jnp.max(jnp.abs(below))) < 10 * float(jnp.max(jnp.abs(eta0)))
+    assert not bool(jnp.all(jnp.abs(above) < 1e6))
+
+
+def test_measured_non_dispersive():
+    rows = checks.check_fd_dispersion()
+    assert all(r.ok for r in rows), "\n".join(r.report() for r in rows)
+
+
+def test_single_mode_follows_discrete_dispersion():
+    n, m, c = 32, 2, 0.6
+    x = np.arange(n)
+    k = 2 * np.pi * m / n
+    w = float(fd_angular_frequency(k, 0.0, 1.0, c, 1.0)) * c  # phase per step (Δt = c for c = Δx = 1)
+    eta_prev = np.cos(k * x + w)[None, :] * np.ones((n, 1))  # time −1
+    eta = np.cos(k * x)[None, :] * np.ones((n, 1))
+    out, _, _ = fd_run(jnp.asarray(eta), jnp.asarray(eta_prev), c, 50)
+    np.testing.assert_allclose(out[0], np.cos(k * x - 50 * w), atol=1e-4)
+
+
+def test_unstable_courant_rejected_by_default():
+    z = jnp.zeros((8, 8))
+    with pytest.raises(ValueError, match="courant"):
+        fd_run(z, z, 0.8, 10)
+
+
+@pytest.mark.parametrize("args,name", [((0.0, 0.1, 1.0), "speed"), ((1.0, -0.1, 1.0), "dt"), ((1.0, 0.1, math.nan), "dx")])
+def test_bad_courant_inputs(args, name):
+    with pytest.raises(ValueError, match=name):
+        courant_number(*args)
+
+
+def test_shape_mismatch():
+    with pytest.raises(ValueError, match="eta"):
+        fd_run(jnp.zeros((8, 8)), jnp.zeros((8, 9)), 0.5, 1)
