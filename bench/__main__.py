@@ -34,7 +34,8 @@ def run_propagation(args) -> None:
     print(f"{'method':<18}{'n':>6}{'seconds':>12}{'baseline s':>12}{'ratio':>8}{'error':>11}")
     for r in steps:
         print(f"{r['method']:<18}{r['n']:>6}{r['seconds']:>12.5f}{r['baseline_seconds']:>12.5f}"
-              f"{r['ratio']:>8.2f}{r['error']:>11.2e}  (baseline {r['baseline']})")
+              f"{r['ratio']:>8.2f}{r['error']:>11.2e}  (baseline {r['baseline']}; ratio quartiles "
+              f"{r['ratio_quartiles'][0]:.2f}–{r['ratio_quartiles'][1]:.2f})")
     for r in acc:
         print(f"{r['method']:<18}{r['n']:>6}{r['seconds']:>12.5f}{'':>12}{'':>8}{r['error']:>11.2e}  {r['label']}")
     fig = plot_error_vs_time(acc, "deep-water packet after 8 s: error against time")

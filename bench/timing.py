@@ -31,12 +31,15 @@ def median_seconds(fn: Callable[[], object], repeats: int = 7, warmup: int = 1) 
     return statistics.median(_once(fn) for _ in range(repeats))
 
 
-def interleaved(fns: dict[str, Callable[[], object]], repeats: int = 15,
-                warmup: int = 2) -> dict[str, list[float]]:
+def interleaved(fns: dict[str, Callable[[], object]], repeats: int = 15, warmup: int = 2,
+                block: int = 5) -> dict[str, list[float]]:
     """Wall times of each function, measured round-robin in the same loop.
 
-    Returns every run's seconds per function, in round order, so that callers can pair
-    runs of one round (same machine state) and take the median of per-round ratios.
+    Each round runs every function ``block`` times in a row and keeps the median of
+    that block: the first run after switching libraries can be slowed by the previous
+    library's worker threads still spinning (XLA's pool does), and the block median
+    discards it. Returns one time per round per function, in round order, so callers
+    can pair the functions of one round (same machine state).
     """
     for fn in fns.values():
         for _ in range(warmup):
@@ -44,14 +47,16 @@ def interleaved(fns: dict[str, Callable[[], object]], repeats: int = 15,
     times: dict[str, list[float]] = {k: [] for k in fns}
     for _ in range(repeats):
         for k, fn in fns.items():
-            times[k].append(_once(fn))
+            times[k].append(statistics.median(_once(fn) for _ in range(block)))
     return times
 
 
-def paired_ratio(times: dict[str, list[float]], subject: str, baselines: list[str]) -> float:
-    """Median over rounds of subject / (fastest baseline in that round)."""
+def paired_ratio(times: dict[str, list[float]], subject: str, baselines: list[str]):
+    """Per-round subject / (fastest baseline that round): (median, 25th, 75th percentile)."""
     rounds = zip(times[subject], *(times[b] for b in baselines))
-    return statistics.median(t / min(bs) for t, *bs in rounds)
+    ratios = np.array([t / min(bs) for t, *bs in rounds])
+    q1, med, q3 = np.percentile(ratios, [25, 50, 75])
+    return float(med), float(q1), float(q3)
 
 
 def fft_work(n: int, forward: int, inverse: int) -> dict[str, Callable[[], object]]:

@@ -12,7 +12,7 @@ DEEP = Water(sigma=0.0)
 
 
 class TestSecondOrder:
-    def test_equals_stokes_on_single_wave(self):
+    def test_equals_stokes_onsingle_wave(self):
         rows = checks.check_second_order()[:3]
         assert all(r.ok for r in rows), "\n".join(r.report() for r in rows)
 

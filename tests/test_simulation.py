@@ -67,7 +67,7 @@ class TestStep:
 
     def test_second_order_in_step(self):
         sim = Simulation(GRID, Water(sigma=0.0), dt=0.02, second_order=True)
-        psi, k, A = checks._single_wave(GRID, Water(sigma=0.0), 0.2)
+        psi, k, A = checks.single_wave(GRID, Water(sigma=0.0), 0.2)
         surf = sim.surface(sim.state_from_psi(psi))
         np.testing.assert_allclose(surf.eta, second_order_height(psi, GRID, Water(sigma=0.0)), atol=1e-6 * A)
         assert float(surf.eta.max()) - A == pytest.approx(0.5 * k * A * A, rel=1e-3)

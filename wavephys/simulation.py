@@ -1,21 +1,27 @@
 """The spectral wave simulation: Loviscach (2003), §3, on real FFTs.
 
 State: the complex wave field ψ = φ + iχ (m²/s) stored as its two real parts, stacked,
-so each step needs only real transforms, batched. One step (``Simulation.step``) does, in order:
+so each step needs only real transforms, batched. One step (``Simulation.step``) does,
+in the paper's order:
 
-1. the open-ocean cutoff h(p)·h(q) on ψ (if ``margin`` > 0; :mod:`wavephys.boundary`);
-2. one batched ``rfft2`` of (φ, χ);
-3. sudden disturbances (stones) added in Fourier space (:mod:`wavephys.disturbances`);
-4. the surface of this state: η = −F⁻¹[(K/ω)χ̂] (+ the second-order term if enabled) and
-   η̇ = F⁻¹[Kφ̂] (:mod:`wavephys.heights`);
-5. exact propagation by Δt, a rotation of (φ̂, χ̂) by ωΔt (:mod:`wavephys.ring_waves`);
-6. two batched ``irfft2``: (φ', χ') → the next state, (η̂, η̇̂) → the surface
-   [and (q̂, Λη̂, Λq̂) for the second-order term].
+1. one batched ``rfft2`` of (φ, χ);
+2. sudden disturbances (stones) added in Fourier space (:mod:`wavephys.disturbances`);
+3. the surface of this state: η = −F⁻¹[(K/ω)χ̂] (+ the second-order term if enabled)
+   and η̇ = F⁻¹[Kφ̂] (:mod:`wavephys.heights`);
+4. exact propagation by Δt, a rotation of (φ̂, χ̂) by ωΔt (:mod:`wavephys.ring_waves`);
+5. two batched ``irfft2``: (φ', χ') → the next state, (η̂, η̇̂) → the surface
+   [and (q̂, Λη̂, Λq̂) for the second-order term];
+6. the open-ocean cutoff h(p)·h(q) on the next state (if ``margin`` > 0;
+   :mod:`wavephys.boundary`).
 
-It returns the state at t + Δt and the surface at t. This is the paper's loop
-(propagate, add disturbances, cut off) with the cutoff moved to the front, so that the
-heights it returns are exactly those of the state it was given: 2 forward and 4 inverse
-real transforms per step (7 inverse with second order), all batched.
+It returns the state at t + Δt and the surface at t (of the state it was given, with
+the stones of this step): 2 forward and 4 inverse real transforms per step (7 inverse
+with second order).
+
+CPU note: XLA runs an FFT on a single thread when another operation precedes it in the
+same compiled program (openxla/xla#46345, jax-ml/jax#39081), which made a fully fused
+step 1.4–2× slower than its bare FFTs here. ``step`` therefore dispatches two compiled
+programs, each starting with its FFTs; ``run`` (a ``lax.scan``) stays one program.
 """
 
 from __future__ import annotations
@@ -157,7 +163,8 @@ class Simulation:
             K=surface_operator(k, water), lam=k,
             mask=cutoff_mask(grid.n, margin, cutoff, self.dtype) if margin else None,
         )
-        self._step = jax.jit(self._step_impl)
+        self._forward_jit = jax.jit(self._forward)
+        self._inverse_jit = jax.jit(self._inverse)
         self._surface = jax.jit(lambda state: self._step_impl(state, None)[1])
         self._run = jax.jit(self._run_impl, static_argnums=1)
 
@@ -212,39 +219,49 @@ class Simulation:
         return stones.check_on(self.grid)
 
     # -- stepping -------------------------------------------------------------
-    def _step_impl(self, state: State, stones: Optional[Stones]):
-        ops, n = self._ops, self.grid.n
-        fields = state.fields if ops["mask"] is None else state.fields * ops["mask"]
+    def _forward(self, fields, stones: Optional[Stones]):
+        """rfft2 of the state, stones, surface spectra and propagation (pure)."""
+        ops = self._ops
         spec = jnp.fft.rfft2(fields)
         ph, ch = spec[0], spec[1]
         if stones is not None:
             eta_stone = stone_height_spectrum(stones, self.grid).astype(ch.dtype)
             ch = ch - ops["inverse_height"] * eta_stone
         eta_hat = -ops["height"] * ch
-        # two batched inverse transforms whose outputs are the new state and the surface
-        # as they are (no slicing copies)
-        new = jnp.fft.irfft2(jnp.stack(rotate_pair(ph, ch, ops["cos"], ops["sin"])), s=(n, n))
-        surf = jnp.fft.irfft2(jnp.stack([eta_hat, ops["K"] * ph]), s=(n, n))
+        surf = [eta_hat, ops["K"] * ph]
         if self.second_order:
             q_hat = ops["height"] * ph
-            extra = jnp.fft.irfft2(jnp.stack([q_hat, ops["lam"] * eta_hat, ops["lam"] * q_hat]), s=(n, n))
-            eta = surf[0] + second_order_correction(surf[0], extra[0], extra[1], extra[2])
+            surf += [q_hat, ops["lam"] * eta_hat, ops["lam"] * q_hat]
+        return jnp.stack(rotate_pair(ph, ch, ops["cos"], ops["sin"])), jnp.stack(surf)
+
+    def _inverse(self, state_spec, surf_spec, time):
+        """The two batched irfft2 (next state, surface) and the cutoff (pure)."""
+        n, mask = self.grid.n, self._ops["mask"]
+        new = jnp.fft.irfft2(state_spec, s=(n, n))
+        if mask is not None:
+            new = new * mask
+        surf = jnp.fft.irfft2(surf_spec, s=(n, n))
+        if self.second_order:
+            eta = surf[0] + second_order_correction(surf[0], surf[2], surf[3], surf[4])
             surf = jnp.stack([eta, surf[1]])
         dt = jnp.asarray(self.dt, self.dtype)
-        return (State(new.astype(self.dtype), state.time + dt),
-                Surface(surf.astype(self.dtype), state.time))
+        return State(new.astype(self.dtype), time + dt), Surface(surf.astype(self.dtype), time)
+
+    def _step_impl(self, state: State, stones: Optional[Stones]):
+        return self._inverse(*self._forward(state.fields, stones), state.time)
 
     def step(self, state: State, stones: Optional[Stones] = None):
         """Advance by Δt: returns ``(state at t + Δt, surface at t)``.
 
-        ``stones`` (optional) are dropped at t, before the surface is taken.
+        ``stones`` (optional) are dropped at t, before the surface is taken. The cutoff
+        is applied to the returned state.
         """
         if stones is not None:
             stones = self._check_stones(stones)
-        return self._step(state, stones)
+        return self._inverse_jit(*self._forward_jit(state.fields, stones), state.time)
 
     def surface(self, state: State) -> Surface:
-        """The surface (η, η̇) of ``state`` after the cutoff, without stepping."""
+        """The surface (η, η̇) of ``state``, without stepping."""
         return self._surface(state)
 
     def _run_impl(self, state, steps):
