@@ -123,6 +123,14 @@ def _long_wave_speed(water: Water, dtype):
     return jnp.where(deep, jnp.inf, jnp.sqrt(water.g * h)).astype(dtype)
 
 
+def _positive(k):
+    """Checked k as a float array, the mask k > 0, and k with zeros replaced by 1."""
+    check_array("k", k, lo=0.0)
+    k = jnp.asarray(k, dtype=jnp.result_type(float, k))
+    pos = k > 0
+    return k, pos, jnp.where(pos, k, 1.0)
+
+
 def phase_speed(k, water: Water):
     """Phase speed c = ω/k, m/s.
 
@@ -140,10 +148,7 @@ def phase_speed(k, water: Water):
     Limits: deep gravity c = sqrt(g/k); shallow (kh ≪ 1) c = sqrt(g h); pure capillary
     c = sqrt(σ k / ρ).
     """
-    check_array("k", k, lo=0.0)
-    k = jnp.asarray(k, dtype=jnp.result_type(float, k))
-    pos = k > 0
-    ks = jnp.where(pos, k, 1.0)
+    k, pos, ks = _positive(k)
     c = jnp.sqrt(restoring_acceleration(ks, water) * depth_factor(ks, water) / ks)
     return jnp.where(pos, c, _long_wave_speed(water, k.dtype))
 
@@ -169,10 +174,7 @@ def group_speed(k, water: Water):
 
     Limits: deep gravity c_g = c/2; pure capillary c_g = 3c/2; shallow c_g = c.
     """
-    check_array("k", k, lo=0.0)
-    k = jnp.asarray(k, dtype=jnp.result_type(float, k))
-    pos = k > 0
-    ks = jnp.where(pos, k, 1.0)
+    k, pos, ks = _positive(k)
     deep = _deep(water)
     h = jnp.where(deep, 1.0, water.depth)
     t = depth_factor(ks, water)

@@ -26,7 +26,8 @@ import math
 import jax
 import jax.numpy as jnp
 
-from wavephys._inputs import check_array, check_scalar, check_int
+from wavephys._inputs import check_int, check_scalar
+from wavephys._two_level import check_levels, run_two_level
 from wavephys.params import Grid
 
 __all__ = [
@@ -77,30 +78,17 @@ def fd_run(eta, eta_prev, courant, steps: int, damping=0.0, check_stability: boo
     damping : float
         d in [0, 1).
     """
-    check_array("eta", eta, min_ndim=2)
-    check_array("eta_prev", eta_prev, min_ndim=2)
-    if jnp.shape(eta) != jnp.shape(eta_prev):
-        raise ValueError(f"eta and eta_prev must have one shape, got {jnp.shape(eta)} and {jnp.shape(eta_prev)}")
+    eta, eta_prev = check_levels(eta, eta_prev)
     check_scalar("courant", courant, lo=0.0, lo_open=True)
     if check_stability:
         check_scalar("courant", courant, lo=0.0, hi=STABILITY_LIMIT, lo_open=True)
     check_scalar("damping", damping, lo=0.0, hi=1.0, hi_open=True)
     steps = check_int("steps", steps, lo=1)
-    return _fd_run(jnp.asarray(eta), jnp.asarray(eta_prev), courant, damping, steps)
-
-
-@jax.jit
-def _fd_scan(eta, eta_prev, courant, damping, xs):
-    def body(carry, _):
-        a, b = carry
-        c = fd_step(a, b, courant, damping)
-        return (c, a), c
-    (a, b), hist = jax.lax.scan(body, (eta, eta_prev), xs)
-    return a, b, hist
+    return _fd_run(eta, eta_prev, courant, damping, steps)
 
 
 def _fd_run(eta, eta_prev, courant, damping, steps):
-    return _fd_scan(eta, eta_prev, courant, damping, jnp.zeros((steps, 0)))
+    return run_two_level(fd_step, eta, eta_prev, (courant, damping), steps, True)
 
 
 def fd_angular_frequency(kx, ky, speed, dt, dx):

@@ -22,6 +22,7 @@ import jax
 import jax.numpy as jnp
 
 from wavephys._inputs import check_array, check_int, check_scalar
+from wavephys._two_level import check_levels, run_two_level
 from wavephys.dispersion import angular_frequency
 from wavephys.params import Grid, Water
 
@@ -78,16 +79,6 @@ def kernel_step(eta, eta_prev, stencil, dt):
     return 2.0 * eta - eta_prev - dt * dt * convolve_periodic(eta, stencil)
 
 
-@jax.jit
-def _scan(eta, eta_prev, stencil, dt, xs):
-    def body(carry, _):
-        a, b = carry
-        c = kernel_step(a, b, stencil, dt)
-        return (c, a), None
-    (a, b), _ = jax.lax.scan(body, (eta, eta_prev), xs)
-    return a, b
-
-
 def kernel_run(eta, eta_prev, stencil, dt, steps: int):
     """``steps`` leapfrog steps; returns (η^N, η^{N−1}), m.
 
@@ -102,13 +93,8 @@ def kernel_run(eta, eta_prev, stencil, dt, steps: int):
     steps : int
         ≥ 1.
     """
-    check_array("eta", eta, min_ndim=2)
-    check_array("eta_prev", eta_prev, min_ndim=2)
-    if jnp.shape(eta) != jnp.shape(eta_prev):
-        raise ValueError(f"eta and eta_prev must have one shape, got {jnp.shape(eta)} and {jnp.shape(eta_prev)}")
+    eta, eta_prev = check_levels(eta, eta_prev)
     check_array("stencil", stencil, min_ndim=2)
     check_scalar("dt", dt, lo=0.0, lo_open=True)
     steps = check_int("steps", steps, lo=1)
-    eta = jnp.asarray(eta)
-    return _scan(eta, jnp.asarray(eta_prev, eta.dtype), jnp.asarray(stencil, eta.dtype), dt,
-                 jnp.zeros((steps, 0)))
+    return run_two_level(kernel_step, eta, eta_prev, (jnp.asarray(stencil, eta.dtype), dt), steps, False)
