@@ -1,0 +1,82 @@
+import math
+from importlib import resources
+
+import colour
+import numpy as np
+import pytest
+
+from optics.attenuation import (cutoff_distance, fit_rgb_coefficients, pure_water_absorption, rgb_error,
+                                transmittance, underwater_radiance, water_srgb)
+
+
+def test_beer_lambert_and_layers():
+    a = np.array([0.3, 0.05, 0.01])
+    t = np.asarray(transmittance(2.0, a))
+    np.testing.assert_allclose(t, np.exp(-2.0 * a), rtol=1e-6)
+    np.testing.assert_allclose(np.asarray(transmittance(0.7, a)) * np.asarray(transmittance(1.3, a)), t, rtol=1e-6)
+
+
+def test_cutoff_distance_sign_and_value():
+    a = np.array([0.34, 0.0581, 0.00808])
+    d = cutoff_distance(1e-3, a)
+    assert d > 0 and d == pytest.approx(-math.log(1e-3) / 0.00808)
+    assert float(transmittance(d, 0.00808)) == pytest.approx(1e-3, rel=1e-5)
+
+
+def test_in_scatter_limits():
+    g, diffuse = np.array([1.0, 0.5, 0.2]), np.array([0.0, 0.1, 0.3])
+    np.testing.assert_allclose(underwater_radiance(g, diffuse, 0.0, 0.0, 0.2), g, rtol=1e-6)
+    np.testing.assert_allclose(underwater_radiance(g, diffuse, 1e3, 0.0, 0.2), diffuse, atol=1e-6)
+    alpha = math.exp(-0.2 * 3.0 - 0.1 * 2.0)
+    np.testing.assert_allclose(underwater_radiance(g, diffuse, 3.0, 2.0, 0.2, 0.1), alpha * g + (1 - alpha) * diffuse,
+                               rtol=1e-6)
+
+
+def test_shipped_table_spot_values():
+    np.testing.assert_allclose(pure_water_absorption([450, 550, 650, 700]), [0.00808, 0.0581, 0.340, 0.6126])
+
+
+def _plain_numpy_srgb(distance):
+    """Independent path: the same tables read and integrated with plain numpy (5 nm)."""
+    with resources.files("optics").joinpath("data/purewater_absorption_wopp_v3.dat").open("rb") as f:
+        table = np.loadtxt(f, comments="%")
+    wl = np.arange(380.0, 781.0, 5.0)
+    a = np.interp(wl, table[:, 0], table[:, 1])
+    cmfs = colour.MSDS_CMFS["CIE 1931 2 Degree Standard Observer"]
+    xyz_bar = np.array([cmfs[w] for w in wl])                    # native 1 nm samples
+    s = np.array([colour.SDS_ILLUMINANTS["D65"][w] for w in wl])  # native 5 nm samples
+    m = np.array([[3.2406, -1.5372, -0.4986], [-0.9689, 1.8758, 0.0415], [0.0557, -0.2040, 1.0570]])  # IEC 61966-2-1
+    rgb = lambda t: m @ (np.sum((s * t)[:, None] * xyz_bar, axis=0) / np.sum(s * xyz_bar[:, 1]))
+    return rgb(np.exp(-a * distance)) / rgb(np.ones_like(a))
+
+
+@pytest.mark.parametrize("d", [1.0, 5.0, 10.0])
+def test_spectral_srgb_matches_independent_integration(d):
+    np.testing.assert_allclose(water_srgb(d, gamut="none"), _plain_numpy_srgb(d), atol=1e-4)
+
+
+def test_gamut_policy():
+    raw = water_srgb(10.0, gamut="none")
+    assert raw[0] < 0 < raw[1] < raw[2]  # red is out of gamut after 10 m of water
+    assert water_srgb(10.0)[0] == 0.0
+    np.testing.assert_allclose(water_srgb(0.0), [1.0, 1.0, 1.0])
+
+
+def test_rgb_approximation_error_grows_with_path():
+    coeffs = fit_rgb_coefficients(5.0)
+    assert coeffs[0] > coeffs[1] > coeffs[2] >= 0  # red absorbed most
+    err = rgb_error(np.array([1.0, 20.0]), coeffs)
+    assert err[0] < 0.03 < err[1]
+
+
+@pytest.mark.parametrize("call,name", [(lambda: transmittance(-1.0, 0.1), "distance"),
+                                       (lambda: transmittance(1.0, -0.1), "coefficient"),
+                                       (lambda: transmittance(math.nan, 0.1), "distance"),
+                                       (lambda: cutoff_distance(0.0, [0.1]), "epsilon"),
+                                       (lambda: cutoff_distance(0.01, [0.0, 0.1]), "coefficients"),
+                                       (lambda: pure_water_absorption(250.0), "wavelength"),
+                                       (lambda: water_srgb(-2.0), "distance"),
+                                       (lambda: water_srgb(1.0, gamut="wrap"), "gamut")])
+def test_bad_input(call, name):
+    with pytest.raises(ValueError, match=name):
+        call()
