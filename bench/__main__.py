@@ -1,4 +1,4 @@
-"""``python -m bench {propagation,boundaries} [--json PATH] [--quick]``.
+"""``python -m bench {propagation,boundaries,optics} [--json PATH] [--quick]``.
 
 Each writes its rows as JSON and its charts as PNG next to it (default
 ``bench/results/``) and prints a table.
@@ -51,11 +51,34 @@ def run_boundaries(args) -> None:
     _write(rows, figures, Path(args.json or "bench/results/boundaries.json"))
 
 
+def run_optics(args) -> None:
+    from bench import optics
+
+    rows = optics.fresnel_rows(_say) + optics.absorption_rows() + optics.caustics_rows(_say)
+    if not args.quick:
+        rows += optics.speed_rows(_say)
+    for r in rows:
+        if r["family"] == "fresnel":
+            print(f"fresnel {r['method']:<14}{r['side']:<6} worst {r['worst_error']:+.4f} at {r['worst_angle']:5.1f}°  "
+                  f"weighted mean {r['weighted_mean_error']:.4f}  {r['seconds'] * 1e3:.2f} ms/1M "
+                  f"(exact {r['baseline_seconds'] * 1e3:.2f})")
+        elif r["family"] == "caustics":
+            print(f"caustics {r['method']:<12}{r['label']:<10} error {r['error']:.4f}  {r['seconds'] * 1e3:.1f} ms")
+        elif r["family"] == "caustics speed":
+            extra = f", {r['photons_per_second']:.3g} photons/s" if "photons_per_second" in r else ""
+            print(f"speed {r['method']}: {r['seconds'] * 1e3:.2f} ms vs step {r['baseline_seconds'] * 1e3:.2f} ms, "
+                  f"ratio {r['ratio']:.2f}{extra}")
+    ab = [r for r in rows if r["family"] == "absorption"]
+    print("rgb vs spectral: " + ", ".join(f"{r['distance']:.2g} m: {r['error']:.3f}" for r in ab[::6]))
+    _write(rows, optics.figures(rows), Path(args.json or "bench/results/optics.json"))
+
+
 def main(argv=None) -> int:
     p = argparse.ArgumentParser(prog="python -m bench", description=__doc__.split("\n\n")[0])
     sub = p.add_subparsers(dest="which", required=True)
     for name, fn, help_ in (("propagation", run_propagation, "step vs bare FFT; error vs time"),
-                            ("boundaries", run_boundaries, "measured failure boundaries")):
+                            ("boundaries", run_boundaries, "measured failure boundaries"),
+                            ("optics", run_optics, "Fresnel, absorption and caustics: error vs cost")):
         s = sub.add_parser(name, help=help_)
         s.add_argument("--json", metavar="PATH")
         s.add_argument("--quick", action="store_true", help="smaller sizes (for CI smoke runs)")

@@ -51,13 +51,18 @@ METHODS = ("beam", "photon", "blinn_phong", "reference")
 
 
 # -- the exact surface ------------------------------------------------------------------
-def surface_slopes(height, length):
-    """∂η/∂x, ∂η/∂y of a periodic height field on its own grid (spectral, exact), 1."""
+def _slope_spectra(height, length):
     m = height.shape[-1]
     spec = jnp.fft.rfft2(height)
     ky = 2 * jnp.pi * jnp.fft.fftfreq(m, length / m)[:, None]
     kx = 2 * jnp.pi * jnp.fft.rfftfreq(m, length / m)[None, :]
-    out = jnp.fft.irfft2(jnp.stack([1j * kx * spec, 1j * ky * spec]), s=(m, m))
+    return jnp.stack([1j * kx * spec, 1j * ky * spec])
+
+
+def surface_slopes(height, length):
+    """∂η/∂x, ∂η/∂y of a periodic height field on its own grid (spectral, exact), 1."""
+    m = height.shape[-1]
+    out = jnp.fft.irfft2(_slope_spectra(height, length), s=(m, m))
     return out[0], out[1]
 
 
@@ -167,11 +172,23 @@ def _cell_corners(field, a, b):
 _CORNERS = ((0, 0), (0, 1), (1, 0), (1, 1))  # (row = y, column = x) offsets
 
 
-@partial(jax.jit, static_argnames=("m", "samples", "blur", "fresnel", "ground"))
+_slope_spectra_jit = jax.jit(_slope_spectra)
+
+
 def _beam(height, length, d, floor, n_water, m, samples, blur, fresnel, ground):
-    n = height.shape[-1]
+    # two compiled programs, the second starting with its FFT: on CPU, XLA runs an FFT
+    # single-threaded when another operation precedes it in the same program
+    # (openxla/xla#46345); see wavephys.simulation
+    vertical = bool(d[0] == 0 and d[1] == 0)
+    return _beam_core(_slope_spectra_jit(height, length), height, length, jnp.asarray(d, jnp.float32), floor,
+                      n_water, m, samples, blur, fresnel, ground, vertical)
+
+
+@partial(jax.jit, static_argnames=("m", "samples", "blur", "fresnel", "ground", "vertical"))
+def _beam_core(slope_spectra, eta, length, d, floor, n_water, m, samples, blur, fresnel, ground, vertical):
+    n = eta.shape[-1]
     h = length / n
-    eta, gx, gy = surface_fields(height, length)
+    gx, gy = jnp.fft.irfft2(slope_spectra, s=(n, n))
     c = (jnp.arange(n) - n // 2) * h
     xv, yv = jnp.meshgrid(c, c)
     floor_fn = _bilinear(floor, length) if ground else floor
@@ -187,9 +204,12 @@ def _beam(height, length, d, floor, n_water, m, samples, blur, fresnel, ground):
 
     px, py = xv + su * h + bilinear(disp[0]), yv + sv * h + bilinear(disp[1])
     # flux of a cell: E0 × the area of its four rays' z = 0 crossings × transmittance
-    cx = [xv + b * h + _cell_corners(disp[2], a, b) for a, b in _CORNERS]
-    cy = [yv + a * h + _cell_corners(disp[3], a, b) for a, b in _CORNERS]
-    area = 0.5 * jnp.abs((cx[3] - cx[0]) * (cy[2] - cy[1]) - (cx[2] - cx[1]) * (cy[3] - cy[0]))
+    if vertical:  # the crossings are the vertices themselves: area h² exactly
+        area = h * h
+    else:
+        cx = [xv + b * h + _cell_corners(disp[2], a, b) for a, b in _CORNERS]
+        cy = [yv + a * h + _cell_corners(disp[3], a, b) for a, b in _CORNERS]
+        area = 0.5 * jnp.abs((cx[3] - cx[0]) * (cy[2] - cy[1]) - (cx[2] - cx[1]) * (cy[3] - cy[0]))
     t_cell = 0.25 * sum(_cell_corners(T, a, b) for a, b in _CORNERS)
     flux = jnp.broadcast_to(area * t_cell / (samples * samples), px.shape)
     out = _deposit(px, py, flux, m, length)
@@ -285,7 +305,7 @@ def floor_irradiance(height, grid: Grid, depth, sun=(0.0, 0.0, 1.0), method: str
         raise ValueError(f"sun must point up (z > 0), got {tuple(sun)}")
     check_scalar("n_water", n_water, lo=1.0)
     m = n if resolution is None else check_int("resolution", resolution, lo=2)
-    d = jnp.asarray(-sun / np.linalg.norm(sun), jnp.float32)
+    d = -sun / np.linalg.norm(sun)  # numpy: the beam method branches on a vertical sun
     height = jnp.asarray(height, jnp.float32)
     length = float(grid.length)
     if method == "beam":
@@ -296,7 +316,7 @@ def floor_irradiance(height, grid: Grid, depth, sun=(0.0, 0.0, 1.0), method: str
             raise ValueError("blinn_phong takes a flat floor depth (it ignores geometry)")
         if m % n:
             raise ValueError(f"blinn_phong needs resolution a multiple of n={n}, got {m}")
-        return _blinn_phong(height, length, d, n_water, m, float(exponent))
+        return _blinn_phong(height, length, jnp.asarray(d, jnp.float32), n_water, m, float(exponent))
     if method == "photon":
         p = check_int("photons_per_texel", photons_per_texel, lo=1)
         side = int(round(m * math.sqrt(p)))
@@ -304,14 +324,14 @@ def floor_irradiance(height, grid: Grid, depth, sun=(0.0, 0.0, 1.0), method: str
         x0, y0 = jnp.meshgrid(c, c)
         jitter = jax.random.uniform(jax.random.PRNGKey(seed), (2, side, side), minval=-0.5, maxval=0.5)
         x0, y0 = x0 + jitter[0] * length / side, y0 + jitter[1] * length / side
-        out = _rays(height, length, d, floor, n_water, x0, y0, m, 2, bool(fresnel), ground)
+        out = _rays(height, length, jnp.asarray(d, jnp.float32), floor, n_water, x0, y0, m, 2, bool(fresnel), ground)
         r = check_int("filter_radius", filter_radius, lo=0)
         return bilateral_filter(out, r) if r else out
     o = check_int("oversample", oversample, lo=1)
     side = n * o
     c = (jnp.arange(side) - side / 2 + 0.5) * (length / side)
     x0, y0 = jnp.meshgrid(c, c)
-    return _rays(height, length, d, floor, n_water, x0, y0, m, o, bool(fresnel), ground)
+    return _rays(height, length, jnp.asarray(d, jnp.float32), floor, n_water, x0, y0, m, o, bool(fresnel), ground)
 
 
 def sinusoid_irradiance(x, amplitude, wavenumber, depth, n_water=N_WATER):

@@ -100,8 +100,12 @@ def fresnel_lut(n1, n2, size: int = 64):
 
 
 def _lut(c, n1, n2, size=64):
+    """Linear interpolation in a uniform table: index arithmetic, as a shader does."""
     table = _exact(jnp.linspace(0.0, 1.0, size), n1, n2)
-    return jnp.interp(c, jnp.linspace(0.0, 1.0, size), table)
+    u = c * (size - 1)
+    i = jnp.clip(jnp.floor(u).astype(jnp.int32), 0, size - 2)
+    f = u - i
+    return (1.0 - f) * table[i] + f * table[i + 1]
 
 
 METHODS = {"exact": _exact, "schlick": _schlick, "jensen_golias": _jensen_golias,
@@ -125,8 +129,10 @@ def reflectance(cos_theta, n1=N_AIR, n2=N_WATER, method: str = "exact", lut_size
 
     Examples
     --------
-    >>> round(float(reflectance(1.0)), 4)            # f0 of water from air
+    >>> round(float(reflectance(1.0, 1.0, 1.333)), 4)   # f0 of water from vacuum
     0.0204
+    >>> round(float(reflectance(1.0)), 5)              # from air (n = 1.000293)
+    0.02033
     >>> float(reflectance(0.5, 1.333, 1.000293))      # 60° from below: past 48.6°
     1.0
     """

@@ -1,10 +1,8 @@
 import math
-from importlib import resources
-
-import colour
 import numpy as np
 import pytest
 
+from optics.checks import plain_numpy_water_srgb
 from optics.attenuation import (cutoff_distance, fit_rgb_coefficients, pure_water_absorption, rgb_error,
                                 transmittance, underwater_radiance, water_srgb)
 
@@ -36,23 +34,9 @@ def test_shipped_table_spot_values():
     np.testing.assert_allclose(pure_water_absorption([450, 550, 650, 700]), [0.00808, 0.0581, 0.340, 0.6126])
 
 
-def _plain_numpy_srgb(distance):
-    """Independent path: the same tables read and integrated with plain numpy (5 nm)."""
-    with resources.files("optics").joinpath("data/purewater_absorption_wopp_v3.dat").open("rb") as f:
-        table = np.loadtxt(f, comments="%")
-    wl = np.arange(380.0, 781.0, 5.0)
-    a = np.interp(wl, table[:, 0], table[:, 1])
-    cmfs = colour.MSDS_CMFS["CIE 1931 2 Degree Standard Observer"]
-    xyz_bar = np.array([cmfs[w] for w in wl])                    # native 1 nm samples
-    s = np.array([colour.SDS_ILLUMINANTS["D65"][w] for w in wl])  # native 5 nm samples
-    m = np.array([[3.2406, -1.5372, -0.4986], [-0.9689, 1.8758, 0.0415], [0.0557, -0.2040, 1.0570]])  # IEC 61966-2-1
-    rgb = lambda t: m @ (np.sum((s * t)[:, None] * xyz_bar, axis=0) / np.sum(s * xyz_bar[:, 1]))
-    return rgb(np.exp(-a * distance)) / rgb(np.ones_like(a))
-
-
 @pytest.mark.parametrize("d", [1.0, 5.0, 10.0])
 def test_spectral_srgb_matches_independent_integration(d):
-    np.testing.assert_allclose(water_srgb(d, gamut="none"), _plain_numpy_srgb(d), atol=1e-4)
+    np.testing.assert_allclose(water_srgb(d, gamut="none"), plain_numpy_water_srgb(d), atol=1e-4)
 
 
 def test_gamut_policy():

@@ -101,6 +101,9 @@ def check_array(
         )
     if is_traced(value):
         return value
+    if isinstance(value, jax.Array) and value.size > 4096:
+        _check_device_array(name, value, lo, hi, lo_open, hi_open, allow_inf, complex_ok)
+        return value
     arr = np.asarray(value)
     if not np.issubdtype(arr.dtype, np.number):
         raise ValueError(f"{name} must be numeric, got dtype {arr.dtype}")
@@ -117,6 +120,24 @@ def check_array(
         _check_range(name, real.min(), real.max(), lo, hi, lo_open, hi_open,
                      f"values in [{real.min()!r}, {real.max()!r}]")
     return value
+
+
+@jax.jit
+def _summary(x):
+    """(all finite, any NaN, min, max) of the real part, in one pass on the device."""
+    r = jax.numpy.real(x)
+    return jax.numpy.isfinite(x).all(), jax.numpy.isnan(x).any(), r.min(), r.max()
+
+
+def _check_device_array(name, value, lo, hi, lo_open, hi_open, allow_inf, complex_ok):
+    """Value checks of a large JAX array without copying it to the host."""
+    if jax.numpy.iscomplexobj(value) and not complex_ok:
+        raise ValueError(f"{name} must be real, got complex values")
+    finite, has_nan, vmin, vmax = (v.item() for v in jax.device_get(_summary(value)))
+    if not finite and (has_nan or not allow_inf):
+        raise ValueError(f"{name} must be finite everywhere; it contains NaN or inf")
+    if lo is not None or hi is not None:
+        _check_range(name, vmin, vmax, lo, hi, lo_open, hi_open, f"values in [{vmin!r}, {vmax!r}]")
 
 
 def check_int(name: str, value: Any, *, lo: int | None = None, hi: int | None = None,

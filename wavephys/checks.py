@@ -32,6 +32,7 @@ from wavephys.validate import (Check, bound, compare, dispersion_error, measure_
 __all__ = [
     "CHECKS",
     "run_all",
+    "all_checks",
     "dispersion_scene",
     "cutoff_reflection",
     "cutoff_boundary",
@@ -406,11 +407,19 @@ CHECKS: dict[str, Callable[[], list[Check]]] = {
 """Every built-in validation, in the order ``wavephys validate`` runs them."""
 
 
+def all_checks() -> dict[str, Callable[[], list[Check]]]:
+    """The wave checks (:data:`CHECKS`) followed by the optics ones (``optics.checks``)."""
+    from optics.checks import CHECKS as OPTICS
+
+    return {**CHECKS, **OPTICS}
+
+
 def run_all(progress: Callable[[int, int, str], None] | None = None) -> list[Check]:
-    """Run every check in :data:`CHECKS`; ``progress(i, total, name)`` is called before each."""
+    """Run every check of :func:`all_checks`; ``progress(i, total, name)`` is called before each."""
     rows: list[Check] = []
-    for i, (name, fn) in enumerate(CHECKS.items()):
+    checks = all_checks()
+    for i, (name, fn) in enumerate(checks.items()):
         if progress:
-            progress(i, len(CHECKS), name)
+            progress(i, len(checks), name)
         rows.extend(fn())
     return rows

@@ -43,16 +43,17 @@ def cmd_validate(args) -> int:
         jax.config.update("jax_enable_x64", True)
     from wavephys import checks
 
-    names = args.only or list(checks.CHECKS)
-    unknown = [n for n in names if n not in checks.CHECKS]
+    registry = checks.all_checks()
+    names = args.only or list(registry)
+    unknown = [n for n in names if n not in registry]
     if unknown:
-        print(f"unknown check(s) {unknown}; choose from {list(checks.CHECKS)}", file=sys.stderr)
+        print(f"unknown check(s) {unknown}; choose from {list(registry)}", file=sys.stderr)
         return 2
     start = [time.perf_counter()]
     rows = []
     for i, name in enumerate(names):
         _progress(i, len(names), name, start)
-        rows.extend(checks.CHECKS[name]())
+        rows.extend(registry[name]())
     print(_table(rows))
     failed = [r for r in rows if not r.ok]
     print(f"\n{len(rows) - len(failed)} passed, {len(failed)} failed "

@@ -1,0 +1,137 @@
+"""Built-in optics validations (rows of ``wavephys validate``), SPEC §2.
+
+Each ``check_*`` returns :class:`wavephys.validate.Check` rows; the measurement helpers
+are public so that ``python -m bench optics`` charts them over their whole range.
+"""
+
+from __future__ import annotations
+
+import math
+from importlib import resources
+
+import colour
+import jax
+import jax.numpy as jnp
+import numpy as np
+
+from optics.attenuation import cutoff_distance, pure_water_absorption, transmittance, water_srgb
+from optics.caustics import first_fold_depth, floor_irradiance, focal_depth
+from optics.fresnel import N_AIR, N_WATER, normal_reflectance, reflectance, reflectance_sp
+from wavephys.params import Grid
+from wavephys.validate import Check, bound, compare
+
+__all__ = ["CHECKS", "fresnel_errors", "plain_numpy_water_srgb", "sinusoid_scene"]
+
+
+def fresnel_errors(method: str, n1: float, n2: float, samples: int = 20000, **kw) -> dict:
+    """Error of an approximation against the exact reflectance over incidence angle.
+
+    Returns the signed worst error, its angle (degrees) and the cosine-weighted mean
+    absolute error (weight cos θ sin θ: the irradiance-weighted average over the
+    hemisphere).
+    """
+    theta = np.linspace(0.0, math.pi / 2, samples)
+    c = jnp.asarray(np.cos(theta), jnp.float32)
+    err = np.asarray(reflectance(c, n1, n2, method=method, **kw), float) - np.asarray(reflectance(c, n1, n2), float)
+    i = int(np.argmax(np.abs(err)))
+    w = np.cos(theta) * np.sin(theta)
+    return dict(worst=float(err[i]), angle=math.degrees(theta[i]),
+                weighted_mean=float(np.sum(np.abs(err) * w) / np.sum(w)))
+
+
+def check_fresnel() -> list[Check]:
+    rows = [compare("Fresnel R(0), air → water", float(reflectance(1.0)), normal_reflectance(N_AIR, N_WATER), rtol=1e-6),
+            compare("Fresnel R(0) = 0.0204 for water (n 1 → 1.333)", float(reflectance(1.0, 1.0, 1.333)), 0.0204, atol=5e-5)]
+    brewster = math.atan(N_WATER / N_AIR)
+    rows.append(compare("Brewster angle from air", math.degrees(brewster), 53.1, atol=0.05, unit="deg"))
+    rows.append(bound("R_p at Brewster", float(reflectance_sp(math.cos(brewster), N_AIR, N_WATER)[1]), 1e-10))
+    crit = math.asin(N_AIR / N_WATER)
+    rows.append(compare("critical angle from below", math.degrees(crit), 48.6, atol=0.05, unit="deg"))
+    rows.append(compare("R just past the critical angle (TIR)", float(reflectance(math.cos(crit + 1e-3), N_WATER, N_AIR)), 1.0, atol=0.0))
+    th = np.linspace(0.0, 89.0, 90)
+    tt = np.degrees(np.arcsin(N_AIR / N_WATER * np.sin(np.radians(th))))
+    ref = np.real(colour.phenomena.polarised_light_reflection_coefficient(N_AIR, N_WATER, th, tt))
+    rs, rp = reflectance_sp(jnp.cos(jnp.radians(jnp.asarray(th, jnp.float32))), N_AIR, N_WATER)
+    diff = max(np.max(np.abs(np.asarray(rs) - ref[:, 0])), np.max(np.abs(np.asarray(rp) - ref[:, 1])))
+    rows.append(compare("R_s, R_p vs colour-science (max |diff|)", diff, 0.0, atol=1e-6))
+    s = fresnel_errors("schlick", N_AIR, N_WATER)
+    rows.append(compare(f"Schlick worst error from above (at {s['angle']:.1f}°)", s["worst"], 0.059, atol=0.002))
+    c = jnp.asarray(np.cos(np.radians(np.linspace(0, 89.9, 20000))), jnp.float32)
+    f0 = normal_reflectance(N_WATER, N_AIR)
+    naive = np.asarray(f0 + (1 - f0) * (1 - c) ** 5) - np.asarray(reflectance(c, N_WATER, N_AIR))
+    rows.append(compare("Schlick with cos θi from below: worst error (failure)", naive[np.argmax(np.abs(naive))],
+                        -0.97, atol=0.01))
+    below = fresnel_errors("schlick", N_WATER, N_AIR)
+    rows.append(bound("Schlick with cos θt from below: worst |error|", abs(below["worst"]), 0.07))
+    return rows
+
+
+def plain_numpy_water_srgb(distance: float) -> np.ndarray:
+    """Independent path for :func:`optics.attenuation.water_srgb`: the same tables read and
+    integrated with plain numpy at 5 nm (CIE 1931 2° at its native 1 nm samples, D65 at
+    its native 5 nm samples, water a(λ) linearly interpolated, IEC 61966-2-1 matrix)."""
+    with resources.files("optics").joinpath("data/purewater_absorption_wopp_v3.dat").open("rb") as f:
+        table = np.loadtxt(f, comments="%")
+    wl = np.arange(380.0, 781.0, 5.0)
+    a = np.interp(wl, table[:, 0], table[:, 1])
+    cmfs = colour.MSDS_CMFS["CIE 1931 2 Degree Standard Observer"]
+    xyz_bar = np.array([cmfs[w] for w in wl])
+    s = np.array([colour.SDS_ILLUMINANTS["D65"][w] for w in wl])
+    m = np.array([[3.2406, -1.5372, -0.4986], [-0.9689, 1.8758, 0.0415], [0.0557, -0.2040, 1.0570]])
+    rgb = lambda t: m @ (np.sum((s * t)[:, None] * xyz_bar, axis=0) / np.sum(s * xyz_bar[:, 1]))
+    return rgb(np.exp(-a * distance)) / rgb(np.ones_like(a))
+
+
+def check_absorption() -> list[Check]:
+    a = float(pure_water_absorption(550.0))
+    rows = [compare("pure water a(550 nm) (WOPP v3)", a, 0.0581, rtol=1e-9, unit="1/m"),
+            compare("Beer–Lambert e^{−ad}, 3 m at 550 nm", float(transmittance(3.0, a)), math.exp(-3 * a), rtol=1e-6),
+            compare("layers multiply: T(1 m)·T(2 m) / T(3 m)",
+                    float(transmittance(1.0, a) * transmittance(2.0, a) / transmittance(3.0, a)), 1.0, rtol=1e-6)]
+    d_max = cutoff_distance(1e-3, pure_water_absorption(np.arange(380.0, 781.0, 2.0)))
+    rows.append(bound("cut-off distance −ln ε / min a (ε = 1e-3) is positive", d_max, 0.0, relation="≥", unit="m"))
+    rows.append(compare("transmittance at the cut-off distance", float(transmittance(d_max, pure_water_absorption(np.arange(380.0, 781.0, 2.0)).min())),
+                        1e-3, rtol=1e-5))
+    for d in (1.0, 5.0, 10.0):
+        diff = float(np.max(np.abs(water_srgb(d, gamut="none") - plain_numpy_water_srgb(d))))
+        rows.append(compare(f"spectral sRGB of {d:g} m: colour-science vs plain numpy", diff, 0.0, atol=1e-4))
+    return rows
+
+
+def sinusoid_scene(n: int = 128, diagonal: bool = False):
+    """η = a cos(k·x) on a 1 m periodic grid: a = 2 mm, |k| = 4π (or 4π√2 at 45°)."""
+    grid = Grid(n, 1.0)
+    x, y = grid.mesh()
+    if diagonal:
+        eta = 0.002 * jnp.cos(4 * math.pi * (x + y + 1.0))
+        k = 4 * math.pi * math.sqrt(2)
+    else:
+        eta = 0.002 * jnp.cos(4 * math.pi * (x + 0.5))
+        k = 4 * math.pi
+    return grid, eta, k
+
+
+def check_caustics() -> list[Check]:
+    rows = []
+    grid = Grid(64, 2.0)
+    x, y = grid.mesh()
+    rough = 0.01 * jnp.cos(3 * math.pi * x) * jnp.sin(2 * math.pi * y) + 0.005 * jnp.sin(5 * math.pi * (x + y))
+    e = floor_irradiance(rough, grid, 1.0, sun=(0.3, 0.2, 1.0), fresnel=False)
+    rows.append(compare("caustics flux conserved (beam, oblique sun, mean E/E0)", float(jnp.mean(e)), 1.0, atol=1e-3))
+    flat = floor_irradiance(jnp.zeros((64, 64)), grid, 1.0, sun=(0.3, 0.2, 1.0))
+    rows.append(compare("flat water: floor irradiance spread (max − min)", float(flat.max() - flat.min()), 0.0, atol=1e-5))
+    for diagonal in (False, True):
+        g, eta, k = sinusoid_scene(diagonal=diagonal)
+        zf = focal_depth(0.002, k)
+        label = "45°" if diagonal else "0°"
+        for method, kw in (("beam", dict(samples=8)), ("reference", dict(oversample=8))):
+            e = floor_irradiance(eta, g, zf / 2, method=method, fresnel=False, **kw)
+            rows.append(compare(f"sinusoid {label}, z_f/2, {method}: peak E/E0", float(e.max()), 2.0, rtol=0.01))
+            rows.append(compare(f"sinusoid {label}, z_f/2, {method}: trough E/E0", float(e.min()), 2 / 3, rtol=0.01))
+        rows.append(compare(f"sinusoid {label}: focal depth (first fold of the beam mesh)", first_fold_depth(eta, g), zf,
+                            rtol=0.01, unit="m"))
+    return rows
+
+
+CHECKS = {"Fresnel": check_fresnel, "absorption": check_absorption, "caustics": check_caustics}
+"""Optics validations, in the order ``wavephys validate`` runs them (after the wave ones)."""
