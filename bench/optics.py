@@ -61,7 +61,8 @@ def caustics_rows(progress=print) -> list[dict]:
     progress("caustics reference (oversample 16)")
     ref = np.asarray(floor_irradiance(eta, grid, depth, method="reference", oversample=16))
     configs = [("beam", dict(samples=s), f"s={s}") for s in (1, 2, 4, 8)]
-    configs += [("beam", dict(samples=1, blur=True), "s=1+blur")]
+    configs += [("beam", dict(samples=1, blur=True), "s=1+blur"), ("beam", dict(samples=1, normals="central"), "s=1 central"),
+                ("beam", dict(samples=4, normals="central"), "s=4 central")]
     configs += [("photon", dict(photons_per_texel=p), f"{p}/texel") for p in (1, 4, 16, 64)]
     configs += [("blinn_phong", {}, "tr=20"), ("reference", dict(oversample=4), "o=4")]
     rows = []
@@ -84,14 +85,19 @@ def speed_rows(progress=print) -> list[dict]:
     eta = sim.surface(state).eta
     fns = {"step": lambda: sim.step(state),
            "beam": lambda: floor_irradiance(eta, grid, 2.0, method="beam", samples=1),
+           "beam central": lambda: floor_irradiance(eta, grid, 2.0, method="beam", samples=1, normals="central"),
            "photon": lambda: floor_irradiance(eta, grid, 2.0, method="photon", photons_per_texel=4)}
-    times = interleaved(fns, repeats=9, block=3)
+    times = interleaved(fns, repeats=15, block=3)
     med = {k: statistics.median(v) for k, v in times.items()}
-    ratio = statistics.median(b / s for b, s in zip(times["beam"], times["step"]))
-    return [dict(family="caustics speed", method="beam (samples=1)", n=512, dtype="float32", seconds=med["beam"],
-                 baseline_seconds=med["step"], baseline="simulation step n=512", ratio=ratio, error=None),
+    ratio = lambda k: statistics.median(b / s for b, s in zip(times[k], times["step"]))
+    return [dict(family="caustics speed", method="beam (samples=1, spectral normals)", n=512, dtype="float32",
+                 seconds=med["beam"], baseline_seconds=med["step"], baseline="simulation step n=512",
+                 ratio=ratio("beam"), error=None),
+            dict(family="caustics speed", method="beam (samples=1, central normals)", n=512, dtype="float32",
+                 seconds=med["beam central"], baseline_seconds=med["step"], baseline="simulation step n=512",
+                 ratio=ratio("beam central"), error=None),
             dict(family="caustics speed", method="photon (4/texel, bilateral)", n=512, dtype="float32",
-                 seconds=med["photon"], baseline_seconds=med["step"], ratio=med["photon"] / med["step"],
+                 seconds=med["photon"], baseline_seconds=med["step"], ratio=ratio("photon"),
                  photons_per_second=4 * 512 * 512 / med["photon"], error=None)]
 
 

@@ -14,7 +14,8 @@ Methods (``floor_irradiance(..., method=)``):
   cell is a beam whose corners are traced exactly; its flux E0·T·A₀ is spread over its
   bilinear floor footprint by ``samples``² sub-beams deposited cloud-in-cell. Flux is
   conserved exactly; irradiance = source area / projected area; an optional 1-2-1 blur
-  hides the cells. Second order in the mesh spacing where there is no fold.
+  hides the cells. Second order in the mesh spacing where there is no fold. With
+  ``samples=1`` (the fast setting) each vertex's ray carries the flux of its dual cell.
 * ``"photon"`` — photon splatting (Baboud & Décoret 2006): one photon per jittered texel
   of an ``m × m`` light-view texture, a 2-D histogram on the floor, then an
   edge-preserving (bilateral) filter. Noise falls as 1/sqrt(photons per texel).
@@ -44,7 +45,7 @@ from optics.fresnel import N_AIR, N_WATER, _exact as _fresnel_exact
 from wavephys._inputs import check_array, check_choice, check_int, check_scalar
 from wavephys.params import Grid
 
-__all__ = ["METHODS", "floor_irradiance", "first_fold_depth", "surface_fields", "surface_slopes", "sinusoid_irradiance", "focal_depth",
+__all__ = ["METHODS", "floor_irradiance", "first_fold_depth", "central_slopes", "surface_fields", "surface_slopes", "sinusoid_irradiance", "focal_depth",
            "bilateral_filter", "blur_121"]
 
 METHODS = ("beam", "photon", "blinn_phong", "reference")
@@ -136,7 +137,8 @@ def _deposit(x, y, flux, m, length):
     w = flux.ravel()
     index = jnp.concatenate([j0 * m + i0, j0 * m + i1, j1 * m + i0, j1 * m + i1])
     value = jnp.concatenate([w * (1 - fu) * (1 - fv), w * fu * (1 - fv), w * (1 - fu) * fv, w * fu * fv])
-    return jnp.zeros(m * m, w.dtype).at[index].add(value).reshape(m, m) / (h * h)
+    total = jnp.zeros(m * m, w.dtype).at[index].add(value, mode="promise_in_bounds")  # indices wrapped above
+    return total.reshape(m, m) / (h * h)
 
 
 def blur_121(image):
@@ -175,24 +177,45 @@ _CORNERS = ((0, 0), (0, 1), (1, 0), (1, 1))  # (row = y, column = x) offsets
 _slope_spectra_jit = jax.jit(_slope_spectra)
 
 
-def _beam(height, length, d, floor, n_water, m, samples, blur, fresnel, ground):
+def central_slopes(height, length):
+    """∂η/∂x, ∂η/∂y by periodic central differences (second order), dimensionless."""
+    h = length / height.shape[-1]
+    gx = (jnp.roll(height, -1, 1) - jnp.roll(height, 1, 1)) / (2 * h)
+    gy = (jnp.roll(height, -1, 0) - jnp.roll(height, 1, 0)) / (2 * h)
+    return gx, gy
+
+
+def _beam(height, length, d, floor, n_water, m, samples, blur, fresnel, ground, normals):
+    vertical = bool(d[0] == 0 and d[1] == 0)
+    d = jnp.asarray(d, jnp.float32)
+    if normals == "central":
+        return _beam_core(None, height, length, d, floor, n_water, m, samples, blur, fresnel, ground, vertical)
     # two compiled programs, the second starting with its FFT: on CPU, XLA runs an FFT
     # single-threaded when another operation precedes it in the same program
     # (openxla/xla#46345); see wavephys.simulation
-    vertical = bool(d[0] == 0 and d[1] == 0)
-    return _beam_core(_slope_spectra_jit(height, length), height, length, jnp.asarray(d, jnp.float32), floor,
-                      n_water, m, samples, blur, fresnel, ground, vertical)
+    return _beam_core(_slope_spectra_jit(height, length), height, length, d, floor, n_water, m, samples, blur,
+                      fresnel, ground, vertical)
 
 
 @partial(jax.jit, static_argnames=("m", "samples", "blur", "fresnel", "ground", "vertical"))
 def _beam_core(slope_spectra, eta, length, d, floor, n_water, m, samples, blur, fresnel, ground, vertical):
     n = eta.shape[-1]
     h = length / n
-    gx, gy = jnp.fft.irfft2(slope_spectra, s=(n, n))
+    if slope_spectra is None:
+        gx, gy = central_slopes(eta, length)
+    else:
+        gx, gy = jnp.fft.irfft2(slope_spectra, s=(n, n))
     c = (jnp.arange(n) - n // 2) * h
     xv, yv = jnp.meshgrid(c, c)
     floor_fn = _bilinear(floor, length) if ground else floor
     X, Y, T = _land(xv, yv, eta, gx, gy, d, floor_fn, n_water, fresnel)
+    finite = jnp.isfinite(eta).all()  # checked here, raised by the caller: no extra pass
+    if samples == 1:
+        # one ray per vertex carrying the flux of its dual cell: E0·T·(x0-area), with the
+        # x0-area h²·det(∂x0/∂x) = h²·(1 − gx·dx/dz − gy·dy/dz)
+        area = h * h if vertical else h * h * jnp.abs(1.0 - (gx * d[0] + gy * d[1]) / d[2])
+        out = _deposit(X, Y, area * T, m, length)
+        return (blur_121(out) if blur else out), finite
     # work with displacements so that corners across the periodic seam stay adjacent
     disp = [X - xv, Y - yv, -eta * d[0] / d[2], -eta * d[1] / d[2]]  # floor, and z = 0 crossing
     q = (jnp.arange(samples) + 0.5) / samples
@@ -213,7 +236,7 @@ def _beam_core(slope_spectra, eta, length, d, floor, n_water, m, samples, blur, 
     t_cell = 0.25 * sum(_cell_corners(T, a, b) for a, b in _CORNERS)
     flux = jnp.broadcast_to(area * t_cell / (samples * samples), px.shape)
     out = _deposit(px, py, flux, m, length)
-    return blur_121(out) if blur else out
+    return (blur_121(out) if blur else out), finite
 
 
 @partial(jax.jit, static_argnames=("m", "oversample", "fresnel", "ground"))
@@ -244,7 +267,7 @@ def _blinn_phong(height, length, d, n_water, m, exponent):
 # -- public -----------------------------------------------------------------------------
 def floor_irradiance(height, grid: Grid, depth, sun=(0.0, 0.0, 1.0), method: str = "beam", *,
                      resolution: int | None = None, n_water: float = N_WATER, fresnel: bool = True,
-                     samples: int = 2, blur: bool = False, photons_per_texel: int = 1,
+                     samples: int = 2, blur: bool = False, normals: str = "spectral", photons_per_texel: int = 1,
                      filter_radius: int = 2, oversample: int = 4, exponent: float = 20.0, seed: int = 0):
     """Irradiance on the floor, relative to the sun's horizontal irradiance above water.
 
@@ -269,6 +292,9 @@ def floor_irradiance(height, grid: Grid, depth, sun=(0.0, 0.0, 1.0), method: str
         ``"beam"``: sub-beams per cell edge (samples² per cell).
     blur : bool
         ``"beam"``: apply the 1-2-1 blur.
+    normals : {"spectral", "central"}
+        ``"beam"``: surface slopes exact (FFT) or by central differences (second order,
+        no transforms: the fast setting).
     photons_per_texel : int
         ``"photon"``: photons per floor texel (the light-view texture is m·sqrt(p) square).
     filter_radius : int
@@ -287,9 +313,10 @@ def floor_irradiance(height, grid: Grid, depth, sun=(0.0, 0.0, 1.0), method: str
     """
     check_choice("method", method, METHODS)
     n = grid.n
-    check_array("height", height, min_ndim=2, shape_tail=(n, n))
-    if jnp.ndim(height) != 2:
+    if jnp.shape(height) != (n, n):
         raise ValueError(f"height must have shape ({n}, {n}), got {jnp.shape(height)}")
+    if method != "beam":  # the beam method checks finiteness inside its own program
+        check_array("height", height)
     ground = jnp.ndim(depth) == 2
     if ground:
         check_array("depth", depth, shape_tail=(n, n))
@@ -309,8 +336,12 @@ def floor_irradiance(height, grid: Grid, depth, sun=(0.0, 0.0, 1.0), method: str
     height = jnp.asarray(height, jnp.float32)
     length = float(grid.length)
     if method == "beam":
-        return _beam(height, length, d, floor, n_water, m, check_int("samples", samples, lo=1), bool(blur),
-                     bool(fresnel), ground)
+        check_choice("normals", normals, ("spectral", "central"))
+        out, finite = _beam(height, length, d, floor, n_water, m, check_int("samples", samples, lo=1), bool(blur),
+                            bool(fresnel), ground, normals)
+        if not bool(finite):
+            raise ValueError("height must be finite everywhere; it contains NaN or inf")
+        return out
     if method == "blinn_phong":
         if ground:
             raise ValueError("blinn_phong takes a flat floor depth (it ignores geometry)")

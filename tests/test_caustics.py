@@ -51,7 +51,8 @@ class TestFlux:
 
 class TestSinusoid:
     @pytest.mark.parametrize("diagonal", [False, True])
-    @pytest.mark.parametrize("method,kw", [("beam", dict(samples=8)), ("reference", dict(oversample=8))])
+    @pytest.mark.parametrize("method,kw", [("beam", dict(samples=8)), ("beam", dict(samples=8, normals="central")),
+                                           ("reference", dict(oversample=8))])
     def test_peak_and_trough_at_half_focal_depth(self, method, kw, diagonal):
         k = K * math.sqrt(2) if diagonal else K
         depth = focal_depth(A, k) / 2
@@ -102,14 +103,15 @@ def _exact_tent_averages(n_pixels, depth, fine=1 << 16):
     return out / p
 
 
-def test_beam_tracing_converges_at_second_order():
+@pytest.mark.parametrize("normals", ["spectral", "central"])
+def test_beam_tracing_converges_at_second_order(normals):
     depth, m = ZF / 2, 32
     exact = _exact_tent_averages(m, depth)
     errors = []
     for n in (16, 32, 64, 128):
         grid = Grid(n, 1.0)
         e = np.asarray(floor_irradiance(_wave(grid), grid, depth, method="beam", resolution=m, samples=4,
-                                        fresnel=False))[m // 2]
+                                        fresnel=False, normals=normals))[m // 2]
         errors.append(np.max(np.abs(e - exact)))
     order = -np.polyfit(np.log2([16, 32, 64, 128]), np.log2(errors), 1)[0]  # log-log slope
     assert 1.9 < order < 2.3, (errors, order)
@@ -117,7 +119,8 @@ def test_beam_tracing_converges_at_second_order():
 
 @pytest.mark.parametrize("kw,name", [(dict(depth=-1.0), "depth"), (dict(depth=math.nan), "depth"),
                                      (dict(sun=(0.0, 0.0, -1.0)), "sun"), (dict(method="exact"), "method"),
-                                     (dict(n_water=0.5), "n_water"), (dict(samples=0), "samples")])
+                                     (dict(n_water=0.5), "n_water"), (dict(samples=0), "samples"),
+                                     (dict(normals="sobel"), "normals")])
 def test_bad_input(kw, name):
     args = dict(depth=1.0)
     args.update(kw)
