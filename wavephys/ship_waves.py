@@ -1,0 +1,315 @@
+r"""Moving sources: the ship-wave kernels Φ1/Φ2 of Loviscach (2003), eq. 2 (SPEC §1.3).
+
+A ship profile f (1 inside the hull, 0 outside, optionally blurred by a Gaussian in
+Fourier space) moving on a straight line at velocity v during [t, t + Δt] adds, at
+t + Δt, the complex wave field
+
+.. math::
+
+    \mathcal F^{-1}\left[\hat f_t\,M_1 + \hat f_{t+\Delta t}\,M_2\right],\qquad
+    M_1 = e^{-i\omega\Delta t}\left(-1 + i\omega\Delta t\,Q_1(\alpha)\right),\quad
+    M_2 = 1 + i\omega\Delta t\,Q_2(\alpha),
+
+    Q_1 = \frac{e^{-i\alpha} + i\alpha - 1}{\alpha^2},\quad
+    Q_2 = \frac{e^{i\alpha} - i\alpha - 1}{\alpha^2},\quad
+    \alpha = (\mathbf k\cdot\mathbf v - \omega)\Delta t .
+
+For straight motion this is the exact Duhamel integral of the source ∂(s·f)/∂t (s the
+ship's strength, m²/s): M1 + M2·e^{−ik·vΔt} = e^{−iωΔt}(e^{−iα} − 1)(k·vΔt)/α, so one
+step of Δt equals two of Δt/2, and a ship at rest adds nothing (M1 + M2 = 0).
+
+Near the resonance α → 0 (k·v = ω: the stationary Kelvin waves) Q1 → −1/2 + iα/6 and
+Q2 → −1/2 − iα/6; evaluated as written they lose all digits in float32. Below
+|α| < 1/2 we sum their Taylor series (13 terms: truncation below 1e-16 relative);
+:func:`ship_multipliers_naive` keeps the textbook form as the documented failure.
+
+The new waves matter only near the ship, so they are computed on a 2M × 2M patch of
+the grid around it and added to the N × N field; :func:`patch_leak` measures how much
+of them a patch misses (against a patch twice as large) and the simulation refuses a
+Δt whose leak exceeds a tolerance.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from typing import Callable, Optional
+
+import jax
+import jax.numpy as jnp
+import numpy as np
+
+from wavephys._inputs import check_array, check_choice, check_int, check_scalar
+from wavephys.dispersion import angular_frequency
+from wavephys.params import Grid, Water
+
+__all__ = [
+    "ship_multipliers",
+    "ship_multipliers_naive",
+    "resonance_quotients",
+    "Hull",
+    "Path",
+    "straight_path",
+    "turning_path",
+    "Ship",
+    "hull_spectrum",
+    "ship_patch_waves",
+    "patch_leak",
+    "max_patch_dt",
+]
+
+_SERIES_TERMS = 13
+_SERIES_RADIUS = 0.5
+
+
+def resonance_quotients(alpha):
+    """(Q1, Q2) = ((e^{−iα} + iα − 1)/α², (e^{iα} − iα − 1)/α²), cancellation-free.
+
+    Taylor series Σ_{j≥2} (∓iα)^j / (j! α²) for |α| < 1/2, the closed form elsewhere.
+    """
+    alpha = jnp.asarray(alpha)
+    small = jnp.abs(alpha) < _SERIES_RADIUS
+    a_s = jnp.where(small, alpha, 0.0)
+    a_b = jnp.where(small, 1.0, alpha)
+
+    def series(sign):
+        # Horner on c_j = (sign·i)^j / j!, j = 2 … 2 + terms − 1, divided by α²
+        acc = jnp.zeros_like(a_s, dtype=jnp.result_type(a_s, jnp.complex64))
+        for j in range(_SERIES_TERMS + 1, 1, -1):
+            acc = acc * a_s + (sign * 1j) ** j / math.factorial(j)
+        return acc
+
+    q1 = jnp.where(small, series(-1), (jnp.exp(-1j * a_b) + 1j * a_b - 1.0) / (a_b * a_b))
+    q2 = jnp.where(small, series(+1), (jnp.exp(1j * a_b) - 1j * a_b - 1.0) / (a_b * a_b))
+    return q1, q2
+
+
+def _multipliers(k_dot_v, omega, dt, quotients):
+    alpha = (k_dot_v - omega) * dt
+    q1, q2 = quotients(alpha)
+    wdt = omega * dt
+    m1 = jnp.exp(-1j * wdt) * (-1.0 + 1j * wdt * q1)
+    m2 = 1.0 + 1j * wdt * q2
+    return m1, m2
+
+
+def _k_dot_v_omega(grid: Grid, water: Water, velocity):
+    ky, kx = grid.wavenumbers()
+    return kx * velocity[0] + ky * velocity[1], angular_frequency(grid.wavenumber_magnitude(), water)
+
+
+def _check_velocity(velocity):
+    check_array("velocity", velocity, min_ndim=1, shape_tail=(2,))
+    return jnp.asarray(velocity, dtype=jnp.result_type(float, jnp.asarray(velocity)))
+
+
+def ship_multipliers(grid: Grid, water: Water, velocity, dt):
+    """Fourier multipliers (M1, M2) of a hull moving at ``velocity`` (m/s, (vx, vy)) for Δt (s).
+
+    Complex arrays ``(n, n)`` on the grid's full ``fft2`` spectrum; dimensionless.
+    Stable near the resonance α = 0 in float32 and float64 (module doc).
+    """
+    velocity = _check_velocity(velocity)
+    check_scalar("dt", dt, lo=0.0, lo_open=True)
+    kv, omega = _k_dot_v_omega(grid, water, velocity)
+    return _multipliers(kv, omega, dt, resonance_quotients)
+
+
+def ship_multipliers_naive(grid: Grid, water: Water, velocity, dt):
+    """(M1, M2) with the quotients evaluated as written: a documented failure near α = 0."""
+    velocity = _check_velocity(velocity)
+    check_scalar("dt", dt, lo=0.0, lo_open=True)
+    kv, omega = _k_dot_v_omega(grid, water, velocity)
+
+    def naive(alpha):
+        return ((jnp.exp(-1j * alpha) + 1j * alpha - 1.0) / (alpha * alpha),
+                (jnp.exp(1j * alpha) - 1j * alpha - 1.0) / (alpha * alpha))
+
+    return _multipliers(kv, omega, dt, naive)
+
+
+# -- hulls ------------------------------------------------------------------------------
+HULL_KINDS = ("ellipse", "gaussian", "mask")
+
+
+@dataclass(frozen=True)
+class Hull:
+    """A ship's footprint f in its own frame (x forward, y to port), dimensionless.
+
+    Parameters
+    ----------
+    kind : {"ellipse", "gaussian", "mask"}
+        ``"ellipse"``: 1 inside the ellipse of the given length × width; ``"gaussian"``:
+        exp(−x²/(2(L/4)²) − y²/(2(W/4)²)); ``"mask"``: the array ``mask`` (values in
+        [0, 1], rows = y, columns = x) spanning length × width.
+    length, width : float
+        m, > 0.
+    blur : float
+        Standard deviation of the Gaussian blur applied in Fourier space, m, ≥ 0.
+    mask : array, optional
+        For ``kind="mask"``.
+    """
+
+    kind: str = "ellipse"
+    length: float = 1.0
+    width: float = 0.4
+    blur: float = 0.0
+    mask: Optional[np.ndarray] = None
+
+    def __post_init__(self):
+        check_choice("kind", self.kind, HULL_KINDS)
+        check_scalar("length", self.length, lo=0.0, lo_open=True)
+        check_scalar("width", self.width, lo=0.0, lo_open=True)
+        check_scalar("blur", self.blur, lo=0.0)
+        if self.kind == "mask":
+            if self.mask is None:
+                raise ValueError("mask must be given for kind='mask'")
+            check_array("mask", self.mask, lo=0.0, hi=1.0, min_ndim=2)
+            if np.ndim(self.mask) != 2:
+                raise ValueError(f"mask must be 2-D, got shape {np.shape(self.mask)}")
+
+    def evaluate(self, u, v):
+        """f at ship-frame coordinates (u forward, v to port), m → dimensionless."""
+        a, b = self.length / 2, self.width / 2
+        if self.kind == "ellipse":
+            return ((u / a) ** 2 + (v / b) ** 2 <= 1.0).astype(jnp.float32)
+        if self.kind == "gaussian":
+            return jnp.exp(-0.5 * ((u / (a / 2)) ** 2 + (v / (b / 2)) ** 2))
+        mask = jnp.asarray(self.mask, jnp.float32)
+        rows, cols = mask.shape
+        i = jnp.round((v / self.width + 0.5) * rows - 0.5).astype(jnp.int32)
+        j = jnp.round((u / self.length + 0.5) * cols - 0.5).astype(jnp.int32)
+        inside = (i >= 0) & (i < rows) & (j >= 0) & (j < cols)
+        return jnp.where(inside, mask[jnp.clip(i, 0, rows - 1), jnp.clip(j, 0, cols - 1)], 0.0)
+
+    @property
+    def radius(self):
+        """Radius of the circle that holds the hull (3σ for a Gaussian), m."""
+        r = 0.5 * math.hypot(self.length, self.width)
+        return 1.5 * r if self.kind == "gaussian" else r
+
+
+# -- paths ------------------------------------------------------------------------------
+@dataclass(frozen=True)
+class Path:
+    """A ship's pose over time: ``pose(t) → (x, y, heading)`` in m, m, rad (grid frame)."""
+
+    pose: Callable[[float], tuple]
+
+    def __call__(self, t: float):
+        x, y, heading = self.pose(float(t))
+        for name, v in (("x", x), ("y", y), ("heading", heading)):
+            if not math.isfinite(float(v)):
+                raise ValueError(f"path gave a non-finite {name} at t={t}: {v}")
+        return float(x), float(y), float(heading)
+
+
+def straight_path(start, velocity) -> Path:
+    """Straight line from ``start`` (x, y; m, at t = 0) at constant ``velocity`` (m/s)."""
+    check_array("start", start, shape_tail=(2,))
+    check_array("velocity", velocity, shape_tail=(2,))
+    (x0, y0), (vx, vy) = np.asarray(start, float), np.asarray(velocity, float)
+    heading = math.atan2(vy, vx)
+    return Path(lambda t: (x0 + vx * t, y0 + vy * t, heading))
+
+
+def turning_path(center, radius: float, speed: float, start_angle: float = 0.0) -> Path:
+    """Circle of ``radius`` (m) about ``center`` at ``speed`` (m/s, > 0: counter-clockwise)."""
+    check_array("center", center, shape_tail=(2,))
+    check_scalar("radius", radius, lo=0.0, lo_open=True)
+    check_scalar("speed", speed)
+    cx, cy = np.asarray(center, float)
+    w = speed / radius
+
+    def pose(t):
+        a = start_angle + w * t
+        return cx + radius * math.cos(a), cy + radius * math.sin(a), a + math.copysign(math.pi / 2, speed)
+
+    return Path(pose)
+
+
+@dataclass(frozen=True)
+class Ship:
+    """A hull moving on a path, with a strength s (m²/s) scaling its wave source s·f."""
+
+    hull: Hull
+    path: Path
+    strength: float = 0.01
+
+    def __post_init__(self):
+        if not isinstance(self.hull, Hull):
+            raise TypeError(f"hull must be a Hull, got {type(self.hull).__name__}")
+        if not isinstance(self.path, Path):
+            raise TypeError(f"path must be a Path, got {type(self.path).__name__}")
+        check_scalar("strength", self.strength)
+
+
+# -- patch computation -----------------------------------------------------------------
+def hull_spectrum(hull: Hull, patch: Grid, center, pose):
+    """FFT of the hull at ``pose`` = (x, y, heading) on a patch grid centred at ``center``, blurred."""
+    x, y = patch.mesh()
+    dxp, dyp = pose[0] - center[0], pose[1] - center[1]
+    c, s = math.cos(pose[2]), math.sin(pose[2])
+    u = c * (x - dxp) + s * (y - dyp)
+    v = -s * (x - dxp) + c * (y - dyp)
+    spec = jnp.fft.fft2(hull.evaluate(u, v))
+    if hull.blur > 0:
+        spec = spec * jnp.exp(-0.5 * patch.wavenumber_magnitude() ** 2 * hull.blur**2)
+    return spec
+
+
+def ship_patch_waves(ship: Ship, grid: Grid, water: Water, t: float, dt: float, half: int):
+    """Complex waves the ship adds over [t, t + Δt], on its 2M × 2M patch (M = ``half``).
+
+    Returns ``(waves, (row0, col0))``: the ``(2M, 2M)`` complex field (m²/s) and the grid
+    index of its first row and column (wrap them modulo n to add it to the field).
+    """
+    p0, p1 = ship.path(t), ship.path(t + dt)
+    n = grid.n
+    dx = float(grid.dx)
+    reach = 0.5 * math.hypot(p1[0] - p0[0], p1[1] - p0[1]) + ship.hull.radius
+    if reach > half * dx:
+        raise ValueError(f"the hull and its motion over dt reach {reach:.3g} m from the patch centre, more than "
+                         f"the patch half-size {half * dx:.3g} m: use a larger patch or a smaller dt")
+    if 2 * half > n:
+        raise ValueError(f"the patch (2·half = {2 * half}) must not be larger than the grid ({n})")
+    mid = (0.5 * (p0[0] + p1[0]), 0.5 * (p0[1] + p1[1]))
+    ci, cj = int(round(mid[1] / dx)) + n // 2, int(round(mid[0] / dx)) + n // 2  # centre index (row, col)
+    center = ((cj - n // 2) * dx, (ci - n // 2) * dx)
+    patch = Grid(2 * half, 2 * half * dx)
+    velocity = ((p1[0] - p0[0]) / dt, (p1[1] - p0[1]) / dt)
+    m1, m2 = ship_multipliers(patch, water, velocity, dt)
+    waves = jnp.fft.ifft2(hull_spectrum(ship.hull, patch, center, p0) * m1
+                          + hull_spectrum(ship.hull, patch, center, p1) * m2) * ship.strength
+    return waves, (ci - half, cj - half)
+
+
+def patch_leak(ship: Ship, grid: Grid, water: Water, dt: float, half: int, t: float = 0.0) -> float:
+    """Fraction of one step's new waves a 2M × 2M patch gets wrong: relative energy of the
+    difference from the same waves computed on a patch twice as large (4M × 4M)."""
+    try:
+        small, (r0, c0) = ship_patch_waves(ship, grid, water, t, dt, half)
+    except ValueError:
+        return 1.0  # the hull itself does not fit: everything is missed
+    big, (r1, c1) = ship_patch_waves(ship, grid, water, t, dt, 2 * half)
+    big_on_small = big[r0 - r1:r0 - r1 + 2 * half, c0 - c1:c0 - c1 + 2 * half]
+    total = float(jnp.sum(jnp.abs(big) ** 2))
+    inside = float(jnp.sum(jnp.abs(small - big_on_small) ** 2))
+    outside = total - float(jnp.sum(jnp.abs(big_on_small) ** 2))
+    return (inside + max(outside, 0.0)) / total if total > 0 else 0.0
+
+
+def max_patch_dt(ship: Ship, grid: Grid, water: Water, half: int, tolerance: float = 1e-3,
+                 lo: float = 1e-4, hi: float = 10.0) -> float:
+    """The largest Δt (s) whose :func:`patch_leak` stays below ``tolerance`` (bisection in log Δt)."""
+    check_int("half", half, lo=2)
+    check_scalar("tolerance", tolerance, lo=0.0, hi=1.0, lo_open=True, hi_open=True)
+    if patch_leak(ship, grid, water, lo, half) > tolerance:
+        raise ValueError(f"the patch of half-size {half} leaks more than {tolerance} even at Δt = {lo} s")
+    if patch_leak(ship, grid, water, hi, half) <= tolerance:
+        return hi
+    a, b = math.log(lo), math.log(hi)
+    for _ in range(20):
+        m = 0.5 * (a + b)
+        a, b = (m, b) if patch_leak(ship, grid, water, math.exp(m), half) <= tolerance else (a, m)
+    return math.exp(a)
