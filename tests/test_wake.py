@@ -39,8 +39,8 @@ def test_transverse_wavelength(point_wake):
 
 @pytest.mark.slow
 def test_maximum_amplitude_angle_shrinks_for_larger_sources():
-    """The angle of maximum amplitude is a different quantity: below 19.47° once the source
-    is not small against 2πU²/g (here at U = 1.5 m/s, λ_T = 1.44 m)."""
+    """The angle of maximum amplitude is a different quantity from the cusp line: it drops
+    below Kelvin's angle as the source grows against 2πU²/g (here 0.64 m at U = 1 m/s)."""
     grid = Grid(2048, 40.0)
     small = wake_angle(steady_wake(grid, DEEP, 1.0, GaussianPressure(100.0, 0.05)), grid, method="max",
                        near=2.0, far=16.0, exclude=0.3)
