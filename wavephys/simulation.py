@@ -41,6 +41,7 @@ from wavephys.heights import height_multiplier, potential_from_height, second_or
 from wavephys.interpolation import hermite_frame
 from wavephys.params import Grid, Water, _register
 from wavephys.ring_waves import rotate_pair
+from wavephys.ship_waves import Ship, patch_leak, ship_patch_waves
 from wavephys.wind import SPECTRA, synthesize_height
 
 __all__ = ["State", "Surface", "Simulation"]
@@ -105,6 +106,15 @@ def _check_dtype(dtype):
     return dtype
 
 
+@jax.jit
+def _add_patch(fields, waves, r0, c0):
+    """fields[:, r0:r0+m, c0:c0+m] += (Re, Im) of the complex patch (indices wrap)."""
+    n, m = fields.shape[-1], waves.shape[-1]
+    rows = (r0 + jnp.arange(m)) % n
+    cols = (c0 + jnp.arange(m)) % n
+    return fields.at[:, rows[:, None], cols[None, :]].add(jnp.stack([waves.real, waves.imag]).astype(fields.dtype))
+
+
 class Simulation:
     """Exact linear water waves on a periodic grid, stepped by Δt (any size).
 
@@ -125,6 +135,11 @@ class Simulation:
     second_order : bool
         Add the second-order height term (SPEC §1.5) to η.
     dtype : float32 (default) or float64 (needs ``jax_enable_x64``).
+    ship_patch : int
+        Side 2M of the patch on which each ship's new waves are computed (even, ≤ n).
+    leak_tolerance : float
+        Largest fraction of a step's ship waves the patch may miss
+        (:func:`wavephys.ship_waves.patch_leak`); a ship whose Δt exceeds it is refused.
 
     Examples
     --------
@@ -139,7 +154,7 @@ class Simulation:
 
     def __init__(self, grid: Grid, water: Water = Water(), dt: float = 1.0 / 30.0,
                  margin: int = 0, cutoff: str = "quadratic", second_order: bool = False,
-                 dtype=jnp.float32):
+                 dtype=jnp.float32, ship_patch: int = 64, leak_tolerance: float = 1e-3):
         if not isinstance(grid, Grid):
             raise TypeError(f"grid must be a wavephys.Grid, got {type(grid).__name__}")
         if not isinstance(water, Water):
@@ -152,6 +167,10 @@ class Simulation:
         self.grid, self.water, self.dt = grid, water, float(dt)
         self.margin, self.cutoff, self.second_order = margin, cutoff, bool(second_order)
         self.dtype = _check_dtype(dtype)
+        self.ship_patch = check_int("ship_patch", ship_patch, lo=4, hi=grid.n, even=True)
+        check_scalar("leak_tolerance", leak_tolerance, lo=0.0, hi=1.0, lo_open=True)
+        self.leak_tolerance = float(leak_tolerance)
+        self._ships_checked: set = set()
 
         k = grid.wavenumber_magnitude(real=True).astype(self.dtype)
         phase = angular_frequency(k, water) * jnp.asarray(dt, self.dtype)
@@ -250,15 +269,42 @@ class Simulation:
     def _step_impl(self, state: State, stones: Optional[Stones]):
         return self._inverse(*self._forward(state.fields, stones), state.time)
 
-    def step(self, state: State, stones: Optional[Stones] = None):
+    def step(self, state: State, stones: Optional[Stones] = None, ships=()):
         """Advance by Δt: returns ``(state at t + Δt, surface at t)``.
 
         ``stones`` (optional) are dropped at t, before the surface is taken. The cutoff
-        is applied to the returned state.
+        is applied to the returned state. ``ships`` (a sequence of
+        :class:`~wavephys.ship_waves.Ship`) add the waves they make over [t, t + Δt]
+        (Loviscach's eq. 2, on each ship's 2M × 2M patch) to the returned state, after
+        the cutoff; a ship's patch must stay clear of the margin.
         """
         if stones is not None:
             stones = self._check_stones(stones)
-        return self._inverse_jit(*self._forward_jit(state.fields, stones), state.time)
+        new, surf = self._inverse_jit(*self._forward_jit(state.fields, stones), state.time)
+        if ships:
+            new = State(self._add_ships(new.fields, ships, float(state.time)), new.time)
+        return new, surf
+
+    def _add_ships(self, fields, ships, t: float):
+        half, n = self.ship_patch // 2, self.grid.n
+        for ship in ships:
+            if not isinstance(ship, Ship):
+                raise TypeError(f"ships must hold wavephys.ship_waves.Ship, got {type(ship).__name__}")
+            if id(ship) not in self._ships_checked:
+                leak = patch_leak(ship, self.grid, self.water, self.dt, half, t)
+                if leak > self.leak_tolerance:
+                    raise ValueError(f"dt = {self.dt} s is too large for the ship patch of {2 * half} points: "
+                                     f"{leak:.2g} of the new waves leak past it (tolerance "
+                                     f"{self.leak_tolerance}); lower dt or raise ship_patch")
+                self._ships_checked.add(id(ship))
+            waves, (r0, c0) = ship_patch_waves(ship, self.grid, self.water, t, self.dt, half)
+            lo, hi = self.margin, n - self.margin
+            if not (lo <= r0 and r0 + 2 * half <= hi and lo <= c0 and c0 + 2 * half <= hi):
+                raise ValueError(f"the ship patch at rows {r0}…{r0 + 2 * half}, columns {c0}…{c0 + 2 * half} "
+                                 f"leaves the visible interior [{lo}, {hi}): keep ships inside it")
+            fields = _add_patch(fields, waves.astype(jnp.result_type(self.dtype, jnp.complex64)), r0, c0)
+        return fields
+
 
     def surface(self, state: State) -> Surface:
         """The surface (η, η̇) of ``state``, without stepping."""

@@ -36,7 +36,7 @@ from wavephys.dispersion import angular_frequency, surface_operator
 from wavephys.heights import height_multiplier
 from wavephys.params import Grid, Water
 
-__all__ = ["GaussianPressure", "steady_wake", "WakeAngle", "wake_angle", "track_wavelength", "KELVIN_ANGLE",
+__all__ = ["GaussianPressure", "HullSource", "steady_wake", "WakeAngle", "wake_angle", "track_wavelength", "KELVIN_ANGLE",
            "transverse_wavelength"]
 
 KELVIN_ANGLE = math.degrees(math.asin(1.0 / 3.0))
@@ -77,7 +77,27 @@ class GaussianPressure:
         return (self.amplitude * 2 * jnp.pi * self.size**2 / grid.dx**2) * jnp.exp(-0.5 * k2 * self.size**2) * phase
 
 
-def steady_wake(grid: Grid, water: Water, speed: float, source: GaussianPressure, damping: float | None = None):
+@dataclass(frozen=True)
+class HullSource:
+    """The moving-hull source of Loviscach's ship kernels, as a steady-wake forcing.
+
+    A hull f (``wavephys.ship_waves.Hull``) of strength s (m²/s) moving at U in +x feeds
+    ψ at the rate ∂(s f)/∂t = −s U ∂f/∂x; as a pressure, p = ρ s U ∂f/∂x (a dipole).
+    Use it to compare :class:`~wavephys.simulation.Simulation` ships with their steady wake.
+    """
+
+    hull: object
+    strength: float = 0.01
+
+    def forcing(self, grid: Grid, water: Water, speed: float):
+        from wavephys.ship_waves import hull_spectrum
+
+        ky, kx = grid.wavenumbers()
+        f_hat = hull_spectrum(self.hull, grid, (0.0, 0.0), (0.0, 0.0, 0.0))
+        return -1j * kx * speed * self.strength * f_hat
+
+
+def steady_wake(grid: Grid, water: Water, speed: float, source, damping: float | None = None):
     """Steady first-order height (m) of ``source`` moving in +x at ``speed``, centred on the grid.
 
     Parameters
@@ -94,9 +114,9 @@ def steady_wake(grid: Grid, water: Water, speed: float, source: GaussianPressure
     if not isinstance(grid, Grid):
         raise TypeError(f"grid must be a wavephys.Grid, got {type(grid).__name__}")
     check_scalar("speed", speed, lo=0.0)
-    if not isinstance(source, GaussianPressure):
-        raise TypeError(f"source must be a GaussianPressure, got {type(source).__name__}")
-    if source.size < float(grid.dx):
+    if not isinstance(source, (GaussianPressure, HullSource)):
+        raise TypeError(f"source must be a GaussianPressure or HullSource, got {type(source).__name__}")
+    if isinstance(source, GaussianPressure) and source.size < float(grid.dx):
         raise ValueError(f"source size {source.size} m must be ≥ the grid spacing {float(grid.dx)} m")
     if damping is None:
         damping = 8.0 * max(speed, 1e-3) / float(grid.length)
@@ -104,7 +124,9 @@ def steady_wake(grid: Grid, water: Water, speed: float, source: GaussianPressure
     k = grid.wavenumber_magnitude()
     ky, kx = grid.wavenumbers()
     omega = angular_frequency(k, water)
-    psi_hat = (-source.spectrum(grid) / water.rho) / (1j * (omega - kx * speed) + damping)
+    forcing = (-source.spectrum(grid) / water.rho if isinstance(source, GaussianPressure)
+               else source.forcing(grid, water, speed))
+    psi_hat = forcing / (1j * (omega - kx * speed) + damping)
     eta_hat = 1j * height_multiplier(k, water) * psi_hat
     return jnp.fft.ifft2(eta_hat).real
 

@@ -1,0 +1,78 @@
+"""Ships in the time-stepped simulation, checked against the steady wake and Kelvin."""
+
+import numpy as np
+import pytest
+
+from wavephys import Grid, Simulation, Water
+from wavephys.ship_waves import Hull, Ship, straight_path, turning_path
+from wavephys.wake import KELVIN_ANGLE, HullSource, steady_wake, track_wavelength, transverse_wavelength, wake_angle
+
+DEEP = Water(sigma=0.0)
+
+
+def _run(grid, hull, start, speed, dt, duration, margin, patch=64):
+    ship = Ship(hull, straight_path(start, (speed, 0.0)), 0.01)
+    sim = Simulation(grid, DEEP, dt=dt, margin=margin, ship_patch=patch)
+    state = sim.initial_state()
+    for _ in range(int(round(duration / dt))):
+        state, _ = sim.step(state, ships=[ship])
+    return np.asarray(sim.surface(state).eta), ship.path(float(state.time))
+
+
+@pytest.mark.slow
+def test_time_stepped_wake_has_kelvin_angle_and_transverse_wavelength():
+    grid = Grid(1024, 20.0)
+    eta, (x, y, _) = _run(grid, Hull("gaussian", 0.12, 0.12), (-7.5, 0.0), 0.7, 0.1, 22.0, 64)
+    angle = wake_angle(eta, grid, source=(x, y), near=1.0, far=8.0, exclude=0.2)
+    assert abs(angle.angle - KELVIN_ANGLE) < 0.3, angle
+    lam = track_wavelength(eta, grid, source=(x, y), near=2.0, far=8.0)
+    assert lam == pytest.approx(transverse_wavelength(0.7), rel=0.01)
+
+
+@pytest.mark.slow
+def test_moving_ship_converges_to_its_steady_wake():
+    grid, hull = Grid(512, 20.0), Hull("gaussian", 0.4, 0.4)
+    dx = float(grid.dx)
+    big = Grid(4096, 4096 * dx)  # the steady wake must not wrap around: decay length U/ε = 140 m
+    steady = np.asarray(steady_wake(big, DEEP, 0.7, HullSource(hull, 0.01), damping=0.005))
+    kx = 2 * np.pi * np.fft.fftfreq(4096, dx)
+
+    def difference(duration):
+        eta, (x, _, _) = _run(grid, hull, (-7.0, 0.0), 0.7, 0.2, duration, 32)
+        i0 = int(round(x / dx))
+        shifted = np.real(np.fft.ifft(np.fft.fft(steady, axis=1) * np.exp(-1j * kx * (x - i0 * dx))[None, :], axis=1))
+        a = eta[256 - 80:256 + 80, 256 + i0 - int(2 / dx):256 + i0]
+        b = shifted[2048 - 80:2048 + 80, 2048 - int(2 / dx):2048]
+        return np.linalg.norm(a - b) / np.linalg.norm(b)
+
+    early, late = difference(6.0), difference(20.0)
+    assert late < early and late < 0.05
+
+
+def test_ships_leave_the_visible_interior():
+    sim = Simulation(Grid(256, 16.0), DEEP, dt=0.05, margin=32)
+    ship = Ship(Hull("ellipse", 0.6, 0.3, blur=0.05), straight_path((7.0, 0.0), (1.0, 0.0)), 0.01)
+    with pytest.raises(ValueError, match="interior"):
+        sim.step(sim.initial_state(), ships=[ship])
+
+
+def test_dt_too_large_for_the_patch_is_refused():
+    sim = Simulation(Grid(256, 16.0), DEEP, dt=1.0, margin=16, ship_patch=32)
+    ship = Ship(Hull("gaussian", 0.6, 0.3, blur=0.05), straight_path((0.0, 0.0), (0.3, 0.0)), 0.01)
+    with pytest.raises(ValueError, match="dt"):
+        sim.step(sim.initial_state(), ships=[ship])
+
+
+def test_several_ships_on_turning_and_straight_paths_add_waves():
+    sim = Simulation(Grid(256, 16.0), DEEP, dt=0.05, margin=32)
+    ships = [Ship(Hull("ellipse", 0.6, 0.3, blur=0.05), turning_path((0.0, 0.0), 2.0, 0.8), 0.01),
+             Ship(Hull("gaussian", 0.5, 0.25), straight_path((-3.0, 3.0), (0.6, 0.0)), 0.01)]
+    state = sim.initial_state()
+    for _ in range(20):
+        state, _ = sim.step(state, ships=ships)
+    one = sim.initial_state()
+    for _ in range(20):
+        one, _ = sim.step(one, ships=ships[:1])
+    eta_two, eta_one = np.asarray(sim.surface(state).eta), np.asarray(sim.surface(one).eta)
+    assert np.isfinite(eta_two).all() and np.abs(eta_one).max() > 0
+    assert np.abs(eta_two - eta_one).max() > 0.1 * np.abs(eta_one).max()  # the second ship is there
