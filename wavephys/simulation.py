@@ -136,7 +136,8 @@ class Simulation:
         Add the second-order height term (SPEC §1.5) to η.
     dtype : float32 (default) or float64 (needs ``jax_enable_x64``).
     ship_patch : int
-        Side 2M of the patch on which each ship's new waves are computed (even, ≤ n).
+        Side 2M of the patch on which each ship's new waves are computed (even, ≤ n;
+        default min(64, n)).
     leak_tolerance : float
         Largest fraction of a step's ship waves the patch may miss
         (:func:`wavephys.ship_waves.patch_leak`); a ship whose Δt exceeds it is refused.
@@ -154,7 +155,7 @@ class Simulation:
 
     def __init__(self, grid: Grid, water: Water = Water(), dt: float = 1.0 / 30.0,
                  margin: int = 0, cutoff: str = "quadratic", second_order: bool = False,
-                 dtype=jnp.float32, ship_patch: int = 64, leak_tolerance: float = 1e-3):
+                 dtype=jnp.float32, ship_patch: int | None = None, leak_tolerance: float = 1e-3):
         if not isinstance(grid, Grid):
             raise TypeError(f"grid must be a wavephys.Grid, got {type(grid).__name__}")
         if not isinstance(water, Water):
@@ -167,6 +168,8 @@ class Simulation:
         self.grid, self.water, self.dt = grid, water, float(dt)
         self.margin, self.cutoff, self.second_order = margin, cutoff, bool(second_order)
         self.dtype = _check_dtype(dtype)
+        if ship_patch is None:
+            ship_patch = min(64, grid.n)
         self.ship_patch = check_int("ship_patch", ship_patch, lo=4, hi=grid.n, even=True)
         check_scalar("leak_tolerance", leak_tolerance, lo=0.0, hi=1.0, lo_open=True)
         self.leak_tolerance = float(leak_tolerance)
