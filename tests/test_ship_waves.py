@@ -7,33 +7,11 @@ import pytest
 
 from wavephys import Grid, Water
 from wavephys.dispersion import angular_frequency
-from wavephys.ship_waves import (Hull, Ship, max_patch_dt, patch_leak, resonance_quotients, ship_multipliers,
+from wavephys.ship_waves import (Hull, Ship, max_patch_dt, patch_leak, resonance_quotients, resonance_quotients_exact, ship_multipliers,
                                  ship_multipliers_naive, ship_patch_waves, straight_path, turning_path)
 
 GRID = Grid(128, 8.0)
 DEEP = Water(sigma=0.0)
-
-
-def _exact_quotients(alpha):
-    """Float64 reference, independent of the code under test: exact rational arithmetic on
-    the Taylor series (converges for every α; 40 terms exceed double precision for |α| ≤ 2)."""
-    from fractions import Fraction
-
-    out = []
-    for sign in (-1, 1):
-        vals = []
-        for a in np.asarray(alpha, np.float64):
-            af = Fraction(float(a))
-            re, im, term = Fraction(0), Fraction(0), Fraction(1)
-            for j in range(1, 42):
-                term = term * af / j  # α^j / j!
-                if j >= 2:
-                    unit = [(1, 0), (0, 1), (-1, 0), (0, -1)][(j * (1 if sign > 0 else 3)) % 4]  # (±i)^j
-                    re += unit[0] * term
-                    im += unit[1] * term
-            vals.append(complex(float(re / af**2), float(im / af**2)))
-        out.append(np.asarray(vals))
-    return out[0], out[1]
 
 
 def test_ship_at_rest_adds_nothing(x64):
@@ -71,7 +49,7 @@ def test_one_step_equals_two_half_steps(x64):
 def test_stable_quotients_float32_near_resonance():
     alpha = np.concatenate([np.geomspace(1e-6, 2.0, 60), -np.geomspace(1e-6, 2.0, 60)])
     q1, q2 = resonance_quotients(jnp.asarray(alpha, jnp.float32))
-    r1, r2 = _exact_quotients(alpha)
+    r1, r2 = resonance_quotients_exact(alpha)
     assert np.max(np.abs(np.asarray(q1) - r1) / np.abs(r1)) < 1e-6
     assert np.max(np.abs(np.asarray(q2) - r2) / np.abs(r2)) < 1e-6
 

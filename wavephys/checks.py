@@ -392,6 +392,47 @@ def check_fd_stability() -> list[Check]:
                     STABILITY_LIMIT, rtol=0.02)]
 
 
+def check_moving_sources() -> list[Check]:
+    """Ship kernels' exact identities, their float32 stability, and Kelvin wakes."""
+    from wavephys.ship_waves import (resonance_quotients, resonance_quotients_exact, ship_multipliers,
+                                     ship_multipliers_naive)
+    from wavephys.wake import (KELVIN_ANGLE, GaussianPressure, steady_wake, track_wavelength,
+                               transverse_wavelength, wake_angle)
+
+    grid, deep = Grid(128, 8.0), Water(sigma=0.0)
+    rows = []
+    m1, m2 = ship_multipliers(grid, Water(), (0.0, 0.0), 0.1)
+    rows.append(compare("ship at rest: max |M1 + M2|", float(jnp.max(jnp.abs(m1 + m2))), 0.0, atol=1e-6))
+    alpha = np.concatenate([np.geomspace(1e-6, 2.0, 40), -np.geomspace(1e-6, 2.0, 40)])
+    q1, _ = resonance_quotients(jnp.asarray(alpha, jnp.float32))
+    r1, _ = resonance_quotients_exact(alpha)
+    rows.append(compare("float32 Q1(α) vs exact, |α| ∈ [1e-6, 2] (max rel. error)",
+                        float(np.max(np.abs(np.asarray(q1) - r1) / np.abs(r1))), 0.0, atol=1e-6))
+    n1, _ = ship_multipliers_naive(grid, deep, (1.0, 0.0), 0.05)
+    s1, _ = ship_multipliers(grid, deep, (1.0, 0.0), 0.05)
+    err = np.abs(np.asarray(n1) - np.asarray(s1))
+    err[0, 0] = 0.0  # 0/0 there
+    rows.append(bound("naive quotients in float32: max |M1 error| (documented failure)", float(err.max()), 1e-2,
+                      relation="≥"))
+    wgrid = Grid(2048, 40.0)
+    eta = steady_wake(wgrid, deep, 1.0, GaussianPressure(100.0, 0.05))
+    angle = wake_angle(eta, wgrid, near=2.0, far=16.0, exclude=0.3)
+    rows.append(compare(f"steady wake of a near-point source: half-angle ({angle.method})", angle.angle,
+                        KELVIN_ANGLE, atol=0.3, unit="deg"))
+    rows.append(compare("transverse wavelength on the track vs 2πU²/g", track_wavelength(eta, wgrid, near=4.0, far=16.0),
+                        transverse_wavelength(1.0), rtol=0.01, unit="m"))
+    cgrid, cap = Grid(1024, 1.0), Water()
+    n, dx = 1024, float(cgrid.dx)
+
+    def behind(u):
+        e = np.asarray(steady_wake(cgrid, cap, u, GaussianPressure(10.0, 0.005)))
+        return np.abs(e[:, n // 2 - int(0.4 / dx):n // 2 - int(0.1 / dx)]).max() / np.abs(e).max()
+
+    rows.append(bound("capillary-gravity wake amplitude ratio U=0.26 / U=0.22 (c_min = 0.2312)",
+                      behind(0.26) / behind(0.22), 100.0, relation="≥"))
+    return rows
+
+
 CHECKS: dict[str, Callable[[], list[Check]]] = {
     "dispersion limits": check_dispersion_limits,
     "inverse dispersion": check_inverse_dispersion,
@@ -403,6 +444,7 @@ CHECKS: dict[str, Callable[[], list[Check]]] = {
     "second-order heights": check_second_order,
     "Hermite frames": check_hermite,
     "finite-difference stability": check_fd_stability,
+    "moving sources": check_moving_sources,
 }
 """Every built-in validation, in the order ``wavephys validate`` runs them."""
 

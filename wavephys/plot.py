@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import numpy as np
 
-__all__ = ["plot_surface", "plot_dispersion", "plot_error_vs_time", "plot_curves"]
+__all__ = ["plot_surface", "plot_dispersion", "plot_error_vs_time", "plot_curves", "plot_wake"]
 
 
 def _figure(**kw):
@@ -16,14 +16,16 @@ def _figure(**kw):
     return Figure(**kw)
 
 
-def plot_surface(eta, dx: float, title: str = ""):
-    """Height field η (m) on a grid of spacing dx (m), centred axes in metres."""
+def plot_surface(eta, dx: float, title: str = "", limit: float | None = None):
+    """Height field η (m) on a grid of spacing dx (m), centred axes in metres.
+
+    ``limit`` (m) sets the symmetric colour range (default: max |η|)."""
     eta = np.asarray(eta)
     n = eta.shape[-1]
     ext = np.array([-n / 2, n / 2, -n / 2, n / 2]) * dx
     fig = _figure(figsize=(5.5, 4.5))
     ax = fig.add_subplot()
-    lim = float(np.abs(eta).max()) or 1.0
+    lim = limit or float(np.abs(eta).max()) or 1.0
     im = ax.imshow(eta * 1000, origin="lower", extent=ext, cmap="RdBu_r", vmin=-lim * 1000, vmax=lim * 1000)
     fig.colorbar(im, ax=ax, label="η (mm)")
     ax.set_xlabel("x (m)")
@@ -90,4 +92,33 @@ def plot_curves(curves: dict, xlabel: str, ylabel: str, title: str = "", logx=Fa
     ax.grid(True, which="both", alpha=0.3)
     ax.legend()
     fig.tight_layout()
+    return fig
+
+
+def plot_wake(eta, dx: float, *, source=(0.0, 0.0), angle=None, kelvin: float = 19.47, title: str = "",
+              window: tuple | None = None):
+    """A wake height field with Kelvin's lines (dashed) and a measured angle (solid).
+
+    ``angle`` is a :class:`wavephys.wake.WakeAngle` (or degrees); ``window`` =
+    (x_min, x_max, y_min, y_max) in m limits the view.
+    """
+    import math
+
+    fig = plot_surface(eta, dx, title=title, limit=float(np.percentile(np.abs(np.asarray(eta)), 99.5)))
+    ax = fig.axes[0]
+    x0, y0 = source
+    n = np.asarray(eta).shape[-1]
+    reach = n * dx
+    for deg, style, label in ((kelvin, "--", f"Kelvin {kelvin:.2f}°"),
+                              (getattr(angle, "angle", angle), "-", None)):
+        if deg is None:
+            continue
+        t = math.tan(math.radians(deg))
+        lab = label or f"measured {angle}"
+        ax.plot([x0, x0 - reach], [y0, y0 + t * reach], style, color="k", lw=0.8, label=lab)
+        ax.plot([x0, x0 - reach], [y0, y0 - t * reach], style, color="k", lw=0.8)
+    if window:
+        ax.set_xlim(window[0], window[1])
+        ax.set_ylim(window[2], window[3])
+    ax.legend(loc="lower left", fontsize=7)
     return fig

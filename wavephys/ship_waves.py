@@ -47,6 +47,7 @@ __all__ = [
     "ship_multipliers",
     "ship_multipliers_naive",
     "resonance_quotients",
+    "resonance_quotients_exact",
     "Hull",
     "Path",
     "straight_path",
@@ -82,6 +83,29 @@ def resonance_quotients(alpha):
     q1 = jnp.where(small, series(-1), (jnp.exp(-1j * a_b) + 1j * a_b - 1.0) / (a_b * a_b))
     q2 = jnp.where(small, series(+1), (jnp.exp(1j * a_b) - 1j * a_b - 1.0) / (a_b * a_b))
     return q1, q2
+
+
+def resonance_quotients_exact(alpha):
+    """Reference (Q1, Q2) for float64 inputs, independent of :func:`resonance_quotients`:
+    exact rational arithmetic on the Taylor series (41 terms: below double precision for
+    |α| ≤ 2), rounded once at the end. Slow; for tests and checks."""
+    from fractions import Fraction
+
+    out = []
+    for sign in (-1, 1):
+        vals = []
+        for a in np.atleast_1d(np.asarray(alpha, np.float64)):
+            af = Fraction(float(a))
+            re, im, term = Fraction(0), Fraction(0), Fraction(1)
+            for j in range(1, 42):
+                term = term * af / j  # α^j / j!
+                if j >= 2:
+                    unit = [(1, 0), (0, 1), (-1, 0), (0, -1)][(j * (1 if sign > 0 else 3)) % 4]  # (±i)^j
+                    re += unit[0] * term
+                    im += unit[1] * term
+            vals.append(complex(float(re / af**2), float(im / af**2)))
+        out.append(np.asarray(vals))
+    return out[0], out[1]
 
 
 def _multipliers(k_dot_v, omega, dt, quotients):
