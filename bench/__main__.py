@@ -1,4 +1,4 @@
-"""``python -m bench {propagation,boundaries,optics} [--json PATH] [--quick]``.
+"""``python -m bench {propagation,boundaries,optics,ship} [--json PATH] [--quick]``.
 
 Each writes its rows as JSON and its charts as PNG next to it (default
 ``bench/results/``) and prints a table.
@@ -73,12 +73,33 @@ def run_optics(args) -> None:
     _write(rows, optics.figures(rows), Path(args.json or "bench/results/optics.json"))
 
 
+def run_ship(args) -> None:
+    from bench import ship
+
+    rows = ship.wake_rows(_say) + ship.fd_rows(_say)
+    if not args.quick:
+        rows += ship.speed_rows(_say)
+    for r in rows:
+        if r["family"] == "ship wake":
+            print(f"{r['method']:<16} Δt={r['dt']:<5} error {r['error']:.4f}  {r['seconds']:.2f} s")
+        elif r["family"] == "ship wake refused":
+            print(f"{r['method']:<16} Δt={r['dt']:<5} refused: {r['reason'][:90]}")
+        elif r["family"] == "fd wake":
+            print(f"FD wake angle {r['angle']:.2f}° ± {r['uncertainty']:.2f}° (Mach {r['mach_angle']:.2f}°, "
+                  f"Kelvin {r['kelvin_angle']:.2f}°)")
+        else:
+            extra = f", +{100 * r['extra_fraction']:.1f} % per step" if "extra_fraction" in r else ""
+            print(f"{r['method']}: {r['seconds'] * 1e3:.2f} ms{extra}")
+    _write(rows, ship.figures(rows), Path(args.json or "bench/results/ship.json"))
+
+
 def main(argv=None) -> int:
     p = argparse.ArgumentParser(prog="python -m bench", description=__doc__.split("\n\n")[0])
     sub = p.add_subparsers(dest="which", required=True)
     for name, fn, help_ in (("propagation", run_propagation, "step vs bare FFT; error vs time"),
                             ("boundaries", run_boundaries, "measured failure boundaries"),
-                            ("optics", run_optics, "Fresnel, absorption and caustics: error vs cost")):
+                            ("optics", run_optics, "Fresnel, absorption and caustics: error vs cost"),
+                            ("ship", run_ship, "moving hulls: kernels vs stones, FD wake, speed")):
         s = sub.add_parser(name, help=help_)
         s.add_argument("--json", metavar="PATH")
         s.add_argument("--quick", action="store_true", help="smaller sizes (for CI smoke runs)")

@@ -76,3 +76,15 @@ def test_several_ships_on_turning_and_straight_paths_add_waves():
     eta_two, eta_one = np.asarray(sim.surface(state).eta), np.asarray(sim.surface(one).eta)
     assert np.isfinite(eta_two).all() and np.abs(eta_one).max() > 0
     assert np.abs(eta_two - eta_one).max() > 0.1 * np.abs(eta_one).max()  # the second ship is there
+
+
+def test_finite_differences_make_a_mach_cone_not_a_kelvin_wake():
+    """Documented failure of the FD peer: one wave speed c → cone half-angle asin(c/U)."""
+    import math
+
+    from wavephys.finite_difference import fd_moving_source
+
+    eta, grid, xs = fd_moving_source()
+    angle = wake_angle(np.asarray(eta), grid, source=(xs, 0.0), near=2.0, far=12.0, exclude=0.5)
+    assert abs(angle.angle - math.degrees(math.asin(0.5))) < 2.0  # 30°
+    assert abs(angle.angle - KELVIN_ANGLE) > 5.0

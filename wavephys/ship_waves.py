@@ -33,6 +33,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from functools import partial
 from typing import Callable, Optional
 
 import jax
@@ -55,6 +56,7 @@ __all__ = [
     "Ship",
     "hull_spectrum",
     "ship_patch_waves",
+    "add_ship_waves",
     "patch_leak",
     "max_patch_dt",
 ]
@@ -270,10 +272,12 @@ class Ship:
 
 # -- patch computation -----------------------------------------------------------------
 def hull_spectrum(hull: Hull, patch: Grid, center, pose):
-    """FFT of the hull at ``pose`` = (x, y, heading) on a patch grid centred at ``center``, blurred."""
+    """FFT of the hull at ``pose`` = (x, y, heading) on a patch grid centred at ``center``, blurred.
+
+    Pure ``jnp`` (poses may be traced)."""
     x, y = patch.mesh()
     dxp, dyp = pose[0] - center[0], pose[1] - center[1]
-    c, s = math.cos(pose[2]), math.sin(pose[2])
+    c, s = jnp.cos(pose[2]), jnp.sin(pose[2])
     u = c * (x - dxp) + s * (y - dyp)
     v = -s * (x - dxp) + c * (y - dyp)
     spec = jnp.fft.fft2(hull.evaluate(u, v))
@@ -282,12 +286,18 @@ def hull_spectrum(hull: Hull, patch: Grid, center, pose):
     return spec
 
 
-def ship_patch_waves(ship: Ship, grid: Grid, water: Water, t: float, dt: float, half: int):
+def ship_patch_waves(ship: Ship, grid: Grid, water: Water, t: float, dt: float, half: int,
+                     method: str = "kernels"):
     """Complex waves the ship adds over [t, t + Δt], on its 2M × 2M patch (M = ``half``).
+
+    ``method="kernels"``: Loviscach's Φ1/Φ2 (exact for straight motion within the step);
+    ``"impulses"``: the naive way the paper warns about, a row of dropped stones — the
+    change s·(f_{t+Δt} − f_t) added at once, without the time integration.
 
     Returns ``(waves, (row0, col0))``: the ``(2M, 2M)`` complex field (m²/s) and the grid
     index of its first row and column (wrap them modulo n to add it to the field).
     """
+    check_choice("method", method, ("kernels", "impulses"))
     p0, p1 = ship.path(t), ship.path(t + dt)
     n = grid.n
     dx = float(grid.dx)
@@ -300,12 +310,68 @@ def ship_patch_waves(ship: Ship, grid: Grid, water: Water, t: float, dt: float, 
     mid = (0.5 * (p0[0] + p1[0]), 0.5 * (p0[1] + p1[1]))
     ci, cj = int(round(mid[1] / dx)) + n // 2, int(round(mid[0] / dx)) + n // 2  # centre index (row, col)
     center = ((cj - n // 2) * dx, (ci - n // 2) * dx)
-    patch = Grid(2 * half, 2 * half * dx)
-    velocity = ((p1[0] - p0[0]) / dt, (p1[1] - p0[1]) / dt)
-    m1, m2 = ship_multipliers(patch, water, velocity, dt)
-    waves = jnp.fft.ifft2(hull_spectrum(ship.hull, patch, center, p0) * m1
-                          + hull_spectrum(ship.hull, patch, center, p1) * m2) * ship.strength
+    kernel = _patch_kernel(ship.hull, half, dx, water, method)[0]
+    waves = kernel(jnp.asarray(center), jnp.asarray(p0), jnp.asarray(p1), dt, ship.strength)
     return waves, (ci - half, cj - half)
+
+
+def add_ship_waves(fields, ship: Ship, grid: Grid, water: Water, t: float, dt: float, half: int,
+                   method: str = "kernels", interior: tuple[int, int] | None = None):
+    """Add the ship's new waves over [t, t + Δt] to a stacked (Re ψ, Im ψ) field in one program.
+
+    ``fields`` is donated (updated in place): do not use the array passed in afterwards.
+
+    The same waves as :func:`ship_patch_waves`, computed and added (indices wrapping)
+    without a round trip through Python; ``interior`` = (lo, hi) restricts the patch to
+    rows and columns in [lo, hi) (ValueError otherwise).
+    """
+    check_choice("method", method, ("kernels", "impulses"))
+    p0, p1 = ship.path(t), ship.path(t + dt)
+    n, dx = grid.n, float(grid.dx)
+    reach = 0.5 * math.hypot(p1[0] - p0[0], p1[1] - p0[1]) + ship.hull.radius
+    if reach > half * dx:
+        raise ValueError(f"the hull and its motion over dt reach {reach:.3g} m from the patch centre, more than "
+                         f"the patch half-size {half * dx:.3g} m: use a larger patch or a smaller dt")
+    mid = (0.5 * (p0[0] + p1[0]), 0.5 * (p0[1] + p1[1]))
+    ci, cj = int(round(mid[1] / dx)) + n // 2, int(round(mid[0] / dx)) + n // 2
+    r0, c0 = ci - half, cj - half
+    if interior is not None:
+        lo, hi = interior
+        if not (lo <= r0 and r0 + 2 * half <= hi and lo <= c0 and c0 + 2 * half <= hi):
+            raise ValueError(f"the ship patch at rows {r0}…{r0 + 2 * half}, columns {c0}…{c0 + 2 * half} "
+                             f"leaves the visible interior [{lo}, {hi}): keep ships inside it")
+    center = ((cj - n // 2) * dx, (ci - n // 2) * dx)
+    add = _patch_kernel(ship.hull, half, dx, water, method)[1]
+    return add(fields, jnp.asarray(center), jnp.asarray(p0), jnp.asarray(p1), dt, ship.strength, r0, c0)
+
+
+def _patch_kernel(hull: Hull, half: int, dx: float, water: Water, method: str):
+    """The compiled patch computation for one hull and patch (cached on the hull)."""
+    cache = hull.__dict__.setdefault("_kernels", {})
+    key = (half, dx, water, method)
+    if key not in cache:
+        patch = Grid(2 * half, 2 * half * dx)
+
+        @jax.jit
+        def kernel(center, p0, p1, dt, strength):
+            f0, f1 = hull_spectrum(hull, patch, center, p0), hull_spectrum(hull, patch, center, p1)
+            if method == "impulses":
+                return jnp.fft.ifft2(f1 - f0) * strength
+            kv, omega = _k_dot_v_omega(patch, water, (p1[:2] - p0[:2]) / dt)
+            m1, m2 = _multipliers(kv, omega, dt, resonance_quotients)
+            return jnp.fft.ifft2(f0 * m1 + f1 * m2) * strength
+
+        @partial(jax.jit, donate_argnums=0)  # update the field in place, no 2·n² copy
+        def add(fields, center, p0, p1, dt, strength, r0, c0):
+            waves = kernel(center, p0, p1, dt, strength)
+            n, m = fields.shape[-1], waves.shape[-1]
+            rows = (r0 + jnp.arange(m)) % n
+            cols = (c0 + jnp.arange(m)) % n
+            both = jnp.stack([waves.real, waves.imag]).astype(fields.dtype)
+            return fields.at[:, rows[:, None], cols[None, :]].add(both)
+
+        cache[key] = (kernel, add)
+    return cache[key]
 
 
 def patch_leak(ship: Ship, grid: Grid, water: Water, dt: float, half: int, t: float = 0.0) -> float:

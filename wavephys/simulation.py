@@ -41,7 +41,7 @@ from wavephys.heights import height_multiplier, potential_from_height, second_or
 from wavephys.interpolation import hermite_frame
 from wavephys.params import Grid, Water, _register
 from wavephys.ring_waves import rotate_pair
-from wavephys.ship_waves import Ship, patch_leak, ship_patch_waves
+from wavephys.ship_waves import Ship, add_ship_waves, patch_leak
 from wavephys.wind import SPECTRA, synthesize_height
 
 __all__ = ["State", "Surface", "Simulation"]
@@ -106,15 +106,6 @@ def _check_dtype(dtype):
     return dtype
 
 
-@jax.jit
-def _add_patch(fields, waves, r0, c0):
-    """fields[:, r0:r0+m, c0:c0+m] += (Re, Im) of the complex patch (indices wrap)."""
-    n, m = fields.shape[-1], waves.shape[-1]
-    rows = (r0 + jnp.arange(m)) % n
-    cols = (c0 + jnp.arange(m)) % n
-    return fields.at[:, rows[:, None], cols[None, :]].add(jnp.stack([waves.real, waves.imag]).astype(fields.dtype))
-
-
 class Simulation:
     """Exact linear water waves on a periodic grid, stepped by Δt (any size).
 
@@ -141,6 +132,8 @@ class Simulation:
     leak_tolerance : float
         Largest fraction of a step's ship waves the patch may miss
         (:func:`wavephys.ship_waves.patch_leak`); a ship whose Δt exceeds it is refused.
+    ship_method : {"kernels", "impulses"}
+        Loviscach's Φ1/Φ2 kernels, or the naive row of dropped stones (for comparison).
 
     Examples
     --------
@@ -155,7 +148,8 @@ class Simulation:
 
     def __init__(self, grid: Grid, water: Water = Water(), dt: float = 1.0 / 30.0,
                  margin: int = 0, cutoff: str = "quadratic", second_order: bool = False,
-                 dtype=jnp.float32, ship_patch: int | None = None, leak_tolerance: float = 1e-3):
+                 dtype=jnp.float32, ship_patch: int | None = None, leak_tolerance: float = 1e-3,
+                 ship_method: str = "kernels"):
         if not isinstance(grid, Grid):
             raise TypeError(f"grid must be a wavephys.Grid, got {type(grid).__name__}")
         if not isinstance(water, Water):
@@ -173,6 +167,7 @@ class Simulation:
         self.ship_patch = check_int("ship_patch", ship_patch, lo=4, hi=grid.n, even=True)
         check_scalar("leak_tolerance", leak_tolerance, lo=0.0, hi=1.0, lo_open=True)
         self.leak_tolerance = float(leak_tolerance)
+        self.ship_method = check_choice("ship_method", ship_method, ("kernels", "impulses"))
         self._ships_checked: set = set()
 
         k = grid.wavenumber_magnitude(real=True).astype(self.dtype)
@@ -300,12 +295,8 @@ class Simulation:
                                      f"{leak:.2g} of the new waves leak past it (tolerance "
                                      f"{self.leak_tolerance}); lower dt or raise ship_patch")
                 self._ships_checked.add(id(ship))
-            waves, (r0, c0) = ship_patch_waves(ship, self.grid, self.water, t, self.dt, half)
-            lo, hi = self.margin, n - self.margin
-            if not (lo <= r0 and r0 + 2 * half <= hi and lo <= c0 and c0 + 2 * half <= hi):
-                raise ValueError(f"the ship patch at rows {r0}…{r0 + 2 * half}, columns {c0}…{c0 + 2 * half} "
-                                 f"leaves the visible interior [{lo}, {hi}): keep ships inside it")
-            fields = _add_patch(fields, waves.astype(jnp.result_type(self.dtype, jnp.complex64)), r0, c0)
+            fields = add_ship_waves(fields, ship, self.grid, self.water, t, self.dt, half, self.ship_method,
+                                    interior=(self.margin, n - self.margin))
         return fields
 
 
