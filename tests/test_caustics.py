@@ -143,3 +143,19 @@ def test_ground_height_field_equals_flat_floor():
     flat = floor_irradiance(eta, grid, 1.5, method="beam")
     ground = floor_irradiance(eta, grid, jnp.full((64, 64), -1.5), method="beam")
     np.testing.assert_allclose(ground, flat, atol=1e-4)
+
+
+def test_uneven_ground_conserves_flux_and_moves_the_pattern():
+    grid = Grid(64, 2.0)
+    x, y = grid.mesh()
+    eta = _random_surface(grid)
+    ground = -1.5 + 0.3 * jnp.sin(2 * math.pi * x / 2.0)
+    e = floor_irradiance(eta, grid, ground, method="beam", fresnel=False)
+    flat = floor_irradiance(eta, grid, 1.5, method="beam", fresnel=False)
+    assert float(jnp.mean(e)) == pytest.approx(1.0, abs=1e-5)
+    assert float(jnp.max(jnp.abs(e - flat))) > 0.05  # the light lands elsewhere
+    # where the ground rises the light has travelled less far: closer to the flat-floor result at that depth
+    shallow = floor_irradiance(eta, grid, 1.2, method="beam", fresnel=False)
+    col = int(np.argmin(np.abs(np.asarray(grid.coordinates) - 0.5)))  # sin peak: ground at −1.2 m
+    assert np.abs(np.asarray(e)[:, col] - np.asarray(shallow)[:, col]).mean() < np.abs(
+        np.asarray(e)[:, col] - np.asarray(flat)[:, col]).mean()
