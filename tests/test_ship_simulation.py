@@ -27,6 +27,20 @@ def test_time_stepped_wake_has_kelvin_angle_and_transverse_wavelength():
     assert abs(angle.angle - KELVIN_ANGLE) < 0.3, angle
     lam = track_wavelength(eta, grid, source=(x, y), near=2.0, far=8.0)
     assert lam == pytest.approx(transverse_wavelength(0.7), rel=0.01)
+    edge = wake_angle(eta, grid, source=(x, y), method="cusp", speed=0.7, near=1.0, far=8.0)
+    assert abs(edge.angle - KELVIN_ANGLE) < 0.3, edge
+
+
+@pytest.mark.slow
+def test_time_stepped_outer_edge_of_a_moderate_hull():
+    """A hull of σ = 0.3 m (0.95 of 2πU²/g at U = 0.7 m/s): its maximum is far off Kelvin's
+    angle, its outer edge is not."""
+    grid = Grid(1024, 20.0)
+    eta, (x, y, _) = _run(grid, Hull("gaussian", 0.3, 0.3), (-7.5, 0.0), 0.7, 0.1, 22.0, 64)
+    edge = wake_angle(eta, grid, source=(x, y), method="cusp", speed=0.7, near=1.0, far=8.0)
+    assert abs(edge.angle - KELVIN_ANGLE) < 0.3, edge
+    largest = wake_angle(eta, grid, source=(x, y), near=1.0, far=8.0, exclude=0.2)
+    assert abs(largest.angle - KELVIN_ANGLE) > 1.0, largest
 
 
 @pytest.mark.slow
@@ -88,3 +102,5 @@ def test_finite_differences_make_a_mach_cone_not_a_kelvin_wake():
     angle = wake_angle(np.asarray(eta), grid, source=(xs, 0.0), near=2.0, far=12.0, exclude=0.5)
     assert abs(angle.angle - math.degrees(math.asin(0.5))) < 2.0  # 30°
     assert abs(angle.angle - KELVIN_ANGLE) > 5.0
+    edge = wake_angle(np.asarray(eta), grid, source=(xs, 0.0), method="cusp", speed=1.0, near=2.0, far=12.0)
+    assert abs(edge.angle - KELVIN_ANGLE) > 5.0  # the Kelvin cusp waves are not where Kelvin puts them

@@ -4,8 +4,8 @@ import numpy as np
 import pytest
 
 from wavephys import Grid, Water
-from wavephys.wake import (KELVIN_ANGLE, GaussianPressure, steady_wake, track_wavelength, transverse_wavelength,
-                           wake_angle)
+from wavephys.wake import (KELVIN_ANGLE, GaussianPressure, cusp_line, steady_wake, track_wavelength,
+                           transverse_wavelength, wake_angle)
 
 DEEP = Water(sigma=0.0)
 
@@ -37,16 +37,57 @@ def test_transverse_wavelength(point_wake):
     assert track_wavelength(eta, grid, near=4.0, far=16.0) == pytest.approx(transverse_wavelength(1.0), rel=0.01)
 
 
+def test_cusp_line_of_deep_water_is_kelvins():
+    cusp = cusp_line(1.0)
+    assert cusp.angle == pytest.approx(KELVIN_ANGLE, abs=1e-4)
+    assert cusp.wavenumber == pytest.approx(1.5 * 9.81, rel=1e-5)  # k_c = 1.5 g/U²
+    assert cusp.wave_angle == pytest.approx(math.degrees(math.atan(1 / math.sqrt(2))), abs=1e-3)  # 35.26°
+
+
+def test_cusp_line_widens_in_shallow_water():
+    """Havelock: the wedge stays at 19.47° for U ≪ sqrt(g h) and opens as U → sqrt(g h)."""
+    deep_enough = cusp_line(1.0, Water(sigma=0.0, depth=2.0)).angle
+    assert deep_enough == pytest.approx(KELVIN_ANGLE, abs=1e-3)
+    angles = [cusp_line(1.0, Water(sigma=0.0, depth=h)).angle for h in (0.3, 0.2, 0.15, 0.12, 0.105)]
+    assert all(b > a for a, b in zip(angles, angles[1:])) and angles[-1] > 60.0
+
+
+def test_no_cusp_line_below_c_min():
+    with pytest.raises(ValueError, match="no stationary"):
+        cusp_line(0.2, Water())
+
+
 @pytest.mark.slow
-def test_maximum_amplitude_angle_shrinks_for_larger_sources():
-    """The angle of maximum amplitude is a different quantity from the cusp line: it drops
-    below Kelvin's angle as the source grows against 2πU²/g (here 0.64 m at U = 1 m/s)."""
+@pytest.mark.parametrize("size", [0.05, 0.3])
+def test_outer_edge_is_kelvins_angle_for_point_and_moderate_sources(size):
+    """The cusp line stays at 19.47° whatever the source size (here σ/λ = 0.08 and 0.47, λ = 2πU²/g)."""
     grid = Grid(2048, 40.0)
-    small = wake_angle(steady_wake(grid, DEEP, 1.0, GaussianPressure(100.0, 0.05)), grid, method="max",
-                       near=2.0, far=16.0, exclude=0.3)
-    large = wake_angle(steady_wake(grid, DEEP, 1.0, GaussianPressure(100.0, 0.1)), grid, method="max",
-                       near=2.0, far=16.0, exclude=0.3)
-    assert large.angle < small.angle
+    eta = steady_wake(grid, DEEP, 1.0, GaussianPressure(100.0, size))
+    m = wake_angle(eta, grid, method="cusp", speed=1.0, near=3.0, far=14.0)
+    assert abs(m.angle - KELVIN_ANGLE) < 0.3 and m.uncertainty < 0.3, m
+    assert abs(m.angle - KELVIN_ANGLE) < 1.5 * m.uncertainty, m  # the stated uncertainty covers the bias
+
+
+@pytest.mark.slow
+def test_maximum_amplitude_angle_is_not_the_outer_edge_for_larger_sources():
+    """The angle of maximum amplitude is a different quantity from the cusp line: once the
+    source is not small against 2πU²/g (0.64 m here), its short diverging waves are weak,
+    the transverse waves carry the maximum, and the angle falls far below Kelvin's."""
+    grid = Grid(2048, 40.0)
+    eta = steady_wake(grid, DEEP, 1.0, GaussianPressure(100.0, 0.3))
+    largest = wake_angle(eta, grid, method="max", near=2.0, far=16.0, exclude=0.3)
+    edge = wake_angle(eta, grid, method="cusp", speed=1.0, near=3.0, far=14.0)
+    assert largest.angle < KELVIN_ANGLE - 5.0
+    assert abs(edge.angle - KELVIN_ANGLE) < 0.3
+
+
+@pytest.mark.slow
+def test_outer_edge_in_finite_depth_follows_havelock():
+    water = Water(sigma=0.0, depth=0.2)  # depth Froude number 0.71: cusp at 20.82°
+    grid = Grid(2048, 40.0)
+    eta = steady_wake(grid, water, 1.0, GaussianPressure(100.0, 0.1))
+    m = wake_angle(eta, grid, method="cusp", speed=1.0, water=water, near=3.0, far=14.0)
+    assert abs(m.angle - cusp_line(1.0, water).angle) < 0.3 and abs(m.angle - KELVIN_ANGLE) > 1.0, m
 
 
 def test_no_stationary_capillary_gravity_wake_below_c_min():
@@ -68,6 +109,22 @@ def test_bad_input(kw, name):
     args.update(kw)
     with pytest.raises(ValueError, match=name):
         steady_wake(Grid(64, 8.0), DEEP, source=GaussianPressure(10.0, 0.5), **args)
+
+
+@pytest.mark.parametrize("kw,name", [(dict(method="cusp"), "speed"), (dict(method="cusp", speed=-1.0), "speed"),
+                                     (dict(method="cusp", speed=1.0, bandwidth=0.0), "bandwidth"),
+                                     (dict(method="edge"), "method"), (dict(near=5.0, far=2.0), "far")])
+def test_wake_angle_bad_input(kw, name):
+    grid = Grid(64, 8.0)
+    args = dict(near=1.0, far=3.0)
+    args.update(kw)
+    with pytest.raises(ValueError, match=name):
+        wake_angle(np.zeros((64, 64)), grid, **args)
+
+
+def test_unresolved_cusp_waves():
+    with pytest.raises(ValueError, match="Nyquist"):
+        wake_angle(np.zeros((64, 64)), Grid(64, 8.0), method="cusp", speed=0.2, near=1.0, far=3.0)
 
 
 def test_unresolved_source():

@@ -396,7 +396,7 @@ def check_moving_sources() -> list[Check]:
     """Ship kernels' exact identities, their float32 stability, and Kelvin wakes."""
     from wavephys.ship_waves import (resonance_quotients, resonance_quotients_exact, ship_multipliers,
                                      ship_multipliers_naive)
-    from wavephys.wake import (KELVIN_ANGLE, GaussianPressure, steady_wake, track_wavelength,
+    from wavephys.wake import (KELVIN_ANGLE, GaussianPressure, cusp_line, steady_wake, track_wavelength,
                                transverse_wavelength, wake_angle)
 
     grid, deep = Grid(128, 8.0), Water(sigma=0.0)
@@ -421,6 +421,16 @@ def check_moving_sources() -> list[Check]:
                         KELVIN_ANGLE, atol=0.3, unit="deg"))
     rows.append(compare("transverse wavelength on the track vs 2πU²/g", track_wavelength(eta, wgrid, near=4.0, far=16.0),
                         transverse_wavelength(1.0), rtol=0.01, unit="m"))
+    rows.append(compare("cusp line from the dispersion relation (deep, gravity)", cusp_line(1.0).angle, KELVIN_ANGLE,
+                        atol=1e-3, unit="deg"))
+    for size in (0.05, 0.3):
+        e = eta if size == 0.05 else steady_wake(wgrid, deep, 1.0, GaussianPressure(100.0, size))
+        edge = wake_angle(e, wgrid, method="cusp", speed=1.0, near=3.0, far=14.0)
+        rows.append(compare(f"steady wake, source σ/λ = {size / transverse_wavelength(1.0):.2f}: outer edge "
+                            f"(± {edge.uncertainty:.2f})", edge.angle, KELVIN_ANGLE, atol=0.3, unit="deg"))
+    largest = wake_angle(e, wgrid, near=2.0, far=16.0, exclude=0.3)
+    rows.append(bound("σ/λ = 0.47: angle of maximum amplitude below Kelvin (a different quantity)",
+                      KELVIN_ANGLE - largest.angle, 5.0, relation="≥", unit="deg"))
     cgrid, cap = Grid(1024, 1.0), Water()
     n, dx = 1024, float(cgrid.dx)
 

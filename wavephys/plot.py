@@ -97,9 +97,10 @@ def plot_curves(curves: dict, xlabel: str, ylabel: str, title: str = "", logx=Fa
 
 def plot_wake(eta, dx: float, *, source=(0.0, 0.0), angle=None, kelvin: float = 19.47, title: str = "",
               window: tuple | None = None):
-    """A wake height field with Kelvin's lines (dashed) and a measured angle (solid).
+    """A wake height field with Kelvin's lines (dashed) and measured angles (solid, dotted, …).
 
-    ``angle`` is a :class:`wavephys.wake.WakeAngle` (or degrees); ``window`` =
+    ``angle`` is a :class:`wavephys.wake.WakeAngle` (or degrees), or a sequence of them
+    (e.g. the angle of maximum amplitude and the outer edge); ``window`` =
     (x_min, x_max, y_min, y_max) in m limits the view.
     """
     import math
@@ -109,12 +110,12 @@ def plot_wake(eta, dx: float, *, source=(0.0, 0.0), angle=None, kelvin: float = 
     x0, y0 = source
     n = np.asarray(eta).shape[-1]
     reach = n * dx
-    for deg, style, label in ((kelvin, "--", f"Kelvin {kelvin:.2f}°"),
-                              (getattr(angle, "angle", angle), "-", None)):
-        if deg is None:
-            continue
+    measured = [] if angle is None else list(angle) if isinstance(angle, (list, tuple)) else [angle]
+    lines = [(kelvin, "--", f"Kelvin {kelvin:.2f}°")]
+    lines += [(getattr(a, "angle", a), style, f"measured {a}" if hasattr(a, "angle") else f"measured {a:.2f}°")
+              for a, style in zip(measured, ("-", ":", "-.", (0, (5, 1))))]
+    for deg, style, lab in lines:
         t = math.tan(math.radians(deg))
-        lab = label or f"measured {angle}"
         ax.plot([x0, x0 - reach], [y0, y0 + t * reach], style, color="k", lw=0.8, label=lab)
         ax.plot([x0, x0 - reach], [y0, y0 - t * reach], style, color="k", lw=0.8)
     if window:
