@@ -1,4 +1,4 @@
-"""``python -m bench {propagation,boundaries,optics,ship} [--json PATH] [--quick]``.
+"""``python -m bench {propagation,boundaries,optics,ship,render} [--json PATH] [--quick]``.
 
 Each writes its rows as JSON and its charts as PNG next to it (default
 ``bench/results/``) and prints a table.
@@ -93,13 +93,38 @@ def run_ship(args) -> None:
     _write(rows, ship.figures(rows), Path(args.json or "bench/results/ship.json"))
 
 
+def run_render(args) -> None:
+    from bench import render
+
+    if args.quick:
+        rows = render.frame_rows(200, 150, 3, _say) + render.agreement_rows(80, 60, progress=_say)
+    else:
+        rows = render.frame_rows(progress=_say) + render.texture_rows(progress=_say) + render.agreement_rows(progress=_say)
+    for r in rows:
+        if r["family"] == "frame":
+            print(f"{r['width']}×{r['height']} {r['coverage']:>3} % (measured {100 * r['measured_coverage']:.1f} %) "
+                  f"{r['mode']:<13} {r['seconds'] * 1e3:8.1f} ms {r['hz']:6.2f} Hz  ×{r['ratio_to_refraction']:.2f} "
+                  f"({r['ratio_quartiles'][0]:.2f}–{r['ratio_quartiles'][1]:.2f}) of refraction "
+                  f"(paper {r['paper_hz']} Hz, ×{r['paper_ratio']:.2f})")
+        elif r["family"] == "textures":
+            print(f"N={r['n']:<5} {r['work']:<34} {r['seconds'] * 1e3:8.2f} ms  ×{r['ratio_to_step']:.2f} of a step")
+        else:
+            extra = "" if r["off"] == "none" else (f"  off vs on {r['effect_psnr']:.1f} dB, frame time "
+                                                   f"×{r['cost_ratio']:.2f} ({r['cost_quartiles'][0]:.2f}–"
+                                                   f"{r['cost_quartiles'][1]:.2f})")
+            conv = "" if r["psnr_vs_converged"] is None else f" (vs 4× steps {r['psnr_vs_converged']:.1f} dB)"
+            print(f"{r['scene']:<6} off={r['off']:<11} GPU vs reference {r['psnr']:.1f} dB{conv}{extra}")
+    _write(rows, render.figures(rows), Path(args.json or "bench/results/render.json"))
+
+
 def main(argv=None) -> int:
     p = argparse.ArgumentParser(prog="python -m bench", description=__doc__.split("\n\n")[0])
     sub = p.add_subparsers(dest="which", required=True)
     for name, fn, help_ in (("propagation", run_propagation, "step vs bare FFT; error vs time"),
                             ("boundaries", run_boundaries, "measured failure boundaries"),
                             ("optics", run_optics, "Fresnel, absorption and caustics: error vs cost"),
-                            ("ship", run_ship, "moving hulls: kernels vs stones, FD wake, speed")):
+                            ("ship", run_ship, "moving hulls: kernels vs stones, FD wake, speed"),
+                            ("render", run_render, "renderer: frame times, texture cost, GPU vs reference")):
         s = sub.add_parser(name, help=help_)
         s.add_argument("--json", metavar="PATH")
         s.add_argument("--quick", action="store_true", help="smaller sizes (for CI smoke runs)")

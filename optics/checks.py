@@ -20,7 +20,8 @@ from optics.fresnel import N_AIR, N_WATER, normal_reflectance, reflectance, refl
 from wavephys.params import Grid
 from wavephys.validate import Check, bound, compare
 
-__all__ = ["CHECKS", "fresnel_errors", "plain_numpy_water_srgb", "sinusoid_scene"]
+__all__ = ["CHECKS", "fresnel_errors", "plain_numpy_water_srgb", "sinusoid_scene", "flat_pool", "flat_pool_colour",
+           "underwater_view"]
 
 
 def fresnel_errors(method: str, n1: float, n2: float, samples: int = 20000, **kw) -> dict:
@@ -133,5 +134,82 @@ def check_caustics() -> list[Check]:
     return rows
 
 
-CHECKS = {"Fresnel": check_fresnel, "absorption": check_absorption, "caustics": check_caustics}
+def flat_pool(depth: float = 1.5, **kw):
+    """Still water over a flat floor ``depth`` m down, seen straight down, sun overhead, uniform sky."""
+    from optics.scene import Scene, look_at
+
+    n = 32
+    args = dict(camera=look_at((0.0, 0.0, 3.0), (0.0, 0.0, -depth), 20.0), sun=(0.0, 0.0, 1.0),
+                sky_zenith=(0.3, 0.5, 0.9), sky_horizon=(0.3, 0.5, 0.9), sun_glow=0.0,
+                albedo=np.full((n, n, 3), (0.8, 0.7, 0.5)), ambient=(0.1, 0.1, 0.1), sun_color=(1.0, 1.0, 1.0))
+    args.update(kw)
+    return Scene(np.full((n, n), -depth), 0.0, 8.0, **args)
+
+
+def flat_pool_colour(scene, depth: float = 1.5) -> np.ndarray:
+    """Analytic colour at the centre of :func:`flat_pool`: R0·sky + (1 − R0)·ground·T, the
+    ground lit by ambient·T + sun·(1 − R0)·T, T = e^{−a·depth} (R0: exact normal-incidence Fresnel)."""
+    r0 = normal_reflectance(scene.n_air, scene.n_water)
+    t = np.exp(-depth * np.asarray(scene.absorption))
+    alb = np.asarray(scene.albedo)[0, 0]
+    ground = alb * (scene.ambient * t + scene.sun_color * (1 - r0) * t)
+    return r0 * scene.sky_zenith + (1 - r0) * ground * t
+
+
+def underwater_view(angle_deg: float):
+    """Camera 0.75 m under still water (floor at 1.5 m, 40 m wide) looking up ``angle_deg`` from
+    the vertical, under a pure red sky over a green-blue floor, clear water."""
+    from optics.scene import Camera, Effects, Scene
+
+    n, a = 32, math.radians(angle_deg)
+    up = (1.0, 0.0, 0.0) if angle_deg == 0 else (0.0, 0.0, 1.0)
+    cam = Camera((0.0, 0.0, -0.75), (math.sin(a), 0.0, -0.75 + math.cos(a)), up, 2.0)
+    return Scene(np.full((n, n), -1.5), 0.0, 40.0, camera=cam, sky_zenith=(2.0, 0.0, 0.0),
+                 sky_horizon=(2.0, 0.0, 0.0), sun_glow=0.0, albedo=np.full((n, n, 3), (0.0, 0.6, 0.6)),
+                 effects=Effects(absorption=False))
+
+
+def check_renderer() -> list[Check]:
+    """The GPU renderer against the analytic flat pool, TIR, the CPU reference; 16-bit heights."""
+    from optics.reference import psnr, trace
+    from optics.render import Renderer, RendererUnavailable
+    from optics.scenes import SCENES, builtin_scene
+    from optics.textures import height_precision
+
+    w, h = 160, 120
+    rows = []
+    pool = flat_pool()
+    expected = flat_pool_colour(pool)
+    ref = trace(pool, w, h)[h // 2, w // 2]
+    rows.append(compare("flat pool, normal view: reference vs analytic colour (max rel.)",
+                        float(np.max(np.abs(ref - expected) / expected)), 0.0, atol=1e-5))
+    critical = math.degrees(math.asin(N_AIR / N_WATER))
+    tir = underwater_view(critical + 5.0)
+    rows.append(bound(f"from below at {critical + 5:.1f}° (past critical): sky red seen, reference",
+                      float(trace(tir, w, h)[h // 2, w // 2, 0]), 0.0))
+    try:
+        renderer = Renderer(w, h)
+    except RendererUnavailable as exc:
+        rows.append(bound(f"GPU renderer available ({str(exc)[:80]}…)", 0.0, 1.0, relation="≥"))
+        renderer = None
+    if renderer is not None:
+        with renderer:
+            gpu = renderer.render(pool)[h // 2, w // 2]
+            rows.append(compare("flat pool, normal view: GPU vs analytic colour (max rel.)",
+                                float(np.max(np.abs(gpu - expected) / expected)), 0.0, atol=2e-4))
+            rows.append(bound("past critical: sky red seen, GPU", float(renderer.render(tir)[h // 2, w // 2, 0]), 0.0))
+            for name in SCENES:
+                s = builtin_scene(name, n=128)
+                rows.append(bound(f"{name}: GPU vs CPU reference PSNR, all effects ({w}×{h})",
+                                  psnr(renderer.render(s), trace(s, w, h)), 35.0, relation="≥", unit="dB"))
+    grid = Grid(256, 64.0)
+    x, y = (np.asarray(a) for a in grid.mesh())
+    swell = 0.05 * np.cos(2 * np.pi * 16 * x / 64) + 0.03 * np.sin(2 * np.pi * 16 * (x + y) / 64)
+    rows.append(bound("16-bit heights, swell of 16 texels per wavelength: curvature error (RMS)",
+                      height_precision(swell, grid, 16, norm="rms")["curvature"], 1e-3))
+    return rows
+
+
+CHECKS = {"Fresnel": check_fresnel, "absorption": check_absorption, "caustics": check_caustics,
+          "renderer": check_renderer}
 """Optics validations, in the order ``wavephys validate`` runs them (after the wave ones)."""

@@ -53,3 +53,43 @@ def test_full_validation_passes(tmp_path):
 def test_run_rejects_small_grid(tmp_path):
     with pytest.raises(ValueError, match="n must be"):
         cli.main(["run", "--n", "64", "--out", str(tmp_path)])
+
+
+def test_render_writes_a_png(tmp_path, capsys):
+    from PIL import Image
+
+    out = tmp_path / "frame.png"
+    assert cli.main(["render", "--scene", "pool", "--out", str(out), "--width", "80", "--height", "60",
+                     "--n", "64"]) == 0
+    img = np.asarray(Image.open(out))
+    assert img.shape == (60, 80, 3) and img.std() > 5  # not a blank frame
+    assert "rendered pool" in capsys.readouterr().out
+
+
+def test_render_frames_and_effects(tmp_path):
+    assert cli.main(["render", "--scene", "shore", "--out", str(tmp_path / "anim"), "--frames", "2", "--width", "40",
+                     "--height", "30", "--n", "64", "--off", "caustics", "reflection"]) == 0
+    assert sorted(p.name for p in (tmp_path / "anim").iterdir()) == ["frame_0000.png", "frame_0001.png"]
+
+
+def test_render_without_egl_says_which_packages(tmp_path, monkeypatch, capsys):
+    import moderngl
+
+    monkeypatch.setattr(moderngl, "create_context", lambda *a, **k: (_ for _ in ()).throw(OSError("no EGL")))
+    assert cli.main(["render", "--out", str(tmp_path / "f.png"), "--width", "8", "--height", "8"]) == 3
+    assert "libegl1 libegl-mesa0 libgl1-mesa-dri" in capsys.readouterr().err
+
+
+def test_textures_export(tmp_path):
+    from optics.textures import load_npz
+    from optics.scenes import builtin_scene
+
+    assert cli.main(["textures", "--scene", "pool", "--out", str(tmp_path), "--n", "64"]) == 0
+    names = {p.name for p in tmp_path.iterdir()}
+    assert {"water_height.png", "water_height.json", "ground_height.png", "water_normals.png", "caustics.png",
+            "fresnel.npy", "absorption.npy", "textures.npz"} <= names
+    tex = load_npz(tmp_path / "textures.npz")
+    scene = builtin_scene("pool", n=64)
+    span = float(np.ptp(scene.water))
+    assert np.abs(tex["water"] - scene.water).max() <= span / 65535 + 1e-7  # 16-bit normalized, decoded in m
+    assert tex["fresnel"].shape == (256,) and tex["absorption"].shape == (256, 3)

@@ -24,11 +24,37 @@ def test_round_trip_within_half_a_quantum():
     assert np.array_equal(decode_height(encode_height(eta, GRID, 32)), eta.astype(np.float32))
 
 
+def _gentle_swell(texels_per_wavelength):
+    """A 5 cm swell (kA ≤ 0.08) of two trains, the longer with the given texels per wavelength."""
+    x, y = (np.asarray(a) for a in GRID.mesh())
+    m = 256 // texels_per_wavelength
+    return 0.05 * np.cos(2 * np.pi * m * x / 64) + 0.03 * np.sin(2 * np.pi * m * (x + y) / 64)
+
+
 def test_eight_bits_make_stair_steps_sixteen_do_not():
-    """Measured on a gentle swell: 8-bit curvature is wrong by more than its own size."""
+    """A long swell (128 texels per wavelength): 8-bit curvature is wrong by more than its own size."""
     e8, e16 = height_precision(_swell(), GRID, 8), height_precision(_swell(), GRID, 16)
     assert e8["curvature"] > 1.0
     assert e16["curvature"] < e8["curvature"] / 100 and e16["slope"] < 1e-3 and e16["height"] < 2e-5
+
+
+def test_sixteen_bits_within_a_thousandth_on_curvature():
+    """A gentle swell of 16 texels per wavelength: 16-bit normalized curvature within 0.1 %
+    (RMS and worst texel), 8-bit 100× worse, float32 at rounding."""
+    eta = _gentle_swell(16)
+    e8, e16, e32 = (height_precision(eta, GRID, b, norm="rms") for b in (8, 16, 32))
+    assert e16["curvature"] < 1e-3 and height_precision(eta, GRID, 16)["curvature"] < 1e-3
+    assert e8["curvature"] > 100 * e16["curvature"]
+    assert e32["curvature"] < 1e-5
+
+
+def test_sixteen_bit_curvature_boundary():
+    """The failure boundary: the relative curvature error grows as (λ/Δx)², so 16 bits
+    miss 0.1 % beyond about 20 texels per wavelength (float32 does not)."""
+    errs = {t: height_precision(_gentle_swell(t), GRID, 16, norm="rms")["curvature"] for t in (8, 16, 32, 64)}
+    assert errs[32] > 1e-3 and errs[64] > 1e-3 and errs[16] < 1e-3
+    assert 3.0 < errs[64] / errs[32] < 5.0  # ×4 per doubling of the wavelength
+    assert height_precision(_gentle_swell(64), GRID, 32, norm="rms")["curvature"] < 1e-4
 
 
 def test_normals_are_unit_and_flat_is_up():

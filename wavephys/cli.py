@@ -5,6 +5,10 @@
 tolerance and verdict; exit status 1 if any fails. Progress goes to stderr.
 ``wavephys run`` simulates the built-in default scene (stones dropped into a pool with
 an open-ocean margin) and writes the height field as ``.npz`` and a PNG figure.
+``wavephys render --scene pool --out frame.png [--frames N]`` draws a built-in scene
+with the headless moderngl renderer (frames go to a folder when N > 1).
+``wavephys textures --scene pool --out DIR`` writes the scene's textures (heights,
+normals, caustics, Fresnel and absorption lookups) as PNG, .npy and .npz.
 """
 
 from __future__ import annotations
@@ -86,6 +90,46 @@ def cmd_run(args) -> int:
     return 0
 
 
+EFFECTS = ("refraction", "reflection", "fresnel", "absorption", "caustics")
+
+
+def cmd_render(args) -> int:
+    from optics.render import Renderer, RendererUnavailable, render_sequence, save_png
+    from optics.scenes import builtin_scene, scene_frames
+
+    off = {e: False for e in args.off or []}
+    start = time.perf_counter()
+    try:
+        renderer = Renderer(args.width, args.height, steps=args.steps)
+    except RendererUnavailable as exc:
+        print(f"wavephys render: {exc}", file=sys.stderr)
+        return 3
+    with renderer:
+        if args.frames == 1:
+            scene = builtin_scene(args.scene, n=args.n, time=args.time).with_effects(**off)
+            path = save_png(renderer.render(scene), args.out)
+            print(f"rendered {args.scene} ({args.width}×{args.height}, {renderer.renderer_name}) in "
+                  f"{time.perf_counter() - start:.1f} s; wrote {path}")
+            return 0
+        out = Path(args.out)
+        folder = out.with_suffix("") if out.suffix else out
+        scenes = (s.with_effects(**off) for s in scene_frames(args.scene, args.frames, fps=args.fps, n=args.n,
+                                                                  start=args.time))
+        paths = render_sequence(renderer, scenes, folder, count=args.frames, video=args.video, fps=int(args.fps))
+        print(f"rendered {len(paths)} frames of {args.scene} in {time.perf_counter() - start:.1f} s; wrote {folder}/")
+    return 0
+
+
+def cmd_textures(args) -> int:
+    from optics.scenes import builtin_scene
+    from optics.textures import export_scene
+
+    paths = export_scene(builtin_scene(args.scene, n=args.n, time=args.time), args.out)
+    for name, p in paths.items():
+        print(f"{name:15s} {p}")
+    return 0
+
+
 def main(argv=None) -> int:
     parser = argparse.ArgumentParser(prog="wavephys", description=__doc__.split("\n\n")[0])
     sub = parser.add_subparsers(dest="command")
@@ -99,7 +143,31 @@ def main(argv=None) -> int:
     r.add_argument("--steps", type=int, default=120, help="steps of 1/30 s")
     r.add_argument("--out", default="wavephys-out", help="output folder")
     r.set_defaults(func=cmd_run)
+    from optics.scenes import SCENES
+
+    g = sub.add_parser("render", help="render a built-in scene with the headless moderngl renderer")
+    g.add_argument("--scene", choices=SCENES, default="pool")
+    g.add_argument("--out", default="frame.png", help="PNG file (one frame) or folder (--frames > 1)")
+    g.add_argument("--frames", type=int, default=1, help="number of frames (an animation when > 1)")
+    g.add_argument("--fps", type=float, default=30.0, help="frames per second of the animation")
+    g.add_argument("--time", type=float, default=1.0, help="scene time of the (first) frame, s")
+    g.add_argument("--width", type=int, default=800)
+    g.add_argument("--height", type=int, default=600)
+    g.add_argument("--n", type=int, default=256, help="height-field texels per side")
+    g.add_argument("--steps", type=int, default=256, help="ray-march steps")
+    g.add_argument("--off", nargs="+", choices=EFFECTS, metavar="EFFECT",
+                   help=f"switch effects off ({', '.join(EFFECTS)})")
+    g.add_argument("--video", metavar="NAME", help="also write a video (needs imageio-ffmpeg), e.g. water.mp4")
+    g.set_defaults(func=cmd_render)
+    t = sub.add_parser("textures", help="export a built-in scene's textures")
+    t.add_argument("--scene", choices=SCENES, default="pool")
+    t.add_argument("--out", default="textures", help="output folder")
+    t.add_argument("--n", type=int, default=256)
+    t.add_argument("--time", type=float, default=1.0)
+    t.set_defaults(func=cmd_textures)
     args = parser.parse_args(argv)
+    if getattr(args, "frames", 1) < 1:
+        parser.error(f"--frames must be ≥ 1, got {args.frames}")
     if args.command is None:
         parser.print_help()
         return 2

@@ -1,0 +1,238 @@
+"""The moderngl renderer against the CPU reference tracer, and the physics it must show."""
+
+import math
+
+import numpy as np
+import pytest
+
+from optics.attenuation import fit_rgb_coefficients
+from optics.checks import flat_pool, flat_pool_colour, underwater_view
+from optics.fresnel import N_AIR, N_WATER
+from optics.reference import psnr, ray_directions, trace
+from optics.render import EGL_PACKAGES, Renderer, RendererUnavailable, render_sequence, save_png, to_srgb8
+from optics.scene import DEFAULT_ABSORPTION, Camera, Effects, Scene, look_at
+from optics.scenes import SCENES, builtin_scene
+
+W, H = 160, 120
+EFFECTS = ("refraction", "reflection", "fresnel", "absorption", "caustics")
+
+
+@pytest.fixture(scope="module")
+def renderer():
+    with Renderer(W, H) as r:  # a missing EGL is an error here, not a skip: CI installs it
+        yield r
+
+
+@pytest.fixture(scope="module", params=SCENES)
+def scene(request):
+    return builtin_scene(request.param, n=128)
+
+
+@pytest.mark.parametrize("off", (None,) + EFFECTS)
+def test_gpu_matches_reference_per_effect(renderer, scene, off):
+    s = scene if off is None else scene.with_effects(**{off: False})
+    gpu, ref = renderer.render(s), trace(s, W, H)
+    assert gpu.shape == (H, W, 3) and np.isfinite(gpu).all()
+    assert psnr(gpu, ref) >= 35.0
+
+
+def test_each_effect_changes_the_pool(renderer):
+    """Every switch does something measurable on the pool (so the PSNR tests compare real effects)."""
+    s = builtin_scene("pool", n=128)
+    full = renderer.render(s)
+    for off in EFFECTS:
+        assert psnr(renderer.render(s.with_effects(**{off: False})), full) < 60.0, off
+
+
+def test_march_is_converged(renderer):
+    """The GPU's 256 steps against a reference with 4× the steps."""
+    s = builtin_scene("shore", n=128)
+    assert psnr(renderer.render(s), trace(s, W, H, steps=1024)) >= 35.0
+
+
+def test_flat_pool_at_normal_view_has_the_analytic_colour(renderer):
+    """Straight down on still water 1.5 m deep: R0·sky + (1 − R0)·ground·T(1.5 m)², with the
+    ground lit by ambient·T + sun·(1 − R0)·T (T = e^{−a·1.5 m}, exact Fresnel R0)."""
+    s = flat_pool()
+    r0 = ((N_AIR - N_WATER) / (N_AIR + N_WATER)) ** 2
+    t = np.exp(-1.5 * np.asarray(DEFAULT_ABSORPTION))
+    ground = np.array([0.8, 0.7, 0.5]) * (0.1 * t + (1 - r0) * t)
+    expected = r0 * np.array([0.3, 0.5, 0.9]) + (1 - r0) * ground * t  # written out here, independently
+    np.testing.assert_allclose(flat_pool_colour(s), expected, rtol=1e-7)  # albedo is stored in float32
+    centre = renderer.render(s)[H // 2 - 2:H // 2 + 2, W // 2 - 2:W // 2 + 2].reshape(-1, 3)
+    np.testing.assert_allclose(centre, np.broadcast_to(expected, centre.shape), rtol=2e-4)
+    np.testing.assert_allclose(trace(s, W, H)[H // 2, W // 2], expected, rtol=1e-5)
+
+
+def test_default_absorption_is_the_spectral_fit():
+    np.testing.assert_allclose(DEFAULT_ABSORPTION, fit_rgb_coefficients(), rtol=1e-3)
+
+
+def test_total_internal_reflection_seen_from_below(renderer):
+    """Under still water, looking up: inside Snell's window (48.6°) the red sky shows;
+    past it the surface is a mirror of the green-blue floor and no red gets through."""
+    critical = math.degrees(math.asin(N_AIR / N_WATER))
+    for angle, sky_visible in ((0.0, True), (critical - 5.0, True), (critical + 5.0, False), (75.0, False)):
+        s = underwater_view(angle)
+        for img in (renderer.render(s), trace(s, W, H)):
+            red = float(img[H // 2, W // 2, 0])
+            if sky_visible:
+                assert red > 0.5, (angle, red)
+            else:
+                assert red == 0.0, (angle, red)
+                assert img[H // 2, W // 2, 1] > 0.05  # the floor, reflected
+
+
+def test_ship_wake_frame_shows_the_wake(renderer):
+    """The wake region's mean image gradient against the same frame without the ship."""
+    ship, calm = builtin_scene("ship", n=128), builtin_scene("ship", n=128, ship=False)
+    d = ray_directions(ship.camera, W, H)
+    eye = np.asarray(ship.camera.eye)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        t = -eye[2] / d[..., 2]
+    x, y = eye[0] + t * d[..., 0], eye[1] + t * d[..., 1]
+    xs = -5.0 + 2.0 * 1.0  # ship position at the scene's default time of 1 s
+    behind = xs - x
+    wake = (t > 0) & (behind > 1.0) & (behind < 15.0) & (np.abs(y) < behind * math.tan(math.radians(19.47)))
+
+    def mean_gradient(img):
+        lum = img @ np.array([0.2126, 0.7152, 0.0722])
+        gy, gx = np.gradient(lum)
+        return float(np.mean(np.hypot(gx, gy)[wake]))
+
+    assert wake.sum() > 200
+    # measured 2.75× at 160×120 (the calm frame's gradient is the sea floor seen through the water)
+    assert mean_gradient(renderer.render(ship)) > 2.0 * mean_gradient(renderer.render(calm))
+
+
+def test_nan_heights_are_refused():
+    ground = np.full((16, 16), -1.0)
+    water = np.zeros((16, 16))
+    water[3, 4] = np.nan
+    with pytest.raises(ValueError, match="water contains NaN"):
+        Scene(ground, water, 4.0)
+
+
+@pytest.mark.parametrize("shape", [(0, 16), (1, 16), (16,)])
+def test_texture_sizes_that_are_zero_are_refused(shape):
+    with pytest.raises(ValueError, match="ground"):
+        Scene(np.zeros(shape), 0.0, 4.0)
+
+
+def test_texture_too_large_for_the_context(renderer):
+    with pytest.raises(ValueError, match="larger than this context allows"):
+        renderer.texture("water", np.zeros((2, renderer.max_texture_size + 1), np.float32))
+    with pytest.raises(ValueError, match="largest texture"):
+        Scene(np.zeros((2, 16385)), 0.0, 4.0)
+
+
+def test_camera_inside_the_ground_is_refused():
+    with pytest.raises(ValueError, match="camera eye .* inside the ground"):
+        Scene(np.full((16, 16), 1.0), 0.0, 4.0, camera=look_at((0.0, 0.0, 0.5), (1.0, 1.0, 0.0)))
+
+
+@pytest.mark.parametrize("kw,name", [(dict(extent=0.0), "extent"), (dict(sun=(0, 0, -1)), "sun"),
+                                     (dict(n_water=0.9), "n_water"), (dict(absorption=(1, -1, 0)), "absorption"),
+                                     (dict(albedo=np.zeros((4, 4))), "albedo"), (dict(water=math.nan), "water")])
+def test_bad_scene_values_name_the_parameter(kw, name):
+    args = dict(ground=np.full((8, 8), -1.0), water=0.0, extent=4.0)
+    args.update(kw)
+    with pytest.raises(ValueError, match=name):
+        Scene(**args)
+
+
+def test_bad_camera():
+    with pytest.raises(ValueError, match="fov"):
+        Camera(fov=0.0)
+    with pytest.raises(ValueError, match="target"):
+        Camera(eye=(0, 0, 1), target=(0, 0, 1))
+
+
+def test_no_gl_context_names_the_egl_packages(monkeypatch):
+    import moderngl
+
+    def broken(*a, **k):
+        raise Exception("eglGetDisplay failed")
+
+    monkeypatch.setattr(moderngl, "create_context", broken)
+    with pytest.raises(RendererUnavailable, match=EGL_PACKAGES):
+        Renderer(8, 8)
+
+
+def test_bad_renderer_arguments():
+    with pytest.raises(ValueError, match="width"):
+        Renderer(0, 10)
+
+
+def test_render_sequence_writes_frames_with_progress(tmp_path, capsys):
+    from optics.scenes import scene_frames
+
+    with Renderer(48, 36) as r:
+        paths = render_sequence(r, scene_frames("shore", 3, n=64), tmp_path, count=3)
+    assert [p.name for p in paths] == ["frame_0000.png", "frame_0001.png", "frame_0002.png"]
+    assert all(p.stat().st_size > 0 for p in paths)
+    assert "3/3 frames" in capsys.readouterr().err
+
+
+def test_png_is_srgb_encoded(tmp_path):
+    from PIL import Image
+
+    assert to_srgb8(np.array([0.0, 0.0031308, 0.5, 1.0, 2.0])).tolist() == [0, 10, 188, 255, 255]
+    img = np.linspace(0, 1, 4 * 5 * 3).reshape(4, 5, 3)
+    back = np.asarray(Image.open(save_png(img, tmp_path / "a.png")))
+    assert back.shape == (4, 5, 3) and (back == to_srgb8(img)).all()
+
+
+def test_effects_only():
+    assert Effects().only("caustics") == Effects(False, False, False, False, True)
+    with pytest.raises(ValueError, match="unknown effect"):
+        Effects().only("bloom")
+
+
+def test_environment_map_matches_reference(renderer):
+    """A smooth equirectangular environment (reflected sky) through the GPU and the reference."""
+    h, w = 32, 64
+    v, u = np.meshgrid(np.linspace(0, 1, h), np.linspace(0, 1, w), indexing="ij")
+    env = np.stack([0.5 + 0.4 * np.cos(2 * np.pi * u), 0.6 * (1 - v), 0.3 + 0.5 * v * u], axis=-1)
+    s = builtin_scene("shore", n=128)
+    s = Scene(s.ground, s.water, s.extent, s.camera, albedo=s.albedo, caustics=s.caustics, environment=env)
+    img = renderer.render(s)
+    assert psnr(img, trace(s, W, H)) >= 35.0
+    assert psnr(img, renderer.render(builtin_scene("shore", n=128))) < 30.0  # the map is really used
+
+
+def test_uniform_environment_equals_uniform_sky(renderer):
+    """Looking down on the wake (every reflected ray goes up): a uniform map = a uniform sky."""
+    s = builtin_scene("ship", n=64, camera=look_at((-4.0, 0.0, 6.0), (-4.0, 0.0, 0.0), 60.0))
+    sky = Scene(s.ground, s.water, s.extent, s.camera, sky_zenith=(0.4, 0.5, 0.6), sky_horizon=(0.4, 0.5, 0.6),
+                sun_glow=0.0, albedo=s.albedo)
+    env = Scene(s.ground, s.water, s.extent, s.camera, environment=np.full((8, 16, 3), (0.4, 0.5, 0.6)),
+                albedo=s.albedo)
+    np.testing.assert_allclose(renderer.render(env), renderer.render(sky), atol=1e-6)
+
+
+def test_video_without_imageio_keeps_the_frames(tmp_path, capsys, monkeypatch):
+    import builtins
+
+    real_import = builtins.__import__
+
+    def no_imageio(name, *a, **k):
+        if name.startswith("imageio"):
+            raise ImportError("No module named 'imageio'")
+        return real_import(name, *a, **k)
+
+    monkeypatch.setattr(builtins, "__import__", no_imageio)
+    from optics.scenes import scene_frames
+
+    with Renderer(24, 18) as r:
+        paths = render_sequence(r, scene_frames("ship", 2, n=64, caustics=False), tmp_path, count=2,
+                                video="water.mp4", progress=False)
+    assert len(paths) == 2 and "imageio-ffmpeg" in capsys.readouterr().err
+
+
+def test_two_renderers_do_not_disturb_each_other(renderer):
+    s = builtin_scene("shore", n=64)
+    before = renderer.render(s)
+    with Renderer(16, 12) as other:
+        other.render(s)
+    np.testing.assert_array_equal(renderer.render(s), before)  # its context is made current again
