@@ -236,3 +236,15 @@ def test_two_renderers_do_not_disturb_each_other(renderer):
     with Renderer(16, 12) as other:
         other.render(s)
     np.testing.assert_array_equal(renderer.render(s), before)  # its context is made current again
+
+
+def test_height_fields_of_different_resolution(renderer):
+    """Ground and water need not share a grid: a 48² water over a 128² dune field (emerging ground)."""
+    g = np.linspace(-4, 4, 128)
+    X, Y = np.meshgrid(g, g)
+    ground = -1.0 + 0.8 * np.sin(0.9 * X) * np.cos(0.7 * Y) + 0.1 * X
+    w = np.linspace(-4, 4, 48)
+    WX, WY = np.meshgrid(w, w)
+    water = 0.04 * np.cos(2.5 * WX + 1.5 * WY)
+    s = Scene(ground, water, 8.0, look_at((-6.0, -5.0, 3.0), (0.0, 0.0, -0.5)))
+    assert psnr(renderer.render(s), trace(s, W, H)) >= 35.0
