@@ -52,6 +52,13 @@ def test_cusp_line_widens_in_shallow_water():
     assert all(b > a for a, b in zip(angles, angles[1:])) and angles[-1] > 60.0
 
 
+@pytest.mark.parametrize("kw,name", [(dict(speed=math.nan), "speed"), (dict(speed=-1.0), "speed"),
+                                     (dict(speed=1.0, samples=1), "samples")])
+def test_cusp_line_bad_input(kw, name):
+    with pytest.raises(ValueError, match=name):
+        cusp_line(**kw)
+
+
 def test_no_cusp_line_below_c_min():
     with pytest.raises(ValueError, match="no stationary"):
         cusp_line(0.2, Water())

@@ -47,7 +47,7 @@ from dataclasses import dataclass
 import jax.numpy as jnp
 import numpy as np
 
-from wavephys._inputs import check_array, check_choice, check_scalar
+from wavephys._inputs import check_array, check_choice, check_int, check_scalar
 from wavephys.dispersion import angular_frequency, group_speed, min_phase_speed, phase_speed, surface_operator
 from wavephys.heights import height_multiplier
 from wavephys.params import Grid, Water
@@ -118,6 +118,7 @@ def cusp_line(speed, water: Water = Water(sigma=0.0), samples: int = 4001) -> Cu
         Directions θ tried in (0, π/2); the maximum is then refined parabolically.
     """
     check_scalar("speed", speed, lo=0.0, lo_open=True)
+    samples = check_int("samples", samples, lo=3)
     theta = np.linspace(0.0, math.pi / 2, samples + 2)[1:-1]
     k = _stationary_wavenumber(speed * np.cos(theta), water)
     if not np.isfinite(k).any():
