@@ -15,7 +15,7 @@ import jax.numpy as jnp
 import numpy as np
 
 from wavephys import checks
-from wavephys.finite_difference import STABILITY_LIMIT, fd_run
+from wavephys.models.finite_difference import STABILITY_LIMIT, fd_run
 from wavephys.plot import plot_curves
 
 

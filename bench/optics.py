@@ -13,10 +13,9 @@ import jax.numpy as jnp
 import numpy as np
 
 from bench.timing import interleaved, median_seconds
-from optics.attenuation import fit_rgb_coefficients, rgb_error
 from optics.caustics import floor_irradiance
-from optics.checks import fresnel_errors
-from optics.fresnel import N_AIR, N_WATER, reflectance
+from optics.light.attenuation import fit_rgb_coefficients, rgb_error
+from optics.light.fresnel import N_AIR, N_WATER, approximation_errors, reflectance
 from wavephys import Grid, Simulation, Stones, Water
 from wavephys.plot import plot_curves, plot_error_vs_time
 
@@ -24,18 +23,18 @@ from wavephys.plot import plot_curves, plot_error_vs_time
 def fresnel_rows(progress=print) -> list[dict]:
     rows = []
     c = jnp.asarray(np.random.default_rng(0).uniform(0, 1, 1_000_000), jnp.float32)
-    variants = [("schlick", {}), ("jensen_golias", {}), ("loviscach", {}), ("lut", dict(lut_size=16)),
-                ("lut", dict(lut_size=64)), ("lut", dict(lut_size=256))]
+    variants = [("schlick", {}), ("jensen_golias", {}), ("loviscach", {}), ("lut", dict(size=16)),
+                ("lut", dict(size=64)), ("lut", dict(size=256))]
     for side, (n1, n2) in (("above", (N_AIR, N_WATER)), ("below", (N_WATER, N_AIR))):
         fns = {"exact": jax.jit(lambda c: reflectance(c, n1, n2))}
         for m, kw in variants:
-            fns[f"{m}{kw.get('lut_size', '')}"] = jax.jit(lambda c, m=m, kw=kw: reflectance(c, n1, n2, method=m, **kw))
+            fns[f"{m}{kw.get('size', '')}"] = jax.jit(lambda c, m=m, kw=kw: reflectance(c, n1, n2, method=m, **kw))
         progress(f"Fresnel timing, {side}")
         times = interleaved({k: (lambda f=f: f(c)) for k, f in fns.items()}, repeats=7, block=3)
         base = statistics.median(times["exact"])
         for (m, kw) in variants:
-            key = f"{m}{kw.get('lut_size', '')}"
-            e = fresnel_errors(m, n1, n2, **kw)
+            key = f"{m}{kw.get('size', '')}"
+            e = approximation_errors(m, n1, n2, **kw)
             rows.append(dict(family="fresnel", method=key, side=side, worst_error=e["worst"], worst_angle=e["angle"],
                              weighted_mean_error=e["weighted_mean"], seconds_per_1M=statistics.median(times[key]),
                              baseline_seconds=base, n=1_000_000, dtype="float32", seconds=statistics.median(times[key]),

@@ -14,11 +14,12 @@ import numpy as np
 
 from bench.timing import fft_work, interleaved, median_seconds, paired_ratio
 from wavephys import Grid, Simulation, Stones, Water
-from wavephys import dispersion as disp
-from wavephys.finite_difference import fd_run
-from wavephys.heights import first_order_height
-from wavephys.ring_waves import propagate
-from wavephys.truncated_kernel import kernel_run, max_stable_dt, truncated_kernel
+from wavephys.models.finite_difference import fd_run
+from wavephys.models.truncated_kernel import kernel_run, max_stable_dt, truncated_kernel
+from wavephys.physics import dispersion as disp
+from wavephys.physics.heights import first_order_height
+from wavephys.physics.ring_waves import propagate
+from wavephys.simulation import operators
 
 
 def step_rows(sizes=(256, 512, 1024, 2048), progress=print) -> list[dict]:
@@ -43,7 +44,7 @@ def step_rows(sizes=(256, 512, 1024, 2048), progress=print) -> list[dict]:
         seconds = statistics.median(times["step"])
         ratio, q1, q3 = paired_ratio(times, "step", list(work))
         new, _ = sim.step(state)
-        exact = propagate(state.psi, grid, water, 1 / 30) * sim._ops["mask"]
+        exact = propagate(state.psi, grid, water, 1 / 30) * operators(sim.model).mask
         err = float(jnp.max(jnp.abs(new.psi - exact)) / jnp.max(jnp.abs(exact)))
         rows.append(dict(method="spectral step", n=n, dtype="float32", seconds=seconds,
                          baseline_seconds=base[best], baseline=best, ratio=ratio,

@@ -14,10 +14,10 @@ import time
 import numpy as np
 
 from bench.timing import interleaved, median_seconds, paired_ratio
-from optics.reference import _box, psnr, ray_directions, trace
-from optics.render import Renderer
-from optics.scene import Effects, look_at
-from optics.scenes import SCENES, builtin_scene
+from optics.rendering.reference import _box, psnr, ray_directions, trace
+from optics.rendering.renderer import Renderer
+from optics.rendering.scene import Effects, look_at
+from wavephys.app.scenes import SCENES, builtin_scene
 
 MODES = {"refraction": Effects(reflection=False, caustics=False),
          "+ reflection": Effects(caustics=False),
@@ -38,7 +38,7 @@ def camera_for_coverage(scene, target: float, width: int, height: int):
     def cam(dist):
         return look_at((0.0, -dist / math.sqrt(2), dist / math.sqrt(2)), (0.0, 0.0, 0.0), 50.0)
 
-    lo, hi = 0.05 * scene.extent, 20.0 * scene.extent  # coverage falls with distance
+    lo, hi = 0.05 * scene.length, 20.0 * scene.length  # coverage falls with distance
     if target >= 1.0:
         target = 0.9999
     for _ in range(40):
@@ -77,10 +77,8 @@ def texture_rows(sizes=(512, 1024), progress=print) -> list[dict]:
     import jax
 
     from optics.caustics import floor_irradiance
-    from optics.textures import encode_height, normal_map
-    from wavephys.disturbances import Stones
-    from wavephys.params import Grid, Water
-    from wavephys.simulation import Simulation
+    from optics.rendering.textures import encode_height, normal_map
+    from wavephys import Grid, Simulation, Stones, Water
 
     rows = []
     with Renderer(8, 8) as r:

@@ -1,13 +1,39 @@
-"""optics: light at and under the water surface.
+"""optics: light at and under the water surface, built on wavephys.
 
-Modules: ``directions`` (reflect, refract), ``fresnel`` (exact and shader approximations),
-``attenuation`` (Beer–Lambert, spectral pure-water absorption via colour-science),
-``caustics`` (floor irradiance: beam, photons, Blinn–Phong, reference), ``textures``
-(height/normal/caustics/lookup export), ``scene`` and ``scenes`` (what is rendered, and
-the built-in pool, shore and ship), ``render`` (the headless moderngl renderer),
-``reference`` (the CPU tracer of the same model) and ``checks`` (validation rows).
-Submodules are imported on use, so ``import optics`` stays light.
+* :mod:`optics.light` — reflection and refraction directions, Fresnel (exact and the
+  shader approximations), Beer–Lambert and spectral absorption (colour-science);
+* :mod:`optics.caustics` — irradiance on the floor (beam, photons, reference, Blinn–Phong);
+* :mod:`optics.rendering` — scenes, the headless moderngl renderer, its CPU reference
+  tracer, and texture export;
+* :mod:`optics.checks` — the optics validations (rows of ``wavephys validate``).
+
+Submodules load on first use, so ``import optics`` stays light; ``optics.fresnel`` and
+the other old module names still work.
 """
 
-__all__ = ["directions", "fresnel", "attenuation", "caustics", "textures", "scene", "scenes", "render", "reference",
-           "checks"]
+import importlib
+
+from wavephys.core.aliases import install as _install
+
+_SUBPACKAGES = ("light", "caustics", "rendering", "checks")
+__all__ = list(_SUBPACKAGES)
+
+_legacy = _install(__name__, {
+    "directions": "optics.light.directions",
+    "fresnel": "optics.light.fresnel",
+    "attenuation": "optics.light.attenuation",
+    "scene": "optics.rendering.scene",
+    "render": "optics.rendering.renderer",
+    "reference": "optics.rendering.reference",
+    "textures": "optics.rendering.textures",
+})
+
+
+def __getattr__(name):
+    if name in _SUBPACKAGES:
+        return importlib.import_module(f"optics.{name}")
+    return _legacy(name)
+
+
+def __dir__():
+    return sorted(set(globals()) | set(_SUBPACKAGES))

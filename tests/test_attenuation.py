@@ -3,7 +3,7 @@ import numpy as np
 import pytest
 
 from optics.checks import plain_numpy_water_srgb
-from optics.attenuation import (cutoff_distance, fit_rgb_coefficients, pure_water_absorption, rgb_error,
+from optics.light.attenuation import (cutoff_distance, fit_rgb_coefficients, pure_water_absorption, rgb_error,
                                 transmittance, underwater_radiance, water_srgb)
 
 

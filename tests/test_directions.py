@@ -4,7 +4,7 @@ import jax.numpy as jnp
 import numpy as np
 import pytest
 
-from optics.directions import reflect, refract, transmissive_half_vector
+from optics.light.directions import reflect, refract, transmissive_half_vector
 
 UP = jnp.array([0.0, 0.0, 1.0])
 

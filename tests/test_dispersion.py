@@ -6,7 +6,7 @@ import numpy as np
 import pytest
 
 from wavephys import Water
-from wavephys import dispersion as d
+from wavephys.physics import dispersion as d
 
 DEEP_GRAVITY = Water(sigma=0.0)
 

@@ -5,7 +5,7 @@ import numpy as np
 import pytest
 from colour.phenomena import polarised_light_reflection_coefficient
 
-from optics.fresnel import (N_AIR, N_WATER, fresnel_lut, normal_reflectance, reflectance, reflectance_sp,
+from optics.light.fresnel import (N_AIR, N_WATER, fresnel_lut, normal_reflectance, reflectance, reflectance_sp,
                             sun_glint, water_refractive_index)
 
 ANGLES = np.radians(np.linspace(0.0, 89.9, 2000))
@@ -76,7 +76,7 @@ class TestApproximations:
         assert abs(jg) < 0.08 and lv > 0.2
 
     def test_lut_converges(self):
-        errs = [abs(float(np.max(np.abs(np.asarray(reflectance(jnp.asarray(np.cos(ANGLES)), method="lut", lut_size=s))
+        errs = [abs(float(np.max(np.abs(np.asarray(reflectance(jnp.asarray(np.cos(ANGLES)), method="lut", size=s))
                                          - np.asarray(reflectance(jnp.asarray(np.cos(ANGLES)))))))) for s in (16, 64, 256)]
         assert errs[0] > errs[1] > errs[2]
         assert fresnel_lut(N_AIR, N_WATER, 8).shape == (8,)

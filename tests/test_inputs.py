@@ -2,7 +2,7 @@ import jax.numpy as jnp
 import numpy as np
 import pytest
 
-from wavephys._inputs import check_array
+from wavephys.core.inputs import check_array
 
 
 @pytest.mark.parametrize("make", [np.full, jnp.full])
@@ -14,5 +14,7 @@ def test_large_arrays_checked_on_either_side(make):
     with pytest.raises(ValueError, match="eta must lie in"):
         check_array("eta", make((128, 128), -1.0), lo=0.0)
     check_array("eta", make((128, 128), 1.0), lo=0.0)
-    with pytest.raises(ValueError, match="real"):
+    with pytest.raises(TypeError, match="real"):
         check_array("eta", make((128, 128), 1j))
+    with pytest.raises(TypeError, match="numeric"):
+        check_array("eta", make((128, 128), True))

@@ -3,8 +3,7 @@ import math
 import numpy as np
 import pytest
 
-from wavephys import checks
-from wavephys.interpolation import hermite_frame, hermite_weights
+from wavephys.physics.interpolation import hermite_error, hermite_frame, hermite_weights
 
 
 def test_weights_at_one_third():
@@ -22,15 +21,15 @@ def test_reproduces_cubics_exactly():
 
 
 def test_fourth_order_convergence():
-    errs = [checks.hermite_error(x) for x in (0.4, 0.2, 0.1, 0.05)]
+    errs = [hermite_error(x) for x in (0.4, 0.2, 0.1, 0.05)]
     slopes = [math.log2(a / b) for a, b in zip(errs, errs[1:])]
     assert all(abs(s - 4) < 0.1 for s in slopes), slopes
 
 
 def test_error_grows_with_omega_dt():
     """Failure boundary: the frame error reaches 10 % of the amplitude near ωΔt ≈ 2.8."""
-    assert checks.hermite_error(1.0) < 0.003
-    assert checks.hermite_error(3.0) > 0.1
+    assert hermite_error(1.0) < 0.003
+    assert hermite_error(3.0) > 0.1
 
 
 @pytest.mark.parametrize("kw,name", [(dict(dt=0.0), "dt"), (dict(s=1.5), "s"), (dict(s=math.nan), "s")])

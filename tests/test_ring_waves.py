@@ -6,7 +6,7 @@ import numpy as np
 import pytest
 
 from wavephys import Grid, Water
-from wavephys.ring_waves import kernel, propagate, propagator, rotate_pair
+from wavephys.physics.ring_waves import kernel, propagate, propagator, rotate_pair
 
 GRID = Grid(32, 1.0)
 WATER = Water()

@@ -6,8 +6,8 @@ import numpy as np
 import pytest
 
 from wavephys import Grid, Water
-from wavephys.dispersion import angular_frequency
-from wavephys.ship_waves import (Hull, Ship, max_patch_dt, patch_leak, resonance_quotients, resonance_quotients_exact, ship_multipliers,
+from wavephys.physics.dispersion import angular_frequency
+from wavephys.physics.ship_waves import (Hull, Ship, max_patch_dt, patch_leak, resonance_quotients, resonance_quotients_exact, ship_multipliers,
                                  ship_multipliers_naive, ship_patch_waves, straight_path, turning_path)
 
 GRID = Grid(128, 8.0)
@@ -97,11 +97,11 @@ def test_patch_waves_and_leak_grows_with_dt():
     grid = Grid(256, 16.0)
     waves, (r0, c0) = ship_patch_waves(ship, grid, DEEP, 0.0, 0.05, 32)
     assert waves.shape == (64, 64) and r0 == 128 - 32 and float(jnp.abs(waves).max()) > 0
-    leaks = [patch_leak(ship, grid, DEEP, dt, 16) for dt in (0.02, 0.5, 2.0)]
+    leaks = [patch_leak(ship, grid, DEEP, 0.0, dt, 16) for dt in (0.02, 0.5, 2.0)]
     assert leaks[0] < leaks[1] < leaks[2]
     assert leaks[0] < 1e-3 < leaks[2]
     dt_max = max_patch_dt(ship, grid, DEEP, 16)
-    assert patch_leak(ship, grid, DEEP, 0.9 * dt_max, 16) <= 1e-3 < patch_leak(ship, grid, DEEP, 1.1 * dt_max, 16)
+    assert patch_leak(ship, grid, DEEP, 0.0, 0.9 * dt_max, 16) <= 1e-3 < patch_leak(ship, grid, DEEP, 0.0, 1.1 * dt_max, 16)
 
 
 def test_patch_guards():

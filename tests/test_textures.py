@@ -3,7 +3,7 @@ import json
 import numpy as np
 import pytest
 
-from optics.textures import (absorption_texture, decode_height, encode_height, fresnel_texture, height_precision,
+from optics.rendering.textures import (absorption_texture, decode_height, encode_height, fresnel_texture, height_precision,
                              load_npz, normal_map, save_height_png, save_npz)
 from wavephys import Grid
 

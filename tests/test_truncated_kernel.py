@@ -4,8 +4,8 @@ import numpy as np
 import pytest
 
 from wavephys import Grid, Water
-from wavephys.dispersion import angular_frequency
-from wavephys.truncated_kernel import (convolve_periodic, kernel_run, max_stable_dt, stencil_symbol,
+from wavephys.physics.dispersion import angular_frequency
+from wavephys.models.truncated_kernel import (convolve_periodic, kernel_run, max_stable_dt, stencil_symbol,
                                        truncated_kernel)
 
 GRID = Grid(64, 6.4)

@@ -5,7 +5,7 @@ import numpy as np
 import pytest
 
 from wavephys import Water
-from wavephys.validate import (Check, assert_check, bound, compare, measure_dispersion, measure_energy)
+from wavephys.harness import (Check, assert_check, bound, compare, measure_dispersion, measure_energy)
 
 
 def _travelling(nt, ny, nx, dx, dt, modes):
@@ -78,12 +78,21 @@ class TestChecks:
         assert compare("x", 1.0005, 1.0, rtol=1e-3).ok
         assert not compare("x", 1.01, 1.0, rtol=1e-3).ok
         assert bound("r", 0.5, 1.0).ok and not bound("r", 1.5, 1.0).ok
-        assert bound("r", 1.5, 1.0, relation="≥").ok
+        assert bound("r", 1.5, 1.0, relation=">=").ok
         assert not compare("x", math.nan, 1.0, atol=1.0).ok
+        with pytest.raises(ValueError, match="relation"):
+            bound("r", 1.5, 1.0, relation="≥")  # relations are ASCII
+
+    def test_check_has_the_argument_order_of_compare(self):
+        row = compare("speed", 3.0, 2.0, rtol=0.6, unit="m/s")
+        assert row == Check("speed", 3.0, 2.0, 0.6, "~=", True, "m/s")
+        assert row.measured == 3.0 and row.expected == 2.0 and row.error == pytest.approx(0.5)
+        assert row.margin == pytest.approx(0.1) and bound("r", 0.25, 1.0).margin == 0.75
+        assert bound("r", 0.25, 1.0).error is None  # an error means nothing for a bound
 
     def test_assert_reports_expected_measured_tolerance(self):
-        with pytest.raises(AssertionError, match=r"expected 2 .*measured 3 .*tolerance ±0.1"):
-            assert_check(compare("speed", 3.0, 2.0, rtol=0.1))
+        with pytest.raises(AssertionError, match=r"expected 2 m/s, measured 3 m/s, error 0.5, tolerance \+-0.1"):
+            assert_check(compare("speed", 3.0, 2.0, rtol=0.1, unit="m/s"))
 
     def test_json_round_trip(self):
         d = compare("speed", 2.0, 2.0, atol=0.1, unit="m/s").as_dict()
@@ -119,4 +128,4 @@ def test_pytest_plugin_fixtures(pytester):
     )
     result = pytester.runpytest_subprocess("-p", "no:cacheprovider")
     result.assert_outcomes(passed=1, failed=1)
-    result.stdout.fnmatch_lines(["*max |ω_measured/ω_theory − 1|: expected 0*FAILED*"])
+    result.stdout.fnmatch_lines(["*max |omega_measured/omega_theory - 1|: expected 0*FAILED*"])

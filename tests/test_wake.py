@@ -4,8 +4,8 @@ import numpy as np
 import pytest
 
 from wavephys import Grid, Water
-from wavephys.wake import (KELVIN_ANGLE, GaussianPressure, cusp_line, steady_wake, track_wavelength,
-                           transverse_wavelength, wake_angle)
+from wavephys.harness.wake import WAKE_ANGLE_METHODS, track_wavelength, wake_angle
+from wavephys.physics.wake import KELVIN_ANGLE, GaussianPressure, cusp_line, steady_wake, transverse_wavelength
 
 DEEP = Water(sigma=0.0)
 
@@ -118,7 +118,7 @@ def test_bad_input(kw, name):
         steady_wake(Grid(64, 8.0), DEEP, source=GaussianPressure(10.0, 0.5), **args)
 
 
-@pytest.mark.parametrize("kw,name", [(dict(method="cusp"), "speed"), (dict(method="cusp", speed=-1.0), "speed"),
+@pytest.mark.parametrize("kw,name", [(dict(method="cusp", speed=-1.0), "speed"),
                                      (dict(method="cusp", speed=1.0, bandwidth=0.0), "bandwidth"),
                                      (dict(method="edge"), "method"), (dict(near=5.0, far=2.0), "far")])
 def test_wake_angle_bad_input(kw, name):
@@ -127,6 +127,12 @@ def test_wake_angle_bad_input(kw, name):
     args.update(kw)
     with pytest.raises(ValueError, match=name):
         wake_angle(np.zeros((64, 64)), grid, **args)
+
+
+def test_cusp_needs_the_speed():
+    with pytest.raises(TypeError, match="speed"):
+        wake_angle(np.zeros((64, 64)), Grid(64, 8.0), method="cusp", near=1.0, far=3.0)
+    assert set(WAKE_ANGLE_METHODS) == {"max", "cusp"}
 
 
 def test_unresolved_cusp_waves():

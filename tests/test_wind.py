@@ -6,7 +6,7 @@ import numpy as np
 import pytest
 
 from wavephys import Grid, Simulation, Water
-from wavephys.wind import jonswap_frequency_spectrum, jonswap_spectrum, phillips_spectrum
+from wavephys.physics.wind import jonswap_frequency_spectrum, jonswap_spectrum, phillips_spectrum
 
 WATER = Water(sigma=0.0)
 GRID = Grid(256, 200.0)

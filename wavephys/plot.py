@@ -1,19 +1,34 @@
-"""Figures: functions that take data and return a matplotlib ``Figure`` (no physics here)."""
+"""Figures: functions that take data and return a matplotlib ``Figure`` (no physics here).
+
+The figures are made without pyplot and never choose a backend, so they work in scripts,
+on servers and in notebooks alike: in Jupyter (and in notebooks executed by nbclient) a
+figure that is a cell's value shows once, inline, as a PNG (:class:`WaveFigure` renders
+itself); ``fig.savefig(path)`` writes a file anywhere. Figures are not kept by pyplot,
+so nothing accumulates in long scripts.
+"""
 
 from __future__ import annotations
 
-import numpy as np
+import io
 
-__all__ = ["plot_surface", "plot_dispersion", "plot_error_vs_time", "plot_curves", "plot_wake"]
+import numpy as np
+from matplotlib.figure import Figure
+
+__all__ = ["WaveFigure", "plot_surface", "plot_dispersion", "plot_error_vs_time", "plot_curves", "plot_wake",
+           "plot_images"]
+
+
+class WaveFigure(Figure):
+    """A matplotlib Figure that shows itself as a PNG wherever rich output is available."""
+
+    def _repr_png_(self):
+        buf = io.BytesIO()
+        self.savefig(buf, format="png", dpi=100, bbox_inches="tight")
+        return buf.getvalue()
 
 
 def _figure(**kw):
-    import matplotlib
-
-    matplotlib.use("Agg", force=False)
-    from matplotlib.figure import Figure
-
-    return Figure(**kw)
+    return WaveFigure(**kw)
 
 
 def plot_surface(eta, dx: float, title: str = "", limit: float | None = None):
@@ -22,7 +37,7 @@ def plot_surface(eta, dx: float, title: str = "", limit: float | None = None):
     ``limit`` (m) sets the symmetric colour range (default: max |η|)."""
     eta = np.asarray(eta)
     n = eta.shape[-1]
-    ext = np.array([-n / 2, n / 2, -n / 2, n / 2]) * dx
+    ext = np.array([-n / 2, n / 2, -n / 2, n / 2]) * dx  # cell edges: samples sit at the cell centres
     fig = _figure(figsize=(5.5, 4.5))
     ax = fig.add_subplot()
     lim = limit or float(np.abs(eta).max()) or 1.0
@@ -122,4 +137,23 @@ def plot_wake(eta, dx: float, *, source=(0.0, 0.0), angle=None, kelvin: float = 
         ax.set_xlim(window[0], window[1])
         ax.set_ylim(window[2], window[3])
     ax.legend(loc="lower left", fontsize=7)
+    return fig
+
+
+def plot_images(images, titles=(), columns: int | None = None, size: float = 3.2):
+    """A row (or grid) of RGB images, e.g. rendered frames (uint8 or linear float in [0, 1])."""
+    images = list(images)
+    if not images:
+        raise ValueError("images must hold at least one image")
+    cols = columns or len(images)
+    rows = -(-len(images) // cols)
+    h, w = np.asarray(images[0]).shape[:2]
+    fig = _figure(figsize=(size * cols * w / max(h, 1), size * rows + 0.4))
+    titles = list(titles) + [""] * (len(images) - len(titles))
+    for i, (img, title) in enumerate(zip(images, titles)):
+        ax = fig.add_subplot(rows, cols, i + 1)
+        ax.imshow(img)
+        ax.set_title(title, fontsize=9)
+        ax.axis("off")
+    fig.tight_layout()
     return fig

@@ -1,0 +1,70 @@
+r"""Caustics: irradiance on the floor under a wavy surface lit by the sun (docs/physics.md §2.4).
+
+Every method traces parallel sunlight through the height field η (periodic, on a
+:class:`wavephys.Grid`), refracts it by Snell's law at the surface normal and lands it on
+a flat floor at a given depth or on a ground height field. Irradiance is relative to the
+sun's irradiance on a horizontal plane above the water (E0 = 1): flat water without
+Fresnel loss gives 1 everywhere. The floor map is an m × m field on ``Grid(m, L)`` (the
+grid convention of docs/physics.md §0).
+
+The methods (:data:`FLOOR_IRRADIANCE_METHODS`), one module each:
+
+* ``"beam"`` — :func:`floor_irradiance_beam`, beam tracing with area ratios;
+* ``"photon"`` — :func:`floor_irradiance_photon`, photon splatting with a bilateral filter;
+* ``"reference"`` — :func:`floor_irradiance_reference`, brute force on a refined surface;
+* ``"blinn_phong"`` — :func:`floor_irradiance_blinn_phong`, a shading trick, not a flux.
+
+Exact facts the tests check (:mod:`optics.caustics.analytic`): flux conservation (floor
+total = transmitted total, on the periodic domain, no absorption); uniform light under
+flat water; the sinusoid's irradiance profile and focal depth. Adding a method: one
+module with a ``floor_irradiance_<name>`` function, and its entry in the mapping below.
+"""
+
+from optics.caustics.analytic import first_fold_depth, focal_depth, sinusoid_irradiance
+from optics.caustics.beam import floor_irradiance_beam
+from optics.caustics.blinn_phong import floor_irradiance_blinn_phong
+from optics.caustics.common import bilateral_filter, blur_121, surface_fields
+from optics.caustics.rays import floor_irradiance_photon, floor_irradiance_reference
+from optics.light.fresnel import N_WATER
+from wavephys.core.methods import Methods
+
+__all__ = ["FLOOR_IRRADIANCE_METHODS", "floor_irradiance", "floor_irradiance_beam", "floor_irradiance_photon",
+           "floor_irradiance_reference", "floor_irradiance_blinn_phong", "first_fold_depth", "focal_depth",
+           "sinusoid_irradiance", "surface_fields", "bilateral_filter", "blur_121"]
+
+FLOOR_IRRADIANCE_METHODS = Methods("floor irradiance", beam=floor_irradiance_beam, photon=floor_irradiance_photon,
+                                   reference=floor_irradiance_reference, blinn_phong=floor_irradiance_blinn_phong)
+"""Caustics methods by name."""
+
+
+def floor_irradiance(eta, grid, depth, sun=(0.0, 0.0, 1.0), method: str = "beam", *, resolution=None,
+                     n_water: float = N_WATER, **options):
+    """Irradiance on the floor, relative to the sun's horizontal irradiance above water.
+
+    Parameters
+    ----------
+    eta : array_like (n, n)
+        Surface height η on ``grid``, m (periodic).
+    grid : Grid
+    depth : float or array_like (n, n)
+        Depth of a flat floor below the still surface, m, > 0; or a ground height field
+        z_g (m, negative below the surface, every point below the water) on the same grid.
+    sun : array_like (3,)
+        Direction towards the sun (any length), pointing up (z > 0).
+    method : str
+        A name in :data:`FLOOR_IRRADIANCE_METHODS`.
+    resolution : int
+        Floor map side m (default n): the map covers the same periodic square.
+    n_water : float
+        Refractive index of water, ≥ 1.
+    options
+        The method's own options (each method takes only its own): ``fresnel``;
+        ``samples``, ``blur``, ``normals`` (beam); ``photons_per_texel``, ``filter_radius``,
+        ``seed`` (photon); ``oversample`` (reference); ``exponent`` (blinn_phong).
+
+    Returns
+    -------
+    jax.Array (m, m)
+        Floor irradiance / E0 (dimensionless), at the cell centres of ``Grid(m, L)``.
+    """
+    return FLOOR_IRRADIANCE_METHODS(method, eta, grid, depth, sun, resolution=resolution, n_water=n_water, **options)

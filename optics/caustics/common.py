@@ -1,0 +1,118 @@
+"""What the caustics methods share: checked inputs, the exact surface, and refracting sunlight
+onto the floor. Irradiance is relative to the sun's irradiance on a horizontal plane above
+the water (E0 = 1); light is parametrized by where each ray would cross z = 0, so a patch
+of rays carries exactly E0 × its area there whatever the sun's elevation."""
+
+from __future__ import annotations
+
+import math
+from typing import NamedTuple
+
+import jax.numpy as jnp
+import numpy as np
+
+from optics.light.directions import refract
+from optics.light.fresnel import N_AIR, N_WATER, reflectance_exact
+from wavephys.core.grid import Grid
+from wavephys.core.inputs import check_array, check_bool, check_instance, check_int, check_scalar
+
+__all__ = ["Lighting", "prepare", "surface_fields", "land", "blur_121", "bilateral_filter"]
+
+
+class Lighting(NamedTuple):
+    """Checked inputs of a caustics method."""
+
+    eta: jnp.ndarray        # surface heights (n, n), float32, m
+    grid: Grid              # the surface's grid
+    floor: object           # depth of a flat floor (float, m) or ground heights (n, n), m
+    ground: bool            # True for a ground height field
+    direction: np.ndarray   # unit direction of travel of the sunlight (3,), pointing down
+    resolution: int         # floor map side m
+    n_water: float
+
+
+def prepare(eta, grid: Grid, depth, sun, resolution, n_water, fresnel, check_values: bool = True) -> Lighting:
+    """Check a caustics call's common arguments (before any work) and normalize them."""
+    check_instance("grid", grid, Grid, "wavephys.Grid")
+    n = grid.n
+    check_array("eta", eta, ndim=2, shape_tail=(n, n)) if check_values else None
+    if np.shape(eta) != (n, n):
+        raise ValueError(f"eta must have shape ({n}, {n}), got {np.shape(eta)}")
+    ground = np.ndim(depth) == 2
+    if ground:
+        check_array("depth", depth, ndim=2, shape_tail=(n, n))
+        if float(jnp.max(jnp.asarray(depth) - jnp.asarray(eta))) >= 0:
+            raise ValueError("depth (a ground height field) must lie below the water surface everywhere")
+        floor = jnp.asarray(depth, jnp.float32)
+    else:
+        check_scalar("depth", depth, lo=0.0, lo_open=True)
+        floor = float(depth)
+    check_array("sun", sun, ndim=1, shape_tail=(3,))
+    sun = np.asarray(sun, float)
+    if not sun[2] > 0:
+        raise ValueError(f"sun must point up (z > 0), got {tuple(sun)}")
+    check_scalar("n_water", n_water, lo=1.0)
+    check_bool("fresnel", fresnel)
+    m = n if resolution is None else check_int("resolution", resolution, lo=2)
+    return Lighting(jnp.asarray(eta, jnp.float32), grid, floor, ground, -sun / np.linalg.norm(sun), m,
+                    float(n_water))
+
+
+def surface_fields(eta, grid: Grid, oversample: int = 1):
+    """η, ∂η/∂x, ∂η/∂y on ``Grid(n·oversample, L)`` (Fourier interpolation, exact for a
+    band-limited periodic field): shapes (n·o, n·o); slopes dimensionless."""
+    fine = Grid(grid.n * oversample, grid.length)
+    eta = grid.refine(eta, oversample)
+    return (eta, *fine.gradient(eta))
+
+
+def land(xs, ys, eta, gx, gy, d, floor, n_water, fresnel, iterations: int = 5):
+    """Refract sunlight (direction of travel ``d``) at surface points and land it on the floor.
+
+    ``xs, ys`` surface points (m), ``eta`` their heights, ``gx, gy`` slopes; ``floor`` a
+    depth (m, flat floor at z = −depth) or a callable z_g(x, y) (ground height field,
+    intersected by fixed-point iteration). Returns landing X, Y (m) and the Fresnel
+    transmittance (1 with ``fresnel=False``).
+    """
+    normal = jnp.stack([-gx, -gy, jnp.ones_like(gx)], axis=-1)
+    normal = normal / jnp.linalg.norm(normal, axis=-1, keepdims=True)
+    d = jnp.broadcast_to(jnp.asarray(d, normal.dtype), normal.shape)
+    t, _ = refract(d, normal, N_AIR, n_water)  # air into water: never total internal reflection
+    cos_i = jnp.clip(-jnp.sum(d * normal, axis=-1), 0.0, 1.0)
+    trans = 1.0 - reflectance_exact(cos_i, N_AIR, n_water) if fresnel else jnp.ones_like(cos_i)
+    down = -t[..., 2]
+    if callable(floor):
+        s = (eta - floor(xs, ys)) / down
+        for _ in range(iterations):
+            s = (eta - floor(xs + s * t[..., 0], ys + s * t[..., 1])) / down
+    else:
+        s = (eta + floor) / down
+    return xs + s * t[..., 0], ys + s * t[..., 1], trans
+
+
+def blur_121(image):
+    """The 3 × 3 1-2-1 blur (periodic) Loviscach uses to hide the beam triangles."""
+    k = lambda a, ax: 0.25 * jnp.roll(a, 1, ax) + 0.5 * a + 0.25 * jnp.roll(a, -1, ax)
+    return k(k(image, 0), 1)
+
+
+def bilateral_filter(image, radius: int = 2, sigma_space: float = 1.0, sigma_range: float = 0.2):
+    """Edge-preserving bilateral filter (periodic): weights exp(−r²/2σ_s²)·exp(−ΔE²/2σ_r²).
+
+    ``sigma_space`` in pixels, ``sigma_range`` relative to the image mean (an all-zero
+    image is returned unchanged).
+    """
+    radius = check_int("radius", radius, lo=0)
+    check_scalar("sigma_space", sigma_space, lo=0.0, lo_open=True)
+    check_scalar("sigma_range", sigma_range, lo=0.0, lo_open=True)
+    scale = jnp.maximum(jnp.mean(jnp.abs(image)), jnp.finfo(jnp.float32).tiny)
+    num = jnp.zeros_like(image)
+    den = jnp.zeros_like(image)
+    for dy in range(-radius, radius + 1):
+        for dx in range(-radius, radius + 1):
+            shifted = jnp.roll(image, (dy, dx), (0, 1))
+            w = math.exp(-(dx * dx + dy * dy) / (2 * sigma_space**2)) * jnp.exp(
+                -((shifted - image) / (sigma_range * scale)) ** 2 / 2)
+            num = num + w * shifted
+            den = den + w
+    return num / den

@@ -1,0 +1,104 @@
+r"""Ray directions at the water surface: reflection, refraction, the transmissive half vector.
+
+.. math::
+
+    \mathbf r = \mathbf d - 2(\mathbf d\cdot\mathbf n)\mathbf n,\qquad
+    \mathbf t = \eta\,\mathbf d + \left(\eta\cos\theta_i - \sqrt{1 - \eta^2(1 - \cos^2\theta_i)}\right)\mathbf n,
+    \quad \eta = n_1/n_2,\ \cos\theta_i = -\mathbf d\cdot\mathbf n
+
+(docs/physics.md §2.1; Schneider & Westermann 2001). Total internal reflection when the
+root's argument is negative: from water into air past asin(1/1.333) ≈ 48.6°.
+
+Conventions: vectors are the last axis (size 3) of arrays of any leading shape. ``d`` is
+the direction of travel of the incoming ray; ``n`` a surface normal of either
+orientation (it is flipped to face the incoming ray). Inputs are normalized here (any
+non-zero length is accepted); zero-length or non-finite vectors are rejected at the
+public boundary with ``ValueError``. NumPy in → NumPy out (float64: the CPU reference
+tracer), JAX in → JAX out (traceable: the caustics).
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from wavephys.core.inputs import check_array, check_scalar, is_traced
+from wavephys.core.sampling import array_module
+
+__all__ = ["normalize", "reflect", "refract", "transmissive_half_vector"]
+
+
+def _check_vectors(name, v):
+    check_array(name, v, min_ndim=1)
+    if np.shape(v)[-1] != 3:
+        raise ValueError(f"{name} must have 3 components on its last axis, got shape {np.shape(v)}")
+    if not is_traced(v) and np.any(np.linalg.norm(np.asarray(v, float), axis=-1) == 0):
+        raise ValueError(f"{name} contains a zero-length vector")
+
+
+def normalize(v):
+    """v / |v| along the last axis (pure; no checks)."""
+    xp = array_module(v)
+    v = xp.asarray(v, dtype=xp.result_type(float, v))
+    return v / xp.linalg.norm(v, axis=-1, keepdims=True)
+
+
+def _facing(d, n):
+    """Unit d and unit n flipped to face d (so that cos θi = −d·n ≥ 0)."""
+    xp = array_module(d, n)
+    d, n = normalize(d), normalize(n)
+    dn = xp.sum(d * n, axis=-1, keepdims=True)
+    n = xp.where(dn > 0, -n, n)
+    return d, n, -xp.sum(d * n, axis=-1, keepdims=True)
+
+
+def reflect(d, n):
+    """Mirror direction r = d − 2(d·n)n (unit), for incoming direction ``d`` and normal ``n``."""
+    _check_vectors("d", d)
+    _check_vectors("n", n)
+    d, n, cos_i = _facing(d, n)
+    return d + 2.0 * cos_i * n
+
+
+def refract(d, n, n1, n2):
+    """Refracted direction (unit) and a total-internal-reflection flag.
+
+    Parameters
+    ----------
+    d : array_like (..., 3)
+        Direction of travel of the incoming ray (any length > 0).
+    n : array_like (..., 3)
+        Surface normal (either orientation).
+    n1, n2 : float or array_like
+        Refractive indices of the incident and transmitting media, ≥ 1 (e.g. air
+        1.000293 and water 1.333).
+
+    Returns
+    -------
+    (t, tir)
+        ``t`` the transmitted direction (the reflected one where ``tir`` is True, so the
+        result is always a valid unit vector), ``tir`` a boolean array of shape ``(...)``.
+    """
+    _check_vectors("d", d)
+    _check_vectors("n", n)
+    check_array("n1", n1, lo=1.0)
+    check_array("n2", n2, lo=1.0)
+    xp = array_module(d, n, n1, n2)
+    d, n, cos_i = _facing(d, n)
+    eta = xp.asarray(n1) / xp.asarray(n2)
+    eta = eta[..., None] if eta.ndim else eta  # indices per ray broadcast over components
+    k = 1.0 - eta * eta * (1.0 - cos_i * cos_i)
+    tir = k < 0
+    t = eta * d + (eta * cos_i - xp.sqrt(xp.where(tir, 0.0, k))) * n
+    r = d + 2.0 * cos_i * n
+    return normalize(xp.where(tir, r, t)), tir[..., 0]
+
+
+def transmissive_half_vector(light, view, n_ratio):
+    """H_t = normalize(L − V/n) (Schneider & Westermann 2001), for the Blinn–Phong-style
+    transmission term k_t⟨H_t, N⟩^tr. ``light`` and ``view`` point away from the surface
+    point; ``n_ratio`` = n_water/n_air ≥ 1. A shading trick, not a flux (see caustics).
+    """
+    _check_vectors("light", light)
+    _check_vectors("view", view)
+    check_scalar("n_ratio", n_ratio, lo=1.0)
+    return normalize(normalize(light) - normalize(view) / n_ratio)

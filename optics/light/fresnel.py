@@ -1,0 +1,204 @@
+r"""Fresnel reflectance of the water surface: exact, and the approximations shaders use.
+
+Exact unpolarized dielectric reflectance (docs/physics.md §2.2):
+
+.. math::
+
+    R_s = \left(\frac{n_1\cos\theta_i - n_2\cos\theta_t}{n_1\cos\theta_i + n_2\cos\theta_t}\right)^2,\quad
+    R_p = \left(\frac{n_1\cos\theta_t - n_2\cos\theta_i}{n_1\cos\theta_t + n_2\cos\theta_i}\right)^2,\quad
+    R = \tfrac12(R_s + R_p),\ T = 1 - R,
+
+R = 1 under total internal reflection. The methods (:data:`REFLECTANCE_METHODS`), each
+its own function, measured against the exact one by :func:`approximation_errors` and
+``python -m bench optics``:
+
+* :func:`reflectance_exact` — the formula above;
+* :func:`reflectance_schlick` — R ≈ f0 + (1 − f0)(1 − cos θ)⁵, f0 = ((n1 − n2)/(n1 + n2))².
+  From the denser side (n1 > n2) it uses cos θt and gives 1 past the critical angle.
+  Correction to the source: Schneider & Westermann (2001) print ⟨N, V⟩⁵ for
+  (1 − ⟨N, V⟩)⁵, which gives R = 1 at normal incidence;
+* :func:`reflectance_jensen_golias` — R ≈ 1/(1 + cos θ)⁸ (Jensen & Goliáš 2001), for
+  viewing water from air;
+* :func:`reflectance_loviscach` — sky reflection factor clamp(1 − 2.5 cos θ) (Loviscach 2003, §4);
+* :func:`reflectance_lut` — the exact R tabulated at ``size`` values of cos θ, linearly
+  interpolated (a shader's lookup texture).
+
+``cos_theta`` is always the cosine of the angle between the incoming ray and the normal,
+in the incident medium n1 (0 at grazing, 1 at normal incidence). NumPy in → NumPy out,
+JAX in → JAX out.
+"""
+
+from __future__ import annotations
+
+import math
+
+import jax.numpy as jnp
+import numpy as np
+
+from wavephys.core.inputs import check_array, check_int
+from wavephys.core.methods import Methods
+from wavephys.core.sampling import array_module
+
+__all__ = ["N_AIR", "N_WATER", "normal_reflectance", "reflectance_sp", "reflectance_exact", "reflectance_schlick",
+           "reflectance_jensen_golias", "reflectance_loviscach", "reflectance_lut", "REFLECTANCE_METHODS",
+           "reflectance", "fresnel_lut", "approximation_errors", "sun_glint", "water_refractive_index"]
+
+N_AIR = 1.000293
+"""Refractive index of air (docs/physics.md)."""
+N_WATER = 1.333
+"""Refractive index of water (docs/physics.md)."""
+
+
+def normal_reflectance(n1, n2):
+    """f0 = ((n1 − n2)/(n1 + n2))², the reflectance at normal incidence (0.0204 for water)."""
+    return ((n1 - n2) / (n1 + n2)) ** 2
+
+
+def _check(cos_theta, n1, n2):
+    check_array("cos_theta", cos_theta, lo=0.0, hi=1.0)
+    check_array("n1", n1, lo=1.0)
+    check_array("n2", n2, lo=1.0)
+    xp = array_module(cos_theta, n1, n2)
+    return xp, xp.asarray(cos_theta, dtype=xp.result_type(float, cos_theta))
+
+
+def _cos_t(xp, cos_i, eta):
+    """cos θt by Snell (η = n1/n2) and the TIR mask."""
+    k = 1.0 - eta * eta * (1.0 - cos_i * cos_i)
+    tir = k < 0
+    return xp.sqrt(xp.where(tir, 0.0, k)), tir
+
+
+def _sp(xp, c, n1, n2):
+    ct, tir = _cos_t(xp, c, n1 / n2)
+    rs = ((n1 * c - n2 * ct) / (n1 * c + n2 * ct)) ** 2
+    rp = ((n1 * ct - n2 * c) / (n1 * ct + n2 * c)) ** 2
+    return xp.where(tir, 1.0, rs), xp.where(tir, 1.0, rp)
+
+
+def reflectance_sp(cos_theta, n1=N_AIR, n2=N_WATER):
+    """Exact (R_s, R_p) reflectances; both 1 under total internal reflection."""
+    xp, c = _check(cos_theta, n1, n2)
+    return _sp(xp, c, n1, n2)
+
+
+def reflectance_exact(cos_theta, n1=N_AIR, n2=N_WATER):
+    """Exact unpolarized reflectance R = (R_s + R_p)/2 (1 under total internal reflection)."""
+    xp, c = _check(cos_theta, n1, n2)
+    rs, rp = _sp(xp, c, n1, n2)
+    return 0.5 * (rs + rp)
+
+
+def reflectance_schlick(cos_theta, n1=N_AIR, n2=N_WATER):
+    """Schlick's R ≈ f0 + (1 − f0)(1 − cos θ)⁵, with cos θt from the denser side (module doc)."""
+    xp, c = _check(cos_theta, n1, n2)
+    ct, tir = _cos_t(xp, c, n1 / n2)
+    cos_used = xp.where(xp.asarray(n1) > xp.asarray(n2), ct, c)
+    f0 = normal_reflectance(n1, n2)
+    return xp.where(tir, 1.0, f0 + (1.0 - f0) * (1.0 - cos_used) ** 5)
+
+
+def reflectance_jensen_golias(cos_theta, n1=N_AIR, n2=N_WATER):
+    """Jensen & Goliáš's R ≈ 1/(1 + cos θ)⁸ (from air; the indices are not used)."""
+    xp, c = _check(cos_theta, n1, n2)
+    return 1.0 / (1.0 + c) ** 8
+
+
+def reflectance_loviscach(cos_theta, n1=N_AIR, n2=N_WATER):
+    """Loviscach's sky reflection factor clamp(1 − 2.5 cos θ) (the indices are not used)."""
+    xp, c = _check(cos_theta, n1, n2)
+    return xp.clip(1.0 - 2.5 * c, 0.0, 1.0)
+
+
+def fresnel_lut(n1=N_AIR, n2=N_WATER, size: int = 64):
+    """The exact R at ``size`` equally spaced cos θ in [0, 1] (a texture for shaders)."""
+    size = check_int("size", size, lo=2)
+    return reflectance_exact(jnp.linspace(0.0, 1.0, size), n1, n2)
+
+
+def reflectance_lut(cos_theta, n1=N_AIR, n2=N_WATER, *, size: int = 64):
+    """R by linear interpolation in a uniform table of ``size`` exact values (index arithmetic,
+    as a shader does)."""
+    xp, c = _check(cos_theta, n1, n2)
+    size = check_int("size", size, lo=2)
+    table = xp.asarray(reflectance_exact(xp.linspace(0.0, 1.0, size), n1, n2))
+    u = c * (size - 1)
+    i = xp.clip(xp.floor(u).astype(xp.int32), 0, size - 2)
+    f = u - i
+    return (1.0 - f) * table[i] + f * table[i + 1]
+
+
+REFLECTANCE_METHODS = Methods("Fresnel reflectance", exact=reflectance_exact, schlick=reflectance_schlick,
+                              jensen_golias=reflectance_jensen_golias, loviscach=reflectance_loviscach,
+                              lut=reflectance_lut)
+"""Reflectance methods by name."""
+
+
+def reflectance(cos_theta, n1=N_AIR, n2=N_WATER, method: str = "exact", **options):
+    """Unpolarized reflectance R (dimensionless, in [0, 1]) by ``method``.
+
+    Parameters
+    ----------
+    cos_theta : array_like
+        cos θi in [0, 1], in the incident medium.
+    n1, n2 : float
+        Refractive indices of the incident and transmitting media, ≥ 1 (default air to
+        water; swap them for light from under water).
+    method : str
+        A name in :data:`REFLECTANCE_METHODS`; ``options`` go to it (``size`` for "lut").
+
+    Examples
+    --------
+    >>> round(float(reflectance(1.0, 1.0, 1.333)), 4)   # f0 of water from vacuum
+    0.0204
+    >>> round(float(reflectance(1.0)), 5)              # from air (n = 1.000293)
+    0.02033
+    >>> float(reflectance(0.5, 1.333, 1.000293))      # 60° from below: past 48.6°
+    1.0
+    """
+    return REFLECTANCE_METHODS(method, cos_theta, n1, n2, **options)
+
+
+def approximation_errors(method: str, n1=N_AIR, n2=N_WATER, samples: int = 20000, **options) -> dict:
+    """Error of a reflectance method against the exact one over the incidence angle.
+
+    Returns the signed worst error, its angle (degrees) and the cosine-weighted mean
+    absolute error (weight cos θ sin θ: the irradiance-weighted average over the
+    hemisphere). Evaluated in float32, as a shader would.
+    """
+    samples = check_int("samples", samples, lo=3)
+    theta = np.linspace(0.0, math.pi / 2, samples)
+    c = jnp.asarray(np.cos(theta), jnp.float32)
+    err = (np.asarray(reflectance(c, n1, n2, method, **options), float)
+           - np.asarray(reflectance_exact(c, n1, n2), float))
+    i = int(np.argmax(np.abs(err)))
+    w = np.cos(theta) * np.sin(theta)
+    return dict(worst=float(err[i]), angle=math.degrees(theta[i]),
+                weighted_mean=float(np.sum(np.abs(err) * w) / np.sum(w)))
+
+
+def sun_glint(n_dot_h):
+    """Loviscach's (2003) sun highlight g = clamp(100·n·h − 98.95), n·h in [−1, 1]."""
+    check_array("n_dot_h", n_dot_h, lo=-1.0, hi=1.0)
+    xp = array_module(n_dot_h)
+    return xp.clip(100.0 * xp.asarray(n_dot_h) - 98.95, 0.0, 1.0)
+
+
+def water_refractive_index(wavelength_nm, temperature_k: float = 293.15):
+    """Refractive index of water vs wavelength (Schiebener et al. 1990, via colour-science).
+
+    Parameters
+    ----------
+    wavelength_nm : array_like
+        Wavelength in vacuum, nm, within [200, 1100] (the model's range of validity).
+    temperature_k : float
+        Water temperature, K, in [261.15, 773.15] (default 20 °C).
+    """
+    from wavephys.core.inputs import check_scalar
+
+    check_array("wavelength_nm", wavelength_nm, lo=200.0, hi=1100.0)
+    check_scalar("temperature_k", temperature_k, lo=261.15, hi=773.15)  # the formula's range
+    from colour.phenomena import light_water_refractive_index_Schiebener1990
+
+    return np.asarray(light_water_refractive_index_Schiebener1990(np.asarray(wavelength_nm, float),
+                                                                    temperature_k))

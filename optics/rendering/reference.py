@@ -1,0 +1,255 @@
+"""CPU reference tracer of the two-height-field water model (numpy, float64).
+
+The same model as the GPU renderer (:mod:`optics.rendering.renderer`), written in numpy
+float64 from the library's own primitives (texture sampling of
+:func:`optics.rendering.scene.texture_sample`, :mod:`optics.light.directions`,
+:func:`optics.light.fresnel.reflectance_exact`), so that the shader — which shares no
+code with it — can be checked pixel by pixel (PSNR). Per pixel (docs/physics.md §2.5):
+
+1. the view ray is clipped to the volume's bounding box and marched in ``steps`` equal
+   steps; the first sample inside the ground or across the water surface starts
+   ``refine`` bisection steps (joint search of both height fields, then refinement);
+2. a ground hit is shaded: albedo × (ambient + sun · n·l); under water the sun arrives
+   refracted through a flat surface, weighted by its Fresnel transmittance, the
+   caustics map and Beer–Lambert along its path, and the ambient light by Beer–Lambert
+   over the depth;
+3. a water hit splits into a reflected ray (traced to the ground, else the environment)
+   and a refracted ray (traced to the ground under water, with Beer–Lambert along it,
+   else the deep colour), combined by the exact Fresnel reflectance R:
+   R·reflected + (1 − R)·refracted. One level: secondary rays see only the ground.
+4. From under the water the surface is met from below: past the critical angle R = 1
+   (total internal reflection); the refracted ray goes to the sky or the shore.
+
+Height fields are sampled bilinearly with texel centres at −L/2 + (i + ½)·L/n and
+clamped edges; normals are central differences of that bilinear surface one texel apart.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from optics.light.directions import reflect, refract
+from optics.light.fresnel import normal_reflectance, reflectance_exact
+from optics.rendering.scene import Scene, sun_in_water, texture_sample
+from wavephys.core.inputs import check_instance, check_int
+from wavephys.core.sampling import bilinear
+
+__all__ = ["trace", "sample", "psnr", "ray_directions", "environment", "march", "shade_ground"]
+
+GROUND, WATER = 0, 1
+
+
+def sample(field, length: float, xy):
+    """Bilinear sample of a (ny, nx[, c]) texture over [−L/2, L/2]² at points xy (..., 2), clamped edges."""
+    return texture_sample(np.asarray(field), length, xy[..., 0], xy[..., 1])
+
+
+def _normal(field, length, xy):
+    """Unit normal of the bilinear height field by central differences one texel apart."""
+    ny, nx = field.shape
+    hx, hy = length / nx, length / ny
+    ex, ey = np.array([hx, 0.0]), np.array([0.0, hy])
+    gx = (sample(field, length, xy + ex) - sample(field, length, xy - ex)) / (2 * hx)
+    gy = (sample(field, length, xy + ey) - sample(field, length, xy - ey)) / (2 * hy)
+    n = np.stack([-gx, -gy, np.ones_like(gx)], axis=-1)
+    return n / np.linalg.norm(n, axis=-1, keepdims=True)
+
+
+def _reflectance(scene: Scene, cos_i, n1, n2):
+    """Exact Fresnel R (effects.fresnel) or the normal-incidence value, 1 under TIR either way."""
+    c = np.clip(np.asarray(cos_i, np.float64), 0.0, 1.0)
+    if scene.effects.fresnel:
+        return reflectance_exact(c, n1, n2)
+    sin_t2 = (n1 / n2) ** 2 * (1 - c * c)
+    return np.where(sin_t2 >= 1, 1.0, normal_reflectance(n1, n2))
+
+
+def environment(scene: Scene, d):
+    """Radiance of the sky (or environment map) in directions d (..., 3)."""
+    if scene.environment is not None:
+        env = scene.environment.astype(np.float64)
+        h, w = env.shape[:2]
+        u = (np.arctan2(d[..., 1], d[..., 0]) + math.pi) / (2 * math.pi) * w - 0.5
+        v = np.arccos(np.clip(d[..., 2], -1, 1)) / math.pi * h - 0.5
+        # azimuth wraps, elevation clamps: sample a copy with the first column repeated past the last
+        wrapped = np.concatenate([env, env[:, :1]], axis=1)
+        return bilinear(wrapped, np.mod(u, w), v, "clamp")
+    z = d[..., 2:3]
+    sky = scene.sky_horizon + (scene.sky_zenith - scene.sky_horizon) * np.sqrt(np.maximum(z, 0.0))
+    sky = np.where(z < 0, 0.5 * scene.sky_horizon, sky)
+    glow = np.exp(64.0 * (np.sum(d * scene.sun, axis=-1, keepdims=True) - 1.0))
+    return sky + scene.sun_glow * glow * scene.sun_color
+
+
+def _box(scene: Scene, o, d):
+    """Entry and exit distances of rays (o, d) through the volume's box."""
+    half = scene.length / 2
+    zlo, zhi = scene.bounds()
+    lo = np.array([-half, -half, zlo])
+    hi = np.array([half, half, zhi])
+    with np.errstate(divide="ignore", invalid="ignore"):
+        inv = 1.0 / np.where(d == 0, 1e-30, d)
+        a, b = (lo - o) * inv, (hi - o) * inv
+    t0 = np.max(np.minimum(a, b), axis=-1)
+    t1 = np.min(np.maximum(a, b), axis=-1)
+    return np.maximum(t0, 0.0), t1
+
+
+def _gap(scene: Scene, p, mode):
+    """> 0 while the ray is in its medium: mode 0 air (ground, water from above), 1 water
+    (ground, surface from below), 2 ground only. Returns (gap, ground term, water term)."""
+    g = p[..., 2] - sample(scene.ground, scene.length, p[..., :2])
+    if mode == 2:
+        return g, g, np.full_like(g, np.inf)
+    w = sample(scene.water, scene.length, p[..., :2]) - p[..., 2]
+    wt = -w if mode == 0 else w
+    return np.minimum(g, wt), g, wt
+
+
+def march(scene: Scene, o, d, mode: int, steps: int, refine: int):
+    """First hit of rays (o, d) (n, 3): returns (t, hit mask, which surface: 0 ground, 1 water)."""
+    t0, t1 = _box(scene, o, d)
+    n = o.shape[0]
+    t_hit = np.full(n, np.inf)
+    which = np.zeros(n, np.int64)
+    live = np.nonzero(t1 > t0)[0]
+    dt = (t1 - t0) / steps
+    lo = np.zeros(n)
+    for i in range(1, steps + 1):
+        if live.size == 0:
+            break
+        t = t0[live] + i * dt[live]
+        gap, _, _ = _gap(scene, o[live] + t[:, None] * d[live], mode)
+        crossed = gap < 0
+        idx = live[crossed]
+        lo[idx] = t[crossed] - dt[idx]
+        t_hit[idx] = t[crossed]
+        live = live[~crossed]
+    hit = np.isfinite(t_hit)
+    idx = np.nonzero(hit)[0]
+    a, b = lo[idx], t_hit[idx]
+    for _ in range(refine):
+        m = 0.5 * (a + b)
+        gap, _, _ = _gap(scene, o[idx] + m[:, None] * d[idx], mode)
+        inside = gap < 0
+        b = np.where(inside, m, b)
+        a = np.where(inside, a, m)
+    _, g, w = _gap(scene, o[idx] + b[:, None] * d[idx], mode)
+    which[idx] = np.where(g <= w, GROUND, WATER)
+    t_hit[idx] = 0.5 * (a + b)
+    return t_hit, hit, which
+
+
+def _transmittance(scene: Scene, length):
+    if not scene.effects.absorption:
+        return np.ones(np.shape(length) + (3,))
+    return np.exp(-np.asarray(length)[..., None] * scene.absorption)
+
+
+def shade_ground(scene: Scene, p):
+    """Radiance leaving the ground at points p (n, 3) toward any viewer (Lambertian)."""
+    albedo = scene.albedo if scene.albedo is not None else scene.default_albedo
+    alb = sample(albedo, scene.length, p[:, :2])
+    ng = _normal(scene.ground, scene.length, p[:, :2])
+    depth = sample(scene.water, scene.length, p[:, :2]) - p[:, 2]
+    under = depth > 0
+    dry = scene.ambient + scene.sun_color * np.maximum(ng @ scene.sun, 0.0)[:, None]
+    lw = sun_in_water(scene.sun, scene.n_air, scene.n_water)
+    d = np.maximum(depth, 0.0)
+    sun_t = 1.0 - float(_reflectance(scene, np.array(scene.sun[2]), scene.n_air, scene.n_water))
+    e = (sample(scene.caustics, scene.length, p[:, :2]) if scene.effects.caustics and scene.caustics is not None
+         else np.ones(len(p)))
+    wet = (scene.ambient * _transmittance(scene, d)
+           + scene.sun_color * (sun_t * e * np.maximum(ng @ lw, 0.0))[:, None] * _transmittance(scene, d / lw[2]))
+    return alb * np.where(under[:, None], wet, dry)
+
+
+def _secondary(scene, p, d, medium, steps, refine):
+    """Colour along one-level secondary rays from surface points p: ground only.
+    ``medium`` "water" (Beer–Lambert, deep colour on a miss) or "air" (environment on a miss)."""
+    eps = 1e-4 * scene.length
+    o = p + eps * d
+    t, hit, _ = march(scene, o, d, 2, steps, refine)
+    out = np.empty(p.shape)
+    if medium == "water":
+        out[:] = scene.deep_color
+    else:
+        out[:] = environment(scene, d)
+    idx = np.nonzero(hit)[0]
+    if idx.size:
+        q = o[idx] + t[idx, None] * d[idx]
+        c = shade_ground(scene, q)
+        if medium == "water":
+            c = c * _transmittance(scene, t[idx] + eps)
+        out[idx] = c
+    return out
+
+
+def ray_directions(camera, width: int, height: int):
+    """Unit view directions (height, width, 3) through pixel centres, row 0 at the top."""
+    f, r, u = camera.basis()
+    th = math.tan(math.radians(camera.fov) / 2)
+    x = (2 * (np.arange(width) + 0.5) / width - 1) * th * width / height
+    y = (1 - 2 * (np.arange(height) + 0.5) / height) * th
+    d = f + x[None, :, None] * r + y[:, None, None] * u
+    return d / np.linalg.norm(d, axis=-1, keepdims=True)
+
+
+def trace(scene: Scene, width: int = 160, height: int = 120, *, steps: int = 256, refine: int = 10) -> np.ndarray:
+    """Render ``scene`` on the CPU: linear RGB image (height, width, 3), float32.
+
+    ``steps`` and ``refine`` are the march and bisection counts of the joint search (the
+    renderer's defaults); raise ``steps`` for a converged image.
+    """
+    check_instance("scene", scene, Scene, "optics.rendering.Scene")
+    width, height = check_int("width", width, lo=1), check_int("height", height, lo=1)
+    steps, refine = check_int("steps", steps, lo=1), check_int("refine", refine, lo=0)
+    eff = scene.effects
+    d = ray_directions(scene.camera, width, height).reshape(-1, 3)
+    eye = np.asarray(scene.camera.eye, float)
+    o = np.broadcast_to(eye, d.shape).copy()
+    half = scene.length / 2
+    inside = abs(eye[0]) <= half and abs(eye[1]) <= half
+    under = inside and eye[2] < float(sample(scene.water, scene.length, eye[None, :2])[0])
+    t, hit, which = march(scene, o, d, 1 if under else 0, steps, refine)
+    out = np.empty(d.shape)
+    out[:] = scene.deep_color if under else environment(scene, d)
+    g = np.nonzero(hit & (which == GROUND))[0]
+    if g.size:
+        c = shade_ground(scene, o[g] + t[g, None] * d[g])
+        out[g] = c * _transmittance(scene, t[g]) if under else c
+    s = np.nonzero(hit & (which == WATER))[0]
+    if s.size:
+        p = o[s] + t[s, None] * d[s]
+        n = _normal(scene.water, scene.length, p[:, :2])
+        ds = d[s]
+        if not under:
+            cos_i = np.maximum(-np.sum(ds * n, axis=-1), 0.0)
+            r = _reflectance(scene, cos_i, scene.n_air, scene.n_water)
+            tdir = refract(ds, n, scene.n_air, scene.n_water)[0] if eff.refraction else ds
+            trans = _secondary(scene, p, tdir, "water", steps, refine)
+            rdir = reflect(ds, n)
+            refl = _secondary(scene, p, rdir, "air", steps, refine) if eff.reflection else environment(scene, rdir)
+            out[s] = r[:, None] * refl + (1 - r[:, None]) * trans
+        else:
+            cos_i = np.maximum(np.sum(ds * n, axis=-1), 0.0)
+            r = _reflectance(scene, cos_i, scene.n_water, scene.n_air)
+            rdir = reflect(ds, n)
+            refl = (_secondary(scene, p, rdir, "water", steps, refine) if eff.reflection
+                    else np.broadcast_to(scene.deep_color, ds.shape))
+            tdir = refract(ds, n, scene.n_water, scene.n_air)[0] if eff.refraction else ds
+            trans = _secondary(scene, p, tdir, "air", steps, refine)
+            out[s] = (r[:, None] * refl + (1 - r[:, None]) * trans) * _transmittance(scene, t[s])
+    return out.reshape(height, width, 3).astype(np.float32)
+
+
+def psnr(image, reference, peak: float = 1.0) -> float:
+    """Peak signal-to-noise ratio (dB) of ``image`` against ``reference``, both clipped to [0, peak]."""
+    a = np.clip(np.asarray(image, np.float64), 0, peak)
+    b = np.clip(np.asarray(reference, np.float64), 0, peak)
+    if a.shape != b.shape:
+        raise ValueError(f"image shape {a.shape} does not match reference shape {b.shape}")
+    mse = float(np.mean((a - b) ** 2))
+    return math.inf if mse == 0 else 10 * math.log10(peak * peak / mse)

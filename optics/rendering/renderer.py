@@ -1,0 +1,483 @@
+"""Headless moderngl renderer of water volumes from two height fields (Baboud & Décoret 2006).
+
+A full-screen fragment shader ray-traces the ground and water height fields jointly
+(equal steps through the volume's box, then bisection), refracts to the ground,
+reflects to the ground or the environment (one level), weights them with the exact
+Fresnel reflectance, applies Beer–Lambert absorption along the underwater paths and
+lights the underwater ground with a caustics map; every effect is switchable
+(:class:`optics.rendering.scene.Effects`). The model is written twice, here in GLSL and
+in :mod:`optics.rendering.reference` in numpy float64, and the tests compare them pixel
+by pixel; this module takes nothing from the reference (its Python side uses the
+library's own Fresnel and texture sampling).
+
+It runs on EGL without a display: Mesa llvmpipe on a CPU-only machine, the GPU driver
+elsewhere, unchanged. Textures are float32 and sampled with ``texelFetch`` and explicit
+bilinear weights, so that the GPU and the reference agree on the surfaces.
+
+>>> from optics.rendering import Renderer                   # doctest: +SKIP
+>>> from wavephys.app.builtin import builtin_scene          # doctest: +SKIP
+>>> with Renderer(400, 300) as r:                           # doctest: +SKIP
+...     image = r.render(builtin_scene("pool"))             # (300, 400, 3) float32, linear RGB
+"""
+
+from __future__ import annotations
+
+import math
+import sys
+import time
+from pathlib import Path
+
+import numpy as np
+
+from optics.light.fresnel import normal_reflectance, reflectance_exact
+from optics.rendering.scene import Scene, sun_in_water, texture_sample
+from wavephys.core.inputs import check_instance, check_int
+
+__all__ = ["Renderer", "RendererUnavailable", "EGL_PACKAGES", "to_srgb8", "save_png", "render_sequence"]
+
+EGL_PACKAGES = "libegl1 libegl-mesa0 libgl1-mesa-dri"
+"""Debian/Ubuntu packages that provide headless EGL with Mesa (llvmpipe on CPU-only machines)."""
+
+
+class RendererUnavailable(RuntimeError):
+    """No OpenGL 3.3 context could be created (headless EGL missing or broken)."""
+
+
+VERTEX = """
+#version 330
+in vec2 position;
+void main() { gl_Position = vec4(position, 0.0, 1.0); }
+"""
+
+FRAGMENT = """
+#version 330
+uniform sampler2D ground_tex;  uniform ivec2 ground_size;
+uniform sampler2D water_tex;   uniform ivec2 water_size;
+uniform sampler2D albedo_tex;  uniform ivec2 albedo_size;
+uniform sampler2D caustic_tex; uniform ivec2 caustic_size;
+uniform sampler2D env_tex;     uniform ivec2 env_size;
+uniform bool use_env, use_caustics;
+uniform float extent, zlo, zhi;
+uniform vec3 eye, cam_f, cam_r, cam_u;
+uniform float tan_half;
+uniform vec2 resolution;
+uniform vec3 sun, sun_w, sun_color, ambient, sky_zenith, sky_horizon, absorption, deep_color;
+uniform float sun_glow, n_air, n_water, sun_t;
+uniform int steps, refine;
+uniform bool e_refraction, e_reflection, e_fresnel, e_absorption, e_caustics;
+uniform bool under;
+out vec4 frag;
+
+float eps;
+
+vec4 bilerp(sampler2D t, ivec2 size, vec2 xy) {
+    vec2 u = (xy / extent + 0.5) * vec2(size) - 0.5;
+    vec2 f = floor(u);
+    vec2 w = u - f;
+    ivec2 i = ivec2(f);
+    ivec2 i0 = clamp(i, ivec2(0), size - 1);
+    ivec2 i1 = clamp(i + 1, ivec2(0), size - 1);
+    vec4 a = texelFetch(t, ivec2(i0.x, i0.y), 0);
+    vec4 b = texelFetch(t, ivec2(i1.x, i0.y), 0);
+    vec4 c = texelFetch(t, ivec2(i0.x, i1.y), 0);
+    vec4 d = texelFetch(t, ivec2(i1.x, i1.y), 0);
+    return (a * (1.0 - w.x) + b * w.x) * (1.0 - w.y) + (c * (1.0 - w.x) + d * w.x) * w.y;
+}
+float ground_h(vec2 xy) { return bilerp(ground_tex, ground_size, xy).r; }
+float water_h(vec2 xy) { return bilerp(water_tex, water_size, xy).r; }
+
+vec3 normal_of(sampler2D t, ivec2 size, vec2 xy) {
+    float hx = extent / float(size.x), hy = extent / float(size.y);
+    float gx = (bilerp(t, size, xy + vec2(hx, 0.0)).r - bilerp(t, size, xy - vec2(hx, 0.0)).r) / (2.0 * hx);
+    float gy = (bilerp(t, size, xy + vec2(0.0, hy)).r - bilerp(t, size, xy - vec2(0.0, hy)).r) / (2.0 * hy);
+    return normalize(vec3(-gx, -gy, 1.0));
+}
+
+float fresnel_exact(float cos_i, float n1, float n2) {
+    float c = clamp(cos_i, 0.0, 1.0);
+    float sin_t2 = (n1 / n2) * (n1 / n2) * (1.0 - c * c);
+    if (sin_t2 >= 1.0) return 1.0;
+    float ct = sqrt(max(1.0 - sin_t2, 0.0));
+    float rs = (n1 * c - n2 * ct) / max(n1 * c + n2 * ct, 1e-30);
+    float rp = (n1 * ct - n2 * c) / max(n1 * ct + n2 * c, 1e-30);
+    return 0.5 * (rs * rs + rp * rp);
+}
+float reflectance(float cos_i, float n1, float n2) {
+    if (e_fresnel) return fresnel_exact(cos_i, n1, n2);
+    float c = clamp(cos_i, 0.0, 1.0);
+    if ((n1 / n2) * (n1 / n2) * (1.0 - c * c) >= 1.0) return 1.0;
+    float f = (n1 - n2) / (n1 + n2);
+    return f * f;
+}
+vec3 refract_dir(vec3 d, vec3 n, float eta) {  // n faces against d
+    float c = -dot(d, n);
+    float k = 1.0 - eta * eta * (1.0 - c * c);
+    return normalize(eta * d + (eta * c - sqrt(max(k, 0.0))) * n);
+}
+vec3 transmittance(float len) { return e_absorption ? exp(-len * absorption) : vec3(1.0); }
+
+vec3 environment(vec3 d) {
+    if (use_env) {
+        const float PI = 3.14159265358979;
+        float u = (atan(d.y, d.x) + PI) / (2.0 * PI) * float(env_size.x) - 0.5;
+        float v = acos(clamp(d.z, -1.0, 1.0)) / PI * float(env_size.y) - 0.5;
+        float fi = floor(u), fj = floor(v);
+        float wu = u - fi, wv = v - fj;
+        int i = int(fi), j = int(fj);
+        int i0 = ((i % env_size.x) + env_size.x) % env_size.x;
+        int i1 = (((i + 1) % env_size.x) + env_size.x) % env_size.x;
+        int j0 = clamp(j, 0, env_size.y - 1), j1 = clamp(j + 1, 0, env_size.y - 1);
+        vec3 a = texelFetch(env_tex, ivec2(i0, j0), 0).rgb, b = texelFetch(env_tex, ivec2(i1, j0), 0).rgb;
+        vec3 c = texelFetch(env_tex, ivec2(i0, j1), 0).rgb, e = texelFetch(env_tex, ivec2(i1, j1), 0).rgb;
+        return (a * (1.0 - wu) + b * wu) * (1.0 - wv) + (c * (1.0 - wu) + e * wu) * wv;
+    }
+    vec3 sky = d.z < 0.0 ? 0.5 * sky_horizon : sky_horizon + (sky_zenith - sky_horizon) * sqrt(max(d.z, 0.0));
+    return sky + sun_glow * exp(64.0 * (dot(d, sun) - 1.0)) * sun_color;
+}
+
+vec2 box(vec3 o, vec3 d) {
+    vec3 lo = vec3(-0.5 * extent, -0.5 * extent, zlo), hi = vec3(0.5 * extent, 0.5 * extent, zhi);
+    vec3 inv = 1.0 / vec3(d.x == 0.0 ? 1e-30 : d.x, d.y == 0.0 ? 1e-30 : d.y, d.z == 0.0 ? 1e-30 : d.z);
+    vec3 a = (lo - o) * inv, b = (hi - o) * inv;
+    vec3 mn = min(a, b), mx = max(a, b);
+    return vec2(max(max(max(mn.x, mn.y), mn.z), 0.0), min(min(mx.x, mx.y), mx.z));
+}
+
+// > 0 while in the ray's medium; mode 0 air, 1 water, 2 ground only. terms = (ground, water)
+float gap(vec3 p, int mode, out vec2 terms) {
+    float g = p.z - ground_h(p.xy);
+    if (mode == 2) { terms = vec2(g, 1e30); return g; }
+    float w = water_h(p.xy) - p.z;
+    float wt = mode == 0 ? -w : w;
+    terms = vec2(g, wt);
+    return min(g, wt);
+}
+
+// first hit: returns t (< 0: none); which = 0 ground, 1 water
+float march(vec3 o, vec3 d, int mode, out int which) {
+    which = 0;
+    vec2 span = box(o, d);
+    if (span.y <= span.x) return -1.0;
+    float dt = (span.y - span.x) / float(steps);
+    vec2 terms;
+    float a = -1.0, b = -1.0;
+    for (int i = 1; i <= steps; ++i) {
+        float t = span.x + float(i) * dt;
+        if (gap(o + t * d, mode, terms) < 0.0) { a = t - dt; b = t; break; }
+    }
+    if (b < 0.0) return -1.0;
+    for (int k = 0; k < refine; ++k) {
+        float m = 0.5 * (a + b);
+        if (gap(o + m * d, mode, terms) < 0.0) b = m; else a = m;
+    }
+    gap(o + b * d, mode, terms);
+    which = terms.x <= terms.y ? 0 : 1;
+    return 0.5 * (a + b);
+}
+
+vec3 shade_ground(vec3 p) {
+    vec3 alb = bilerp(albedo_tex, albedo_size, p.xy).rgb;
+    vec3 ng = normal_of(ground_tex, ground_size, p.xy);
+    float depth = water_h(p.xy) - p.z;
+    if (depth <= 0.0) return alb * (ambient + sun_color * max(dot(ng, sun), 0.0));
+    float e = (e_caustics && use_caustics) ? bilerp(caustic_tex, caustic_size, p.xy).r : 1.0;
+    vec3 wet = ambient * transmittance(depth)
+             + sun_color * (sun_t * e * max(dot(ng, sun_w), 0.0)) * transmittance(depth / sun_w.z);
+    return alb * wet;
+}
+
+vec3 secondary(vec3 p, vec3 d, bool in_water) {
+    vec3 o = p + eps * d;
+    int which;
+    float t = march(o, d, 2, which);
+    if (t < 0.0) return in_water ? deep_color : environment(d);
+    vec3 c = shade_ground(o + t * d);
+    return in_water ? c * transmittance(t + eps) : c;
+}
+
+void main() {
+    eps = 1e-4 * extent;
+    vec2 ndc = 2.0 * gl_FragCoord.xy / resolution - 1.0;
+    vec3 d = normalize(cam_f + ndc.x * tan_half * (resolution.x / resolution.y) * cam_r + ndc.y * tan_half * cam_u);
+    int which;
+    float t = march(eye, d, under ? 1 : 0, which);
+    vec3 c;
+    if (t < 0.0) {
+        c = under ? deep_color : environment(d);
+    } else if (which == 0) {
+        c = shade_ground(eye + t * d);
+        if (under) c *= transmittance(t);
+    } else {
+        vec3 p = eye + t * d;
+        vec3 n = normal_of(water_tex, water_size, p.xy);
+        if (!under) {
+            float r = reflectance(max(-dot(d, n), 0.0), n_air, n_water);
+            vec3 tdir = e_refraction ? refract_dir(d, n, n_air / n_water) : d;
+            vec3 trans = secondary(p, tdir, true);
+            vec3 rdir = reflect(d, n);
+            vec3 refl = e_reflection ? secondary(p, rdir, false) : environment(rdir);
+            c = r * refl + (1.0 - r) * trans;
+        } else {
+            float r = reflectance(max(dot(d, n), 0.0), n_water, n_air);
+            vec3 rdir = reflect(d, n);
+            vec3 refl = e_reflection ? secondary(p, rdir, true) : deep_color;
+            vec3 trans = vec3(0.0);
+            if (r < 1.0) {
+                vec3 tdir = e_refraction ? refract_dir(d, -n, n_water / n_air) : d;
+                trans = secondary(p, tdir, false);
+            }
+            c = (r * refl + (1.0 - r) * trans) * transmittance(t);
+        }
+    }
+    frag = vec4(c, 1.0);
+}
+"""
+
+
+def _context():
+    try:
+        import moderngl
+    except ImportError as exc:  # pragma: no cover - moderngl is a dependency
+        raise RendererUnavailable(f"moderngl is not installed ({exc}); pip install moderngl") from exc
+    try:
+        return moderngl.create_context(standalone=True, backend="egl", require=330)
+    except Exception as exc:
+        raise RendererUnavailable(
+            f"no headless OpenGL 3.3 context through EGL ({type(exc).__name__}: {exc}). "
+            f"Install the EGL and Mesa packages: apt-get install {EGL_PACKAGES} "
+            f"(or your GPU driver's EGL library)") from exc
+
+
+class Renderer:
+    """Headless renderer: ``Renderer(width, height).render(scene)`` → (height, width, 3) float32 linear RGB.
+
+    Parameters
+    ----------
+    width, height : int
+        Image size, pixels (≥ 1, ≤ the context's largest framebuffer).
+    steps, refine : int
+        March steps through the volume and bisection steps of the joint search (the
+        reference tracer takes the same).
+
+    Raises
+    ------
+    RendererUnavailable
+        If no OpenGL 3.3 context can be created; the message names the EGL packages.
+    """
+
+    def __init__(self, width: int = 800, height: int = 600, *, steps: int = 256, refine: int = 10):
+        self.width = check_int("width", width, lo=1)
+        self.height = check_int("height", height, lo=1)
+        self.steps = check_int("steps", steps, lo=1)
+        self.refine = check_int("refine", refine, lo=0)
+        self.ctx = _context()
+        self.max_texture_size = int(self.ctx.info["GL_MAX_TEXTURE_SIZE"])
+        limit = int(self.ctx.info["GL_MAX_RENDERBUFFER_SIZE"])
+        if max(self.width, self.height) > limit:
+            self.ctx.release()
+            raise ValueError(f"image size {self.width}×{self.height} exceeds the context's limit {limit}")
+        self.program = self.ctx.program(vertex_shader=VERTEX, fragment_shader=FRAGMENT)
+        quad = np.array([-1, -1, 1, -1, -1, 1, 1, 1], np.float32)
+        self._vbo = self.ctx.buffer(quad.tobytes())
+        self._vao = self.ctx.vertex_array(self.program, [(self._vbo, "2f", "position")])
+        self._fbo = self.ctx.framebuffer(color_attachments=[self.ctx.renderbuffer((self.width, self.height), 4,
+                                                                                  dtype="f4")])
+        self._textures = {}
+
+    # -- resources -------------------------------------------------------------------
+    def __enter__(self):
+        return self
+
+    def __exit__(self, *exc):
+        self.release()
+
+    def release(self):
+        """Free the GL context and everything on it."""
+        if getattr(self, "ctx", None) is None:
+            return
+        with self.ctx:
+            for tex in self._textures.values():
+                tex.release()
+        self._textures = {}
+        self.ctx.release()
+        self.ctx = None
+
+    @property
+    def renderer_name(self) -> str:
+        """The OpenGL renderer string (e.g. ``llvmpipe (LLVM 15.0.6, 256 bits)``)."""
+        return str(self.ctx.info["GL_RENDERER"])
+
+    def texture(self, name: str, array) -> "object":
+        """Upload a float32 array (ny, nx) or (ny, nx, c) as a moderngl texture (nearest,
+        no mipmaps), reusing the slot ``name``; returns the moderngl.Texture."""
+        with self.ctx:
+            return self._upload(name, array)
+
+    def _upload(self, name, array):
+        """:meth:`texture` with this context already current (GL ``with`` blocks do not nest)."""
+        a = np.ascontiguousarray(np.asarray(array, np.float32))
+        if a.ndim == 2:
+            a = a[..., None]
+        if a.ndim != 3 or a.shape[2] not in (1, 2, 3, 4) or min(a.shape[:2]) < 1:
+            raise ValueError(f"{name} texture must have shape (ny, nx[, 1–4]) with ny, nx ≥ 1, got {np.shape(array)}")
+        ny, nx, c = a.shape
+        if max(nx, ny) > self.max_texture_size:
+            raise ValueError(f"{name} texture is {nx}×{ny}, larger than this context allows "
+                             f"({self.max_texture_size}); downsample it")
+        if not np.isfinite(a).all():
+            raise ValueError(f"{name} texture contains NaN or inf")
+        old = self._textures.get(name)
+        if old is not None and old.size == (nx, ny) and old.components == c:
+            old.write(a.tobytes())
+            return old
+        if old is not None:
+            old.release()
+        tex = self.ctx.texture((nx, ny), c, a.tobytes(), dtype="f4")
+        tex.filter = (self.ctx.NEAREST, self.ctx.NEAREST)
+        tex.repeat_x = tex.repeat_y = False
+        self._textures[name] = tex
+        return tex
+
+    def _bind(self, scene: Scene):
+        albedo = scene.albedo if scene.albedo is not None else scene.default_albedo
+        caustics = scene.caustics if scene.caustics is not None else np.ones((2, 2), np.float32)
+        env = scene.environment if scene.environment is not None else np.zeros((2, 2, 3), np.float32)
+        for unit, (name, arr) in enumerate((("ground", scene.ground), ("water", scene.water), ("albedo", albedo),
+                                            ("caustic", caustics), ("env", env))):
+            tex = self._upload(name, arr)
+            tex.use(unit)
+            self.program[f"{name}_tex"] = unit
+            self.program[f"{name}_size"] = tex.size
+
+    def _uniforms(self, scene: Scene):
+        p, eff, cam = self.program, scene.effects, scene.camera
+        f, r, u = cam.basis()
+        zlo, zhi = scene.bounds()
+        eye = np.asarray(cam.eye, float)
+        half = scene.length / 2
+        under = bool(abs(eye[0]) <= half and abs(eye[1]) <= half
+                     and eye[2] < float(texture_sample(scene.water, scene.length, eye[0], eye[1])))
+        if eff.fresnel:
+            sun_t = 1.0 - float(reflectance_exact(np.float64(scene.sun[2]), scene.n_air, scene.n_water))
+        else:
+            sun_t = 1.0 - normal_reflectance(scene.n_air, scene.n_water)
+        values = dict(use_env=scene.environment is not None, use_caustics=scene.caustics is not None,
+                      extent=scene.length, zlo=zlo, zhi=zhi, eye=eye, cam_f=f, cam_r=r, cam_u=u,
+                      tan_half=math.tan(math.radians(cam.fov) / 2), resolution=(self.width, self.height),
+                      sun=scene.sun, sun_w=sun_in_water(scene.sun, scene.n_air, scene.n_water),
+                      sun_color=scene.sun_color, ambient=scene.ambient, sky_zenith=scene.sky_zenith,
+                      sky_horizon=scene.sky_horizon, absorption=scene.absorption, deep_color=scene.deep_color,
+                      sun_glow=scene.sun_glow, n_air=scene.n_air, n_water=scene.n_water, sun_t=sun_t,
+                      steps=self.steps, refine=self.refine, e_refraction=eff.refraction,
+                      e_reflection=eff.reflection, e_fresnel=eff.fresnel, e_absorption=eff.absorption,
+                      e_caustics=eff.caustics, under=under)
+        for name, v in values.items():
+            if name not in p:
+                continue  # optimized away by the compiler
+            if isinstance(v, (bool, np.bool_)):
+                p[name] = bool(v)
+            elif isinstance(v, (int, float)):
+                p[name] = v
+            else:
+                p[name] = tuple(float(x) for x in np.asarray(v).ravel())
+
+    # -- drawing ---------------------------------------------------------------------
+    def render(self, scene: Scene) -> np.ndarray:
+        """Draw ``scene``: (height, width, 3) float32, linear RGB, row 0 at the top."""
+        check_instance("scene", scene, Scene, "optics.rendering.Scene")
+        if self.ctx is None:
+            raise RuntimeError("this Renderer has been released")
+        with self.ctx:  # current again, whatever other contexts were made since
+            self._bind(scene)
+            self._uniforms(scene)
+            self._fbo.use()
+            self._vao.render(mode=self.ctx.TRIANGLE_STRIP)
+            data = self._fbo.read(components=3, dtype="f4")
+        img = np.frombuffer(data, np.float32).reshape(self.height, self.width, 3)
+        return np.ascontiguousarray(img[::-1])
+
+    def draw(self, scene: Scene) -> None:
+        """Draw ``scene`` into the off-screen framebuffer and wait for it (no read-back): for timing."""
+        with self.ctx:
+            self._bind(scene)
+            self._uniforms(scene)
+            self._fbo.use()
+            self._vao.render(mode=self.ctx.TRIANGLE_STRIP)
+            self.ctx.finish()
+
+    def frame_seconds(self, scene: Scene, repeats: int = 5) -> float:
+        """Median wall time of one frame (:meth:`draw`: upload, draw, finish), s, after one warm-up."""
+        times = []
+        for _ in range(check_int("repeats", repeats, lo=1) + 1):
+            t = time.perf_counter()
+            self.draw(scene)
+            times.append(time.perf_counter() - t)
+        return float(np.median(times[1:]))
+
+
+def to_srgb8(image) -> np.ndarray:
+    """Linear RGB in [0, 1] (clipped) → 8-bit sRGB (IEC 61966-2-1 transfer function)."""
+    x = np.clip(np.asarray(image, np.float64), 0.0, 1.0)
+    s = np.where(x <= 0.0031308, 12.92 * x, 1.055 * np.power(x, 1 / 2.4) - 0.055)
+    return np.round(s * 255).astype(np.uint8)
+
+
+def save_png(image, path) -> Path:
+    """Write a linear-RGB image as an 8-bit sRGB PNG; returns the path."""
+    from PIL import Image
+
+    a = np.asarray(image)
+    if a.ndim != 3 or a.shape[2] != 3:
+        raise ValueError(f"image must have shape (height, width, 3), got {a.shape}")
+    path = Path(path)
+    path.parent.mkdir(parents=True, exist_ok=True)
+    Image.fromarray(to_srgb8(a)).save(path)
+    return path
+
+
+def _bar(i: int, total: int, start: float, stream) -> None:
+    width = 30
+    done = int(width * i / total)
+    rate = i / max(time.perf_counter() - start, 1e-9)
+    stream.write(f"\r[{'#' * done}{'.' * (width - done)}] {i}/{total} frames, {rate:.2f} frames/s")
+    if i == total:
+        stream.write("\n")
+    stream.flush()
+
+
+def render_sequence(renderer: Renderer, scenes, out_dir, *, count: int | None = None, video: str | None = None,
+                    fps: int = 30, progress: bool = True) -> list[Path]:
+    """Render an iterable of scenes to ``out_dir/frame_0000.png`` … with a progress bar on stderr.
+
+    ``video`` (a file name in ``out_dir``, e.g. ``"water.mp4"``) also writes a video when
+    imageio with imageio-ffmpeg is installed; otherwise a note says so and frames remain.
+    Returns the frame paths.
+    """
+    out = Path(out_dir)
+    out.mkdir(parents=True, exist_ok=True)
+    scenes = list(scenes) if count is None else scenes
+    total = len(scenes) if count is None else check_int("count", count, lo=1)
+    paths, start = [], time.perf_counter()
+    writer = None
+    if video:
+        try:
+            import imageio.v2 as imageio  # optional
+
+            writer = imageio.get_writer(out / video, fps=fps)
+        except Exception as exc:  # missing imageio or ffmpeg
+            print(f"\nno video ({type(exc).__name__}: {exc}); install imageio imageio-ffmpeg. Frames are written.",
+                  file=sys.stderr)
+    try:
+        for i, scene in enumerate(scenes):
+            if i >= total:
+                break
+            img = renderer.render(scene)
+            paths.append(save_png(img, out / f"frame_{i:04d}.png"))
+            if writer is not None:
+                writer.append_data(to_srgb8(img))
+            if progress:
+                _bar(i + 1, total, start, sys.stderr)
+    finally:
+        if writer is not None:
+            writer.close()
+    return paths

@@ -1,0 +1,261 @@
+"""What the renderer draws: two height fields, a sun, a sky and a camera (docs/physics.md §2.5).
+
+World coordinates are metres, z up. Both height fields cover the square
+[−length/2, length/2]² with texel centres at −length/2 + (i + ½)·length/n, the grid
+convention of :class:`wavephys.Grid` (docs/physics.md §0): a simulated field of n samples
+over the same square lands texel for texel. Outside the square, lookups clamp to the
+border texels (:func:`texture_sample`). The ground may poke through the water (shores,
+pool walls). Everything here is plain data with checked values;
+:mod:`optics.rendering.renderer` draws it on the GPU and
+:func:`optics.rendering.reference.trace` on the CPU, from the same description.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field, replace
+
+import numpy as np
+
+from optics.light.fresnel import N_AIR, N_WATER
+from wavephys.core.inputs import check_instance, check_scalar
+from wavephys.core.sampling import bilinear, texel_coordinates
+
+__all__ = ["Camera", "Effects", "Scene", "look_at", "DEFAULT_ABSORPTION", "texture_sample", "sun_in_water"]
+
+DEFAULT_ABSORPTION = (0.3353, 0.05035, 0.000547)
+"""Effective RGB absorption of pure water, 1/m: ``optics.light.attenuation.fit_rgb_coefficients()``
+(spectral absorption, D65, fitted over 0–5 m) to 4 digits (a test keeps them in step)."""
+
+
+def texture_sample(field, length: float, x, y):
+    """Bilinear sample of a texture (ny, nx[, c]) covering [−L/2, L/2]² at points (x, y), m.
+
+    Texel centres follow the grid convention; points outside clamp to the border texels.
+    NumPy float64 for NumPy input.
+    """
+    f = np.asarray(field, np.float64) if isinstance(field, np.ndarray) else field
+    ny, nx = np.shape(field)[:2]
+    return bilinear(f, texel_coordinates(x, length, nx), texel_coordinates(y, length, ny), "clamp")
+
+
+def _vec3(name, v):
+    a = np.asarray(v, np.float64)
+    if a.shape != (3,):
+        raise ValueError(f"{name} must be 3 numbers, got shape {a.shape}")
+    if not np.isfinite(a).all():
+        raise ValueError(f"{name} must be finite, got {a.tolist()}")
+    return a
+
+
+def _colour(name, v):
+    a = _vec3(name, v)
+    if (a < 0).any():
+        raise ValueError(f"{name} must be ≥ 0 in every channel, got {a.tolist()}")
+    return a
+
+
+@dataclass(frozen=True)
+class Camera:
+    """A pinhole camera at ``eye`` looking at ``target`` (m), vertical field of view ``fov`` (degrees)."""
+
+    eye: tuple = (0.0, -6.0, 4.0)
+    target: tuple = (0.0, 0.0, -0.5)
+    up: tuple = (0.0, 0.0, 1.0)
+    fov: float = 50.0
+
+    def __post_init__(self):
+        eye, target, up = _vec3("eye", self.eye), _vec3("target", self.target), _vec3("up", self.up)
+        check_scalar("fov", self.fov, lo=0.0, hi=179.0, lo_open=True)
+        f = target - eye
+        if np.linalg.norm(f) == 0:
+            raise ValueError("camera target must differ from eye")
+        if np.linalg.norm(np.cross(f, up)) < 1e-9 * np.linalg.norm(f) * max(np.linalg.norm(up), 1e-300):
+            raise ValueError("camera up must not be parallel to the view direction")
+
+    def basis(self):
+        """(forward, right, up) unit vectors, float64."""
+        f = np.asarray(self.target, float) - np.asarray(self.eye, float)
+        f /= np.linalg.norm(f)
+        r = np.cross(f, np.asarray(self.up, float))
+        r /= np.linalg.norm(r)
+        return f, r, np.cross(r, f)
+
+
+def look_at(eye, target, fov: float = 50.0) -> Camera:
+    """A camera with z up (or y up when looking straight up or down)."""
+    f = np.asarray(target, float) - np.asarray(eye, float)
+    up = (0.0, 0.0, 1.0) if np.linalg.norm(np.cross(f, (0, 0, 1))) > 1e-6 * np.linalg.norm(f) else (0.0, 1.0, 0.0)
+    return Camera(tuple(map(float, eye)), tuple(map(float, target)), up, fov)
+
+
+@dataclass(frozen=True)
+class Effects:
+    """Switches for each term of the water model (all on by default).
+
+    refraction : bend the transmitted ray by Snell's law (off: it goes straight on).
+    reflection : trace the reflected ray to the ground (off: the reflection is the
+        environment only, the cheap shader's choice).
+    fresnel : exact Fresnel weights (off: the normal-incidence value everywhere, and 1 under TIR).
+    absorption : Beer–Lambert along every underwater path (off: clear water).
+    caustics : light the underwater ground with the caustics map (off: flat-surface light).
+    """
+
+    refraction: bool = True
+    reflection: bool = True
+    fresnel: bool = True
+    absorption: bool = True
+    caustics: bool = True
+
+    def only(self, *names) -> "Effects":
+        """These effects on, every other off."""
+        unknown = set(names) - set(self.__dataclass_fields__)
+        if unknown:
+            raise ValueError(f"unknown effect(s) {sorted(unknown)}; choose from {list(self.__dataclass_fields__)}")
+        return Effects(**{k: k in names for k in self.__dataclass_fields__})
+
+
+def _height(name, h, max_size=16384):
+    a = np.asarray(h, np.float32)
+    if a.ndim != 2:
+        raise ValueError(f"{name} must be a 2-D height field, got shape {a.shape}")
+    if min(a.shape) < 2:
+        raise ValueError(f"{name} must be at least 2×2 texels, got {a.shape}")
+    if max(a.shape) > max_size:
+        raise ValueError(f"{name} is {a.shape[1]}×{a.shape[0]} texels, more than the largest texture "
+                         f"({max_size}); downsample it")
+    if not np.isfinite(a).all():
+        raise ValueError(f"{name} contains NaN or inf ({int((~np.isfinite(a)).sum())} texels)")
+    return a
+
+
+@dataclass(frozen=True, eq=False)
+class Scene:
+    """Ground and water height fields (m, z up) over a square of side ``length`` (m), lit by a sun and a sky.
+
+    Parameters
+    ----------
+    ground, water : array_like (ny, nx)
+        Heights, m. They may differ in resolution; ``water`` may be a number (flat).
+    length : float
+        Side of the square both cover, m.
+    camera : Camera
+    sun : 3 numbers
+        Direction toward the sun (normalized here), z > 0.
+    sun_color, ambient : RGB
+        Irradiance of the sun on a surface facing it, and the sky's diffuse light, linear RGB.
+    sky_zenith, sky_horizon : RGB
+        Sky radiance overhead and at the horizon (used without ``environment``).
+    sun_glow : float
+        Strength of a smooth glow around the sun in the sky, 0 to switch off.
+    environment : array_like (h, w, 3), optional
+        Equirectangular environment map (row 0 = zenith, column 0 = azimuth −π), linear RGB.
+    albedo : array_like (ny, nx, 3), optional
+        Ground colour over the same square (default: a sand colour).
+    caustics : array_like (ny, nx), optional
+        Irradiance on the underwater ground relative to a flat surface (1 = flat); see
+        :func:`optics.caustics.floor_irradiance`. ``None`` = 1 everywhere.
+    absorption : RGB
+        Beer–Lambert coefficients, 1/m.
+    deep_color : RGB
+        Radiance of an underwater ray that leaves the scene without meeting the ground.
+    n_air, n_water : float
+        Refractive indices.
+    effects : Effects
+    """
+
+    ground: np.ndarray
+    water: object
+    length: float
+    camera: Camera = field(default_factory=Camera)
+    sun: tuple = (0.3, -0.4, 0.866)
+    sun_color: tuple = (1.0, 0.96, 0.9)
+    ambient: tuple = (0.12, 0.14, 0.18)
+    sky_zenith: tuple = (0.25, 0.45, 0.85)
+    sky_horizon: tuple = (0.75, 0.82, 0.92)
+    sun_glow: float = 0.5
+    environment: object = None
+    albedo: object = None
+    caustics: object = None
+    absorption: tuple = DEFAULT_ABSORPTION
+    deep_color: tuple = (0.0, 0.02, 0.04)
+    n_air: float = N_AIR
+    n_water: float = N_WATER
+    effects: Effects = field(default_factory=Effects)
+
+    def __post_init__(self):
+        set_ = lambda k, v: object.__setattr__(self, k, v)
+        set_("ground", _height("ground", self.ground))
+        if np.ndim(self.water) == 0:
+            check_scalar("water", float(self.water))
+            set_("water", np.full((2, 2), float(self.water), np.float32))
+        else:
+            set_("water", _height("water", self.water))
+        check_scalar("length", self.length, lo=0.0, lo_open=True)
+        check_instance("camera", self.camera, Camera, "optics.rendering.Camera")
+        check_instance("effects", self.effects, Effects, "optics.rendering.Effects")
+        sun = _vec3("sun", self.sun)
+        if sun[2] <= 0:
+            raise ValueError(f"sun must point up (z > 0), got {sun.tolist()}")
+        set_("sun", sun / np.linalg.norm(sun))
+        for name in ("sun_color", "ambient", "sky_zenith", "sky_horizon", "absorption", "deep_color"):
+            set_(name, _colour(name, getattr(self, name)))
+        check_scalar("sun_glow", self.sun_glow, lo=0.0)
+        check_scalar("n_air", self.n_air, lo=1.0)
+        check_scalar("n_water", self.n_water, lo=1.0)
+        if self.albedo is not None:
+            a = np.asarray(self.albedo, np.float32)
+            if a.ndim != 3 or a.shape[2] != 3:
+                raise ValueError(f"albedo must have shape (ny, nx, 3), got {a.shape}")
+            _height("albedo", a[..., 0])
+            if not np.isfinite(a).all() or (a < 0).any():
+                raise ValueError("albedo must be finite and ≥ 0")
+            set_("albedo", a)
+        if self.caustics is not None:
+            c = _height("caustics", self.caustics)
+            if (c < 0).any():
+                raise ValueError("caustics must be ≥ 0 (irradiance relative to a flat surface)")
+            set_("caustics", c)
+        if self.environment is not None:
+            e = np.asarray(self.environment, np.float32)
+            if e.ndim != 3 or e.shape[2] != 3 or min(e.shape[:2]) < 2:
+                raise ValueError(f"environment must have shape (h, w, 3) with h, w ≥ 2, got {e.shape}")
+            if not np.isfinite(e).all() or (e < 0).any():
+                raise ValueError("environment must be finite and ≥ 0")
+            set_("environment", e)
+        eye = np.asarray(self.camera.eye, float)
+        half = self.length / 2
+        if abs(eye[0]) <= half and abs(eye[1]) <= half:
+            g = float(texture_sample(self.ground, self.length, eye[0], eye[1]))
+            if eye[2] <= g:
+                raise ValueError(f"camera eye {eye.tolist()} is inside the ground (ground height {g:.3f} m there)")
+
+    def with_effects(self, **switches) -> "Scene":
+        """The same scene with some effects switched (``scene.with_effects(caustics=False)``)."""
+        return replace(self, effects=replace(self.effects, **switches))
+
+    def with_camera(self, camera: Camera) -> "Scene":
+        return replace(self, camera=camera)
+
+    @property
+    def default_albedo(self) -> np.ndarray:
+        """Uniform sand colour used when ``albedo`` is None, (2, 2, 3)."""
+        return np.broadcast_to(np.array([0.76, 0.70, 0.50], np.float32), (2, 2, 3)).copy()
+
+    def bounds(self) -> tuple[float, float]:
+        """(z_min, z_max) of the volume that holds both height fields, m."""
+        lo = float(min(self.ground.min(), self.water.min()))
+        hi = float(max(self.ground.max(), self.water.max()))
+        pad = 1e-3 * max(self.length, hi - lo)
+        return lo - pad, hi + pad
+
+
+def sun_in_water(sun, n_air: float, n_water: float):
+    """Direction toward the sun as seen under a flat surface (refracted, unit, z > 0)."""
+    s = np.asarray(sun, float)
+    eta = n_air / n_water
+    sin_t = eta * math.hypot(s[0], s[1])
+    h = math.hypot(s[0], s[1])
+    if h == 0:
+        return np.array([0.0, 0.0, 1.0])
+    return np.array([s[0] / h * sin_t, s[1] / h * sin_t, math.sqrt(max(0.0, 1 - sin_t * sin_t))])

@@ -1,0 +1,65 @@
+"""The registry of checks: every validation the project runs, by name, in one place.
+
+``wavephys validate`` prints its rows, the test suite asserts them (parametrized over
+:data:`REGISTRY`), and the report shows them. It joins the wave physics validations
+(:data:`wavephys.checks.CHECKS`), the optics ones (:data:`optics.checks.CHECKS`) and the
+renderer on the built-in scenes (here, because those scenes are the application's).
+"""
+
+from __future__ import annotations
+
+from typing import Callable
+
+
+from wavephys.harness.checks import Check, bound
+
+__all__ = ["REGISTRY", "registry", "run", "check_builtin_scenes"]
+
+
+def check_builtin_scenes(width: int = 160, height: int = 120, n: int = 128) -> list[Check]:
+    """The GPU renderer against the CPU reference on each built-in scene, every effect on (PSNR)."""
+    from optics.rendering.reference import psnr, trace
+    from optics.rendering.renderer import Renderer, RendererUnavailable
+    from wavephys.app.scenes import SCENES, builtin_scene
+
+    try:
+        renderer = Renderer(width, height)
+    except RendererUnavailable as exc:
+        return [bound("GPU renderer available", 0.0, 1.0, relation=">=", note=str(exc)[:120])]
+    rows = []
+    with renderer:
+        for name in SCENES:
+            scene = builtin_scene(name, n=n)
+            rows.append(bound(f"{name}: GPU vs CPU reference PSNR, all effects ({width}x{height})",
+                              psnr(renderer.render(scene), trace(scene, width, height)), 100.0, relation=">=",
+                              unit="dB"))
+    return rows
+
+
+def registry() -> dict[str, Callable[[], list[Check]]]:
+    """Every check group by name: wave physics, optics, then the renderer on the built-in scenes."""
+    import optics.checks
+    import wavephys.checks
+
+    return {**wavephys.checks.CHECKS, **optics.checks.CHECKS, "builtin-scenes": check_builtin_scenes}
+
+
+def __getattr__(name):
+    if name == "REGISTRY":
+        return registry()
+    raise AttributeError(f"module 'wavephys.app.registry' has no attribute {name!r}")
+
+
+def run(names=None, progress: Callable[[int, int, str], None] | None = None) -> list[Check]:
+    """Run the named check groups (default: all); ``progress(i, total, name)`` before each."""
+    checks = registry()
+    names = list(checks) if names is None else list(names)
+    unknown = [n for n in names if n not in checks]
+    if unknown:
+        raise ValueError(f"unknown check(s) {unknown}; choose from {list(checks)}")
+    rows: list[Check] = []
+    for i, name in enumerate(names):
+        if progress:
+            progress(i, len(names), name)
+        rows.extend(checks[name]())
+    return rows

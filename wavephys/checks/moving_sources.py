@@ -1,0 +1,71 @@
+"""Validations of moving sources: the ship kernels' exact identities and float32 stability,
+Kelvin wakes of steady pressure sources, and the capillary-gravity threshold c_min."""
+
+from __future__ import annotations
+
+import jax.numpy as jnp
+import numpy as np
+
+from wavephys.core.grid import Grid
+from wavephys.core.water import Water
+from wavephys.harness.checks import Check, bound, compare
+from wavephys.harness.wake import track_wavelength, wake_angle
+from wavephys.physics.ship_waves import (resonance_quotients, resonance_quotients_exact, ship_multipliers,
+                                         ship_multipliers_naive)
+from wavephys.physics.wake import KELVIN_ANGLE, GaussianPressure, cusp_line, steady_wake, transverse_wavelength
+
+__all__ = ["check_ship_kernels", "check_steady_wakes", "check_capillary_wake"]
+
+
+def check_ship_kernels() -> list[Check]:
+    """M1 + M2 = 0 at rest; the series quotients against exact arithmetic; the naive form's failure."""
+    grid, deep = Grid(128, 8.0), Water(sigma=0.0)
+    m1, m2 = ship_multipliers(grid, Water(), (0.0, 0.0), 0.1)
+    alpha = np.concatenate([np.geomspace(1e-6, 2.0, 40), -np.geomspace(1e-6, 2.0, 40)])
+    q1, _ = resonance_quotients(jnp.asarray(alpha, jnp.float32))
+    r1, _ = resonance_quotients_exact(alpha)
+    n1, _ = ship_multipliers_naive(grid, deep, (1.0, 0.0), 0.05)
+    s1, _ = ship_multipliers(grid, deep, (1.0, 0.0), 0.05)
+    err = np.abs(np.asarray(n1) - np.asarray(s1))
+    err[0, 0] = 0.0  # 0/0 there
+    return [compare("ship at rest: max |M1 + M2|", float(jnp.max(jnp.abs(m1 + m2))), 0.0, atol=1e-6),
+            compare("float32 Q1(alpha) vs exact, |alpha| in [1e-6, 2] (max rel. error)",
+                    float(np.max(np.abs(np.asarray(q1) - r1) / np.abs(r1))), 0.0, atol=1e-6),
+            bound("naive quotients in float32: max |M1 error| (documented failure)", float(err.max()), 0.1,
+                  relation=">=")]
+
+
+def check_steady_wakes() -> list[Check]:
+    """Kelvin's angle, the transverse wavelength and the outer edge of steady deep-water wakes."""
+    grid, deep = Grid(2048, 40.0), Water(sigma=0.0)
+    eta = steady_wake(grid, deep, 1.0, GaussianPressure(100.0, 0.05))
+    angle = wake_angle(eta, grid, near=2.0, far=16.0, exclude=0.3)
+    rows = [compare("steady wake of a near-point source: half-angle (max)", angle.angle, KELVIN_ANGLE, atol=0.3,
+                    unit="deg", note=f"+- {angle.uncertainty:.2f} deg"),
+            compare("transverse wavelength on the track vs 2 pi U^2/g",
+                    track_wavelength(eta, grid, near=4.0, far=16.0), transverse_wavelength(1.0), rtol=0.01, unit="m"),
+            compare("cusp line from the dispersion relation (deep, gravity)", cusp_line(1.0).angle, KELVIN_ANGLE,
+                    atol=5e-5, unit="deg")]
+    for size in (0.05, 0.3):
+        e = eta if size == 0.05 else steady_wake(grid, deep, 1.0, GaussianPressure(100.0, size))
+        edge = wake_angle(e, grid, method="cusp", speed=1.0, near=3.0, far=14.0)
+        rows.append(compare(f"steady wake, source sigma/lambda = {size / transverse_wavelength(1.0):.2f}: outer edge",
+                            edge.angle, KELVIN_ANGLE, atol=0.3, unit="deg", note=f"+- {edge.uncertainty:.2f} deg"))
+    largest = wake_angle(e, grid, near=2.0, far=16.0, exclude=0.3)
+    rows.append(bound("sigma/lambda = 0.47: Kelvin minus the angle of maximum amplitude (a different quantity)",
+                      KELVIN_ANGLE - largest.angle, 5.0, relation=">=", unit="deg"))
+    return rows
+
+
+def check_capillary_wake() -> list[Check]:
+    """Below c_min = 0.2312 m/s a capillary-gravity source leaves (almost) no wake behind it."""
+    grid, cap = Grid(1024, 1.0), Water()
+    x, _ = (np.asarray(a) for a in grid.mesh())
+    behind_band = (x[0] > -0.4) & (x[0] < -0.1)
+
+    def behind(u):
+        e = np.asarray(steady_wake(grid, cap, u, GaussianPressure(10.0, 0.005)))
+        return np.abs(e[:, behind_band]).max() / np.abs(e).max()
+
+    return [bound("capillary-gravity wake amplitude ratio U=0.26 / U=0.22 (c_min = 0.2312)",
+                  behind(0.26) / behind(0.22), 100.0, relation=">=")]

@@ -1,0 +1,64 @@
+"""Module names that moved stay importable: ``wavephys.dispersion`` is ``wavephys.physics.dispersion``.
+
+A package calls :func:`install` with a mapping of old submodule names to the module(s)
+they now live in. ``import wavephys.dispersion`` and ``from wavephys import dispersion``
+then give the very module object at the new place (nothing is copied, so monkeypatching
+either name affects both). An old name that was split over several modules gets a
+module of its own that re-exports their public names. Nothing is imported until the old
+name is used.
+"""
+
+from __future__ import annotations
+
+import importlib
+import importlib.abc
+import importlib.util
+import sys
+import types
+
+__all__ = ["install"]
+
+
+class _AliasFinder(importlib.abc.MetaPathFinder, importlib.abc.Loader):
+    def __init__(self, package: str, aliases: dict[str, tuple[str, ...]]):
+        self.package = package
+        self.aliases = {f"{package}.{old}": targets for old, targets in aliases.items()}
+
+    def find_spec(self, fullname, path=None, target=None):
+        if fullname in self.aliases:
+            return importlib.util.spec_from_loader(fullname, self)
+        return None
+
+    def create_module(self, spec):
+        return None  # a placeholder module; exec_module replaces or fills it
+
+    def exec_module(self, module):
+        targets = [importlib.import_module(t) for t in self.aliases[module.__name__]]
+        if len(targets) == 1:
+            sys.modules[module.__name__] = targets[0]  # the import system returns this object
+            return
+        names = []
+        for t in targets:
+            public = getattr(t, "__all__", [n for n in vars(t) if not n.startswith("_")])
+            names += [n for n in public if n not in names]
+            module.__dict__.update({n: getattr(t, n) for n in public})
+        module.__all__ = names
+        module.__doc__ = "Re-exports " + ", ".join(t.__name__ for t in targets) + " (the old module name)."
+
+
+def install(package: str, aliases: dict[str, str | tuple[str, ...]]):
+    """Make ``package.<old>`` importable for each ``old → new`` (or ``old → (new, new2, …)``).
+
+    Returns a module ``__getattr__`` for the package, so ``package.<old>`` also works as an
+    attribute after ``import package``.
+    """
+    table = {old: (new,) if isinstance(new, str) else tuple(new) for old, new in aliases.items()}
+    if not any(isinstance(f, _AliasFinder) and f.package == package for f in sys.meta_path):
+        sys.meta_path.append(_AliasFinder(package, table))
+
+    def __getattr__(name: str) -> types.ModuleType:
+        if name in table:
+            return importlib.import_module(f"{package}.{name}")
+        raise AttributeError(f"module {package!r} has no attribute {name!r}")
+
+    return __getattr__

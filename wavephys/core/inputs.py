@@ -1,0 +1,207 @@
+"""Input validation at the public boundary.
+
+Every public entry point calls these helpers on its user-facing arguments so that bad
+input fails before any work with an error that names the parameter, its value and the
+allowed range:
+
+* ``TypeError`` for the wrong kind of object (a string, ``None``, a bool where a number
+  is meant, a complex number where a real one is, an object of another class);
+* ``ValueError`` for the wrong value (NaN or inf, out of range, the wrong shape, empty).
+
+Inside ``jit``/``vmap``/``grad`` the arguments are tracers whose values are unknown; the
+helpers then check only what is static (kinds of objects and shapes) and leave values
+alone, so traced code carries no Python checks and costs nothing extra. To check traced
+values as well, wrap the function with :func:`jax.experimental.checkify.checkify`
+(see ``docs/physics.md``, "Checking traced values").
+"""
+
+from __future__ import annotations
+
+import math
+import numbers
+from typing import Any
+
+import jax
+import numpy as np
+
+__all__ = ["is_traced", "check_scalar", "check_array", "check_int", "check_choice", "check_bool",
+           "check_instance", "describe"]
+
+
+def is_traced(x: Any) -> bool:
+    """True when ``x`` is (or contains) a JAX tracer, i.e. its value is not known yet."""
+    return any(isinstance(leaf, jax.core.Tracer) for leaf in jax.tree_util.tree_leaves(x))
+
+
+def describe(value: Any) -> str:
+    """A short description of a value for error messages: its type, and its repr when short."""
+    text = repr(value)
+    if len(text) > 60:
+        shape = getattr(value, "shape", None)
+        return f"{type(value).__name__} of shape {tuple(shape)}" if shape is not None else type(value).__name__
+    return f"{type(value).__name__} {text}"
+
+
+def _interval(lo, hi, lo_open, hi_open) -> str:
+    left = "(" if lo_open else "["
+    right = ")" if hi_open else "]"
+    lo_s = "-inf" if lo is None else repr(lo)
+    hi_s = "inf" if hi is None else repr(hi)
+    return f"{left}{lo_s}, {hi_s}{right}"
+
+
+def _check_range(name, vmin, vmax, lo, hi, lo_open, hi_open, shown):
+    bad = False
+    if lo is not None:
+        bad |= vmin <= lo if lo_open else vmin < lo
+    if hi is not None:
+        bad |= vmax >= hi if hi_open else vmax > hi
+    if bad:
+        raise ValueError(f"{name} must lie in {_interval(lo, hi, lo_open, hi_open)}, got {shown}")
+
+
+def _real_kind(name: str, value: Any, what: str = "a real number") -> None:
+    """TypeError unless ``value`` is a real number or an array of them (not bool, str, None)."""
+    if isinstance(value, (bool, np.bool_)):
+        raise TypeError(f"{name} must be {what}, got bool {value!r}")
+    if isinstance(value, (str, bytes)) or value is None:
+        raise TypeError(f"{name} must be {what}, got {describe(value)}")
+    if isinstance(value, numbers.Number):
+        if isinstance(value, numbers.Complex) and not isinstance(value, numbers.Real):
+            raise TypeError(f"{name} must be {what}, got complex {value!r}")
+        return
+    if not hasattr(value, "dtype") and not isinstance(value, (list, tuple)):
+        raise TypeError(f"{name} must be {what}, got {describe(value)}")
+
+
+def check_scalar(name: str, value: Any, *, lo: float | None = None, hi: float | None = None,
+                 lo_open: bool = False, hi_open: bool = False, allow_inf: bool = False) -> Any:
+    """Check a real scalar parameter; return it unchanged.
+
+    ``TypeError`` if ``value`` is not a real number (a string, ``None``, a bool, complex);
+    ``ValueError`` if it is not a scalar, is NaN, is infinite (unless ``allow_inf``) or
+    lies outside the interval given by ``lo``/``hi`` (closed unless ``lo_open``/``hi_open``).
+    Tracers pass unchecked (their shape must still be a scalar).
+    """
+    if is_traced(value):
+        if np.ndim(value) != 0:
+            raise ValueError(f"{name} must be a scalar, got shape {np.shape(value)}")
+        return value
+    _real_kind(name, value)
+    arr = np.asarray(value)
+    if not (np.issubdtype(arr.dtype, np.integer) or np.issubdtype(arr.dtype, np.floating)):
+        raise TypeError(f"{name} must be a real number, got dtype {arr.dtype}")
+    if arr.ndim != 0:
+        raise ValueError(f"{name} must be a scalar, got shape {arr.shape}")
+    v = float(arr)
+    if math.isnan(v) or (math.isinf(v) and not allow_inf):
+        raise ValueError(f"{name} must be finite, got {v!r}")
+    _check_range(name, v, v, lo, hi, lo_open, hi_open, repr(v))
+    return value
+
+
+def check_array(name: str, value: Any, *, lo: float | None = None, hi: float | None = None,
+                lo_open: bool = False, hi_open: bool = False, allow_inf: bool = False,
+                complex_ok: bool = False, min_ndim: int = 0, ndim: int | None = None,
+                shape_tail: tuple[int, ...] | None = None) -> Any:
+    """Check an array argument (kind, shape and values); return it unchanged.
+
+    ``TypeError`` for a non-numeric array (strings, objects, bools, ``None``) or complex
+    values where real ones are needed; ``ValueError`` for the wrong number of dimensions,
+    trailing shape ``shape_tail`` (e.g. ``(n, n)`` for a field on an ``n``-point grid),
+    an empty array, NaN/inf, or values outside ``lo``/``hi``. Shapes are checked even
+    under ``jit``; values only when concrete (large device arrays are summarized on the
+    device, not copied).
+    """
+    _real_kind(name, value, "an array of numbers")
+    shape = np.shape(value)
+    if len(shape) < min_ndim:
+        raise ValueError(f"{name} must have at least {min_ndim} dimensions, got shape {shape}")
+    if ndim is not None and len(shape) != ndim:
+        raise ValueError(f"{name} must have {ndim} dimensions, got shape {shape}")
+    if shape_tail is not None and (len(shape) < len(shape_tail)
+                                   or tuple(shape[len(shape) - len(shape_tail):]) != tuple(shape_tail)):
+        raise ValueError(f"{name} must have trailing shape {tuple(shape_tail)}, got shape {shape}")
+    if is_traced(value):
+        return value
+    if isinstance(value, jax.Array) and value.size > 4096:
+        _check_device_array(name, value, lo, hi, lo_open, hi_open, allow_inf, complex_ok)
+        return value
+    arr = np.asarray(value)
+    _check_dtype(name, arr.dtype, complex_ok)
+    if arr.size == 0:
+        raise ValueError(f"{name} must not be empty, got shape {shape}")
+    if not np.isfinite(arr).all() and (np.isnan(arr).any() or not allow_inf):
+        bad = int((~np.isfinite(arr)).sum())
+        raise ValueError(f"{name} must be finite everywhere; it contains NaN or inf ({bad} of {arr.size} values)")
+    if lo is not None or hi is not None:
+        real = arr.real
+        _check_range(name, real.min(), real.max(), lo, hi, lo_open, hi_open,
+                     f"values in [{real.min()!r}, {real.max()!r}]")
+    return value
+
+
+def _check_dtype(name, dtype, complex_ok):
+    if dtype == np.bool_ or not np.issubdtype(dtype, np.number):
+        raise TypeError(f"{name} must be numeric, got dtype {dtype}")
+    if np.issubdtype(dtype, np.complexfloating) and not complex_ok:
+        raise TypeError(f"{name} must be real, got complex values (dtype {dtype})")
+
+
+@jax.jit
+def _summary(x):
+    """(all finite, any NaN, min, max) of the real part, in one pass on the device."""
+    r = jax.numpy.real(x)
+    return jax.numpy.isfinite(x).all(), jax.numpy.isnan(x).any(), r.min(), r.max()
+
+
+def _check_device_array(name, value, lo, hi, lo_open, hi_open, allow_inf, complex_ok):
+    """Value checks of a large JAX array without copying it to the host."""
+    _check_dtype(name, np.dtype(value.dtype), complex_ok)
+    finite, has_nan, vmin, vmax = (v.item() for v in jax.device_get(_summary(value)))
+    if not finite and (has_nan or not allow_inf):
+        raise ValueError(f"{name} must be finite everywhere; it contains NaN or inf")
+    if lo is not None or hi is not None:
+        _check_range(name, vmin, vmax, lo, hi, lo_open, hi_open, f"values in [{vmin!r}, {vmax!r}]")
+
+
+def check_int(name: str, value: Any, *, lo: int | None = None, hi: int | None = None,
+              even: bool = False) -> int:
+    """Check an integer parameter (a Python or numpy integer, not a bool); return it as int."""
+    if isinstance(value, (bool, np.bool_)) or not isinstance(value, (int, np.integer)):
+        raise TypeError(f"{name} must be an integer, got {describe(value)}")
+    v = int(value)
+    _check_range(name, v, v, lo, hi, False, False, repr(v))
+    if even and v % 2:
+        raise ValueError(f"{name} must be even, got {v}")
+    return v
+
+
+def check_bool(name: str, value: Any) -> bool:
+    """Check a switch (a Python or numpy bool); return it as bool."""
+    if not isinstance(value, (bool, np.bool_)):
+        raise TypeError(f"{name} must be True or False, got {describe(value)}")
+    return bool(value)
+
+
+def check_choice(name: str, value: Any, choices) -> Any:
+    """Check that ``value`` is one of ``choices`` (TypeError for another kind of object)."""
+    kinds = {type(c) for c in choices}
+    if kinds == {str} and not isinstance(value, str):
+        raise TypeError(f"{name} must be one of {sorted(choices)}, got {describe(value)}")
+    try:
+        ok = value in choices
+    except TypeError:  # unhashable
+        ok = False
+    if not ok:
+        raise ValueError(f"{name} must be one of {sorted(map(str, choices))}, got {value!r}")
+    return value
+
+
+def check_instance(name: str, value: Any, cls, what: str | None = None) -> Any:
+    """TypeError naming the expected class unless ``value`` is an instance of ``cls``."""
+    if not isinstance(value, cls):
+        label = what or (cls.__module__.split(".")[0] + "." + cls.__name__ if isinstance(cls, type)
+                         else " or ".join(c.__name__ for c in cls))
+        raise TypeError(f"{name} must be a {label}, got {describe(value)}")
+    return value

@@ -1,0 +1,117 @@
+"""Check rows: what was measured, what was expected, the tolerance, and the verdict.
+
+Every validation in the library (``wavephys validate``, the test suite, a user's own
+pytest checks through the plugin) reports :class:`Check` rows, so that a failure shows
+expected against measured with its tolerance. Relations are ASCII: ``"~="`` (agreement
+within a tolerance), ``"<="`` and ``">="`` (bounds).
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import asdict, dataclass
+from typing import Optional
+
+from wavephys.core.inputs import check_choice, check_instance, check_scalar
+
+__all__ = ["Check", "compare", "bound", "assert_check", "RELATIONS"]
+
+RELATIONS = ("~=", "<=", ">=")
+
+
+@dataclass(frozen=True)
+class Check:
+    """One validated quantity, with the same argument order as :func:`compare`.
+
+    Parameters
+    ----------
+    quantity : str
+        What is measured (a sentence fragment, with its conditions).
+    measured : float
+        The measured value.
+    expected : float
+        The expected value (``"~="``) or the limit (``"<="``, ``">="``).
+    tolerance : float
+        Allowed |error| for ``"~="`` (relative to ``expected`` when ``relative``).
+    relation : {"~=", "<=", ">="}
+    relative : bool
+        Whether the tolerance of a ``"~="`` row is relative.
+    unit : str
+        Unit of ``measured`` and ``expected``.
+    note : str
+        What the row covered or why it failed, in words (optional).
+    """
+
+    quantity: str
+    measured: float
+    expected: float
+    tolerance: float = 0.0
+    relation: str = "~="
+    relative: bool = True
+    unit: str = ""
+    note: str = ""
+
+    def __post_init__(self):
+        check_choice("relation", self.relation, RELATIONS)
+
+    @property
+    def error(self) -> Optional[float]:
+        """measured − expected (relative to expected for relative rows); None for bounds."""
+        if self.relation != "~=":
+            return None
+        diff = self.measured - self.expected
+        return diff / self.expected if self.relative and self.expected != 0 else diff
+
+    @property
+    def margin(self) -> float:
+        """How much room the row has before it fails: tolerance − |error| for ``"~="``, the
+        distance from the limit (positive inside) for bounds; negative when failed."""
+        if self.relation == "~=":
+            return self.tolerance - abs(self.error)
+        return self.expected - self.measured if self.relation == "<=" else self.measured - self.expected
+
+    @property
+    def ok(self) -> bool:
+        """True when the measured value is finite and meets the relation."""
+        return math.isfinite(self.measured) and self.margin >= 0
+
+    def as_dict(self) -> dict:
+        """The row as plain data (JSON-ready), with ``error``, ``margin`` and ``ok``."""
+        return {**asdict(self), "error": self.error, "margin": self.margin, "ok": self.ok}
+
+    def report(self) -> str:
+        """One line: quantity, expected, measured, the rule and the verdict (and the note)."""
+        unit = f" {self.unit}" if self.unit else ""
+        if self.relation == "~=":
+            rule = (f"error {self.error:.3g}, tolerance +-{self.tolerance:.3g}{' relative' if self.relative else ''}")
+            expect = f"expected {self.expected:.6g}{unit}"
+        else:
+            rule = f"bound {self.relation} {self.expected:.6g}{unit}"
+            expect = f"expected {self.relation} {self.expected:.6g}{unit}"
+        note = f" ({self.note})" if self.note else ""
+        return (f"{self.quantity}: {expect}, measured {self.measured:.6g}{unit}, {rule}: "
+                f"{'ok' if self.ok else 'FAILED'}{note}")
+
+
+def compare(quantity: str, measured, expected, *, rtol: Optional[float] = None, atol: Optional[float] = None,
+            unit: str = "", note: str = "") -> Check:
+    """A ``"~="`` row: ``measured`` agrees with ``expected`` within ``rtol`` (relative) or ``atol``."""
+    if (rtol is None) == (atol is None):
+        raise ValueError("give exactly one of rtol, atol")
+    tol = rtol if rtol is not None else atol
+    check_scalar("rtol" if rtol is not None else "atol", tol, lo=0.0)
+    return Check(quantity, float(measured), float(expected), float(tol), "~=", rtol is not None, unit, note)
+
+
+def bound(quantity: str, measured, limit, *, relation: str = "<=", unit: str = "", note: str = "") -> Check:
+    """A bound row: ``measured`` <= ``limit`` (or >= with ``relation=">="``)."""
+    check_choice("relation", relation, ("<=", ">="))
+    return Check(quantity, float(measured), float(limit), 0.0, relation, False, unit, note)
+
+
+def assert_check(check: Check) -> Check:
+    """Raise ``AssertionError`` with the row's report unless it is ok; return it."""
+    check_instance("check", check, Check, "wavephys.harness.Check")
+    if not check.ok:
+        raise AssertionError(check.report())
+    return check

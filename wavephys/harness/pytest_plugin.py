@@ -1,0 +1,77 @@
+"""pytest plugin (entry point ``pytest11: wavephys``): physics checks as fixtures.
+
+Installed with wavephys; any test suite can then ask for these fixtures::
+
+    def test_my_shader_waves(wavephys_check):
+        eta = run_my_simulator(...)              # (n_t, n, n) heights, m
+        wavephys_check.dispersion(eta, dx, dt, Water(sigma=0.0), rtol=0.01,
+                                  k_range=(1.0, 20.0))
+
+Fixtures: ``wavephys_water`` (default :class:`~wavephys.Water`) and ``wavephys_check``
+(a :class:`Checker`). Each method returns the :class:`~wavephys.harness.Check` it made and
+fails the test with expected / measured / tolerance when it is not ok. This module
+imports nothing heavy: JAX and NumPy load when a fixture is first used.
+"""
+
+from __future__ import annotations
+
+import pytest
+
+__all__ = ["Checker"]
+
+
+class Checker:
+    """Assertion helpers over :mod:`wavephys.harness` for use in tests."""
+
+    def close(self, quantity, measured, expected, *, rtol=None, atol=None, unit=""):
+        """Assert measured ≈ expected."""
+        from wavephys.harness.checks import assert_check, compare
+
+        return assert_check(compare(quantity, measured, expected, rtol=rtol, atol=atol, unit=unit))
+
+    def at_most(self, quantity, measured, limit, unit=""):
+        """Assert measured <= limit."""
+        from wavephys.harness.checks import assert_check, bound
+
+        return assert_check(bound(quantity, measured, limit, unit=unit))
+
+    def dispersion(self, eta, dx, dt, water, *, rtol=0.005, k_range=(0.0, float("inf")), min_samples=3):
+        """Assert the measured ω(k) of ``eta`` (n_t, n, n) matches ``water``'s theory.
+
+        The largest relative error over the shells with k in ``k_range`` (rad/m) must be
+        <= ``rtol``, and at least ``min_samples`` shells must be measured there.
+        """
+        import numpy as np
+
+        from wavephys.harness.checks import assert_check, bound, compare
+        from wavephys.harness.dispersion import dispersion_error, measure_dispersion
+
+        samples = measure_dispersion(eta, dx, dt).select(*k_range)
+        assert_check(bound("dispersion shells measured", samples.k.size, min_samples, relation=">="))
+        err = np.abs(dispersion_error(samples, water))
+        return assert_check(compare("max |omega_measured/omega_theory - 1|", err.max(), 0.0, atol=rtol))
+
+    def energy_conserved(self, eta, eta_dot, dx, water, *, rtol=1e-3):
+        """Assert the total energy of a time series (n_t, n, n) stays within ``rtol``."""
+        import numpy as np
+
+        from wavephys.harness.checks import assert_check, compare
+        from wavephys.harness.energy import measure_energy
+
+        e = np.asarray(measure_energy(eta, eta_dot, dx, water).total)
+        drift = np.max(np.abs(e / e[0] - 1.0))
+        return assert_check(compare("energy drift", drift, 0.0, atol=rtol))
+
+
+@pytest.fixture
+def wavephys_water():
+    """Deep, clean water with the SI defaults of docs/physics.md."""
+    from wavephys.core.water import Water
+
+    return Water()
+
+
+@pytest.fixture
+def wavephys_check() -> Checker:
+    """Physics assertion helpers (:class:`Checker`)."""
+    return Checker()

@@ -1,0 +1,171 @@
+r"""Peer method: the explicit finite-difference wave equation (Kass & Miller 1990).
+
+.. math::
+
+    \eta^{n+1} = (2 - d)\,\eta^n - (1 - d)\,\eta^{n-1} + C^2\,\Delta_h \eta^n,
+    \qquad C = c\,\Delta t/\Delta x
+
+with the periodic 5-point Laplacian Δ_h (grid units) and an optional damping d ∈ [0, 1)
+(d = 0: the undamped scheme of Gomez 2000, used by Baboud & Décoret 2006). Every
+wavelength moves at the single speed c (plus the scheme's own numerical dispersion),
+so it cannot make capillary ripples or a Kelvin wake: the physics is wrong for deep
+water whatever the step. Its discrete dispersion relation is
+
+.. math::
+
+    \sin^2(\omega\Delta t/2) = C^2\left[\sin^2(k_x\Delta x/2) + \sin^2(k_y\Delta x/2)\right],
+
+so it is stable only for C ≤ 1/√2 (the checkerboard mode has the bracket equal to 2);
+:func:`find_stability_limit` measures the boundary by bisection.
+"""
+
+from __future__ import annotations
+
+import math
+
+import jax
+import jax.numpy as jnp
+
+from wavephys.core.inputs import check_int, check_scalar
+from wavephys.models.two_level import check_levels, run_two_level
+from wavephys.core.grid import Grid
+from wavephys.core.sampling import array_module
+
+__all__ = [
+    "STABILITY_LIMIT",
+    "courant_number",
+    "laplacian",
+    "fd_step",
+    "fd_run",
+    "fd_angular_frequency",
+    "find_stability_limit",
+    "fd_moving_source",
+]
+
+STABILITY_LIMIT = 1.0 / math.sqrt(2.0)
+"""Largest stable Courant number c·Δt/Δx of the explicit 2-D 5-point scheme."""
+
+
+def courant_number(speed, dt, dx):
+    """C = c·Δt/Δx (dimensionless) for wave speed c (m/s), step Δt (s), spacing Δx (m)."""
+    check_scalar("speed", speed, lo=0.0, lo_open=True)
+    check_scalar("dt", dt, lo=0.0, lo_open=True)
+    check_scalar("dx", dx, lo=0.0, lo_open=True)
+    return speed * dt / dx
+
+
+def laplacian(eta):
+    """Periodic 5-point Laplacian on the last two axes, in grid units (1/Δx² omitted).
+
+    NumPy in → NumPy out (float64 measurements), JAX in → JAX out."""
+    xp = array_module(eta)
+    return (xp.roll(eta, 1, -1) + xp.roll(eta, -1, -1) + xp.roll(eta, 1, -2)
+            + xp.roll(eta, -1, -2) - 4.0 * eta)
+
+
+def fd_step(eta, eta_prev, courant, damping=0.0):
+    """One explicit step: returns η^{n+1} from η^n (``eta``) and η^{n−1} (``eta_prev``), m."""
+    return (2.0 - damping) * eta - (1.0 - damping) * eta_prev + courant**2 * laplacian(eta)
+
+
+def fd_run(eta, eta_prev, courant, steps: int, damping=0.0, check_stability: bool = True):
+    """Run ``steps`` steps; returns (η^{N}, η^{N−1}, stacked heights of every step).
+
+    Parameters
+    ----------
+    eta, eta_prev : array_like
+        Heights at the last two times, m, same shape ``(..., ny, nx)``.
+    courant : float
+        C = cΔt/Δx, > 0. With ``check_stability`` (default) C > 1/√2 is rejected; pass
+        ``check_stability=False`` to explore the unstable side (it blows up).
+    steps : int
+        ≥ 1.
+    damping : float
+        d in [0, 1).
+    """
+    eta, eta_prev = check_levels(eta, eta_prev)
+    check_scalar("courant", courant, lo=0.0, lo_open=True)
+    if check_stability:
+        check_scalar("courant", courant, lo=0.0, hi=STABILITY_LIMIT, lo_open=True)
+    check_scalar("damping", damping, lo=0.0, hi=1.0, hi_open=True)
+    steps = check_int("steps", steps, lo=1)
+    return _fd_run(eta, eta_prev, courant, damping, steps)
+
+
+def _fd_run(eta, eta_prev, courant, damping, steps):
+    return run_two_level(fd_step, eta, eta_prev, (courant, damping), steps, True)
+
+
+def fd_angular_frequency(kx, ky, speed, dt, dx):
+    """The scheme's own ω(k), rad/s, from its discrete dispersion relation (module doc).
+
+    NaN where the scheme is unstable for that mode (right-hand side > 1).
+    """
+    c2 = (speed * dt / dx) ** 2
+    rhs = c2 * (jnp.sin(kx * dx / 2) ** 2 + jnp.sin(ky * dx / 2) ** 2)
+    return 2.0 / dt * jnp.arcsin(jnp.sqrt(jnp.where(rhs <= 1.0, rhs, jnp.nan)))
+
+
+def find_stability_limit(n: int = 32, steps: int = 400, growth: float = 10.0,
+                         tolerance: float = 1e-4, seed: int = 0):
+    """Measure the largest stable Courant number by bisection on a random field.
+
+    A run is unstable when max|η| grows by more than ``growth`` in ``steps`` steps
+    (random initial data excite every mode, the checkerboard included). Bisection on
+    [0.5, 1] to ``tolerance`` in [1e-7, 0.1] (a bounded number of steps). Returns the
+    measured boundary C* (compare with :data:`STABILITY_LIMIT` = 1/√2).
+    """
+    n = check_int("n", n, lo=4)
+    steps = check_int("steps", steps, lo=10)
+    check_scalar("growth", growth, lo=1.0, lo_open=True)
+    check_scalar("tolerance", tolerance, lo=1e-7, hi=0.1)
+    seed = check_int("seed", seed, lo=0)
+    eta0 = jax.random.normal(jax.random.PRNGKey(seed), (n, n))
+    amp0 = float(jnp.max(jnp.abs(eta0)))
+
+    def unstable(c):
+        a, _, _ = _fd_run(eta0, eta0, c, 0.0, steps)
+        amp = float(jnp.max(jnp.abs(a)))
+        return not math.isfinite(amp) or amp > growth * amp0
+
+    lo, hi = 0.5, 1.0
+    if unstable(lo) or not unstable(hi):
+        raise RuntimeError("stability boundary not bracketed by C in [0.5, 1.0]")
+    for _ in range(math.ceil(math.log2(0.5 / tolerance))):  # bounded: each step halves hi − lo
+        mid = 0.5 * (lo + hi)
+        lo, hi = (lo, mid) if unstable(mid) else (mid, hi)
+    return 0.5 * (lo + hi)
+
+
+def fd_moving_source(n: int = 512, length: float = 40.0, wave_speed: float = 0.5, source_speed: float = 1.0,
+                     source_size: float = 0.3, duration: float = 28.0, courant: float = 0.5):
+    """The FD peer driven by a Gaussian forcing moving in +x: returns (η, grid, source x).
+
+    A non-dispersive scheme can only make a Mach cone of half-angle asin(c/U) for a
+    supersonic source (none for U < c), never Kelvin's 19.47° wake: the documented
+    failure of this method for moving sources.
+    """
+    n = check_int("n", n, lo=16)
+    for name, v in (("length", length), ("wave_speed", wave_speed), ("source_speed", source_speed),
+                    ("source_size", source_size), ("duration", duration)):
+        check_scalar(name, v, lo=0.0, lo_open=True)
+    check_scalar("courant", courant, lo=0.0, hi=STABILITY_LIMIT, lo_open=True)
+    grid = Grid(n, length)
+    dx = length / n
+    dt = courant * dx / wave_speed
+    x, y = grid.mesh()
+    steps = int(round(duration / dt))
+    x_start = -0.35 * length
+
+    @jax.jit
+    def run(eta, prev):
+        def body(carry, i):
+            a, b = carry
+            xs = x_start + source_speed * i * dt
+            force = jnp.exp(-((x - xs) ** 2 + y**2) / (2 * source_size**2))
+            return (fd_step(a, b, courant) - dt * dt * force, a), None
+        return jax.lax.scan(body, (eta, prev), jnp.arange(steps))[0]
+
+    z = jnp.zeros((n, n))
+    eta, _ = run(z, z)
+    return eta, grid, x_start + source_speed * steps * dt

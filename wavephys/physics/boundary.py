@@ -1,0 +1,151 @@
+r"""Open-ocean boundary: the margin cutoff of Loviscach (2003), §3 (docs/physics.md §1.4).
+
+Each step the field is multiplied by h(p)·h(q) (p along x, q along y) with margin M:
+
+.. math::
+
+    h(p) = \begin{cases}
+        1 - (p/M - 1)^2 & p < M \\
+        1 & M \le p < N - M \\
+        1 - ((N - 1 - p)/M - 1)^2 & p \ge N - M
+    \end{cases}
+
+(:func:`cutoff_quadratic`, the paper's choice), or h(p) = p/M on the same margins
+(:func:`cutoff_linear`, the earlier choice of Loviscach 2002). Only the inner (N − 2M)²
+points are meant to be shown. How much of a wave the margin reflects, as a function of
+λ/M, is measured by :func:`cutoff_reflection`; :func:`cutoff_boundary` finds the λ/M
+where it passes a threshold (the method's failure boundary).
+"""
+
+from __future__ import annotations
+
+import math
+
+import jax
+import jax.numpy as jnp
+import numpy as np
+
+from wavephys.core.inputs import check_int, check_scalar
+from wavephys.core.methods import Methods
+from wavephys.core.spectral import angular_wavenumbers
+from wavephys.core.water import Water
+from wavephys.physics.dispersion import angular_frequency, group_speed
+
+__all__ = ["cutoff_quadratic", "cutoff_linear", "CUTOFF_METHODS", "cutoff_profile", "cutoff_mask", "interior",
+           "cutoff_reflection", "cutoff_boundary"]
+
+
+def cutoff_quadratic(s):
+    """Quadratic cutoff weight 1 − (s − 1)² at s = p/M ∈ [0, 1) (Loviscach 2003)."""
+    return 1.0 - (s - 1.0) ** 2
+
+
+def cutoff_linear(s):
+    """Linear cutoff weight s at s = p/M ∈ [0, 1) (Loviscach 2002)."""
+    return s
+
+
+CUTOFF_METHODS = Methods("open-ocean cutoff", quadratic=cutoff_quadratic, linear=cutoff_linear)
+"""Cutoff shapes by name: s = p/M in [0, 1) ↦ weight."""
+
+
+def _check_margin(n, margin):
+    n = check_int("n", n, lo=2)
+    margin = check_int("margin", margin, lo=0)
+    if 2 * margin >= n:
+        raise ValueError(f"margin must be < n/2 = {n / 2}, got {margin}")
+    return n, margin
+
+
+def cutoff_profile(n: int, margin: int, method: str = "quadratic", dtype=jnp.float32):
+    """The 1-D cutoff weights h(p), p = 0 … n − 1 (dimensionless, in [0, 1]).
+
+    Parameters
+    ----------
+    n : int
+        Grid points per side, ≥ 2.
+    margin : int
+        M, points, 0 ≤ M < n/2 (0: no cutoff, all weights 1).
+    method : {"quadratic", "linear"}
+        A name in :data:`CUTOFF_METHODS`.
+    dtype : dtype of the result.
+    """
+    n, margin = _check_margin(n, margin)
+    shape = CUTOFF_METHODS.check(method)
+    if margin == 0:
+        return jnp.ones(n, dtype)
+    p = jnp.arange(n, dtype=dtype)
+    dist = jnp.minimum(p, n - 1 - p)  # distance to the nearer edge
+    return jnp.where(dist < margin, shape(dist / margin), 1.0).astype(dtype)
+
+
+def cutoff_mask(n: int, margin: int, method: str = "quadratic", dtype=jnp.float32):
+    """The 2-D weights h(q)·h(p) of shape ``(n, n)`` (rows q = y, columns p = x)."""
+    h = cutoff_profile(n, margin, method, dtype)
+    return h[:, None] * h[None, :]
+
+
+def interior(field, margin: int):
+    """The visible inner ``(n − 2M)²`` part of ``field`` (last two axes)."""
+    _check_margin(np.shape(field)[-1], margin)
+    n = field.shape[-1]
+    return field[..., margin:n - margin, margin:n - margin]
+
+
+def cutoff_reflection(ratio: float, method: str = "quadratic", margin: int = 32,
+                      group_cells_per_step: float = 0.5) -> float:
+    """Energy fraction of a wave packet that the margin cutoff reflects (1-D, deep gravity).
+
+    A packet of wavelength λ = ``ratio``·M cells (Gaussian envelope of width 2λ) travels
+    toward the right margin; the cutoff is applied every step, and the step moves the
+    group ``group_cells_per_step`` cells (the reflection grows when the cutoff is applied
+    more often per crossing). Once the reflection is back in the middle of the domain,
+    the energy of the left-moving components (kx < 0, weighted by K = |k|) over the
+    initial energy is the reflected fraction. A y-uniform wave on the 2-D grid separates
+    into exactly this 1-D problem.
+    """
+    check_scalar("ratio", ratio, lo=0.0, lo_open=True, hi=64.0)
+    margin = check_int("margin", margin, lo=1)
+    check_scalar("group_cells_per_step", group_cells_per_step, lo=0.0, lo_open=True)
+    water = Water(sigma=0.0)
+    lam = ratio * margin
+    n = 1 << int(np.ceil(np.log2(2 * (9 * lam + margin))))
+    k0 = 2 * np.pi / lam
+    k = np.asarray(angular_wavenumbers((1, n), 1.0, xp=np)[1][0])
+    x = np.arange(n, dtype=np.float64)
+    env = np.exp(-0.5 * ((x - n / 2) / (2 * lam)) ** 2)
+    dt = group_cells_per_step / float(group_speed(k0, water))
+    steps = int(1.5 * (n / 2 - margin) / group_cells_per_step)
+    kabs = np.abs(k)
+    omega = np.asarray(angular_frequency(kabs.astype(np.float32), water), np.float64)
+    mult = jnp.asarray(np.exp(-1j * omega * dt), jnp.complex64)
+    h = cutoff_profile(n, margin, method, jnp.float32)
+
+    @jax.jit
+    def run(f):
+        return jax.lax.scan(lambda f, _: (jnp.fft.ifft(jnp.fft.fft(f * h) * mult), None), f, None, length=steps)[0]
+
+    f0 = jnp.asarray(env * np.exp(1j * k0 * x), jnp.complex64)
+    e0 = float(jnp.sum(jnp.abs(jnp.fft.fft(f0)) ** 2 * kabs))
+    spec = jnp.fft.fft(run(f0))
+    return float(jnp.sum(jnp.where(k < 0, jnp.abs(spec) ** 2 * kabs, 0.0))) / e0
+
+
+def cutoff_boundary(method: str = "quadratic", threshold: float = 1e-3, lo: float = 0.125,
+                    hi: float = 2.0, iterations: int = 6, **kw) -> float:
+    """The λ/M above which the margin reflects more than ``threshold`` of the energy.
+
+    Bisection in log(λ/M) on :func:`cutoff_reflection` (which grows with λ/M), a fixed
+    number of ``iterations``; ``RuntimeError`` if [lo, hi] does not bracket the threshold.
+    """
+    check_scalar("threshold", threshold, lo=0.0, hi=1.0, lo_open=True, hi_open=True)
+    check_scalar("lo", lo, lo=0.0, lo_open=True)
+    check_scalar("hi", hi, lo=lo, lo_open=True)
+    iterations = check_int("iterations", iterations, lo=1, hi=60)
+    a, b = math.log(lo), math.log(hi)
+    if cutoff_reflection(lo, method, **kw) > threshold or cutoff_reflection(hi, method, **kw) < threshold:
+        raise RuntimeError(f"reflection boundary of the {method} cutoff not in [{lo}, {hi}]")
+    for _ in range(iterations):
+        m = 0.5 * (a + b)
+        a, b = (a, m) if cutoff_reflection(math.exp(m), method, **kw) > threshold else (m, b)
+    return math.exp(0.5 * (a + b))

@@ -1,0 +1,495 @@
+r"""Moving sources: the ship-wave kernels Φ1/Φ2 of Loviscach (2003), eq. 2 (docs/physics.md §1.3).
+
+A ship profile f (1 inside the hull, 0 outside, optionally blurred by a Gaussian in
+Fourier space) moving on a straight line at velocity v during [t, t + Δt] adds, at
+t + Δt, the complex wave field
+
+.. math::
+
+    \mathcal F^{-1}\left[\hat f_t\,M_1 + \hat f_{t+\Delta t}\,M_2\right],\qquad
+    M_1 = e^{-i\omega\Delta t}\left(-1 + i\omega\Delta t\,Q_1(\alpha)\right),\quad
+    M_2 = 1 + i\omega\Delta t\,Q_2(\alpha),
+
+    Q_1 = \frac{e^{-i\alpha} + i\alpha - 1}{\alpha^2},\quad
+    Q_2 = \frac{e^{i\alpha} - i\alpha - 1}{\alpha^2},\quad
+    \alpha = (\mathbf k\cdot\mathbf v - \omega)\Delta t .
+
+For straight motion this is the exact Duhamel integral of the source ∂(s·f)/∂t (s the
+ship's strength, m²/s): M1 + M2·e^{−ik·vΔt} = e^{−iωΔt}(e^{−iα} − 1)(k·vΔt)/α, so one
+step of Δt equals two of Δt/2, and a ship at rest adds nothing (M1 + M2 = 0).
+
+Near the resonance α → 0 (k·v = ω: the stationary Kelvin waves) Q1 → −1/2 + iα/6 and
+Q2 → −1/2 − iα/6; evaluated as written they lose all digits in float32. Below
+|α| < 1/2 we sum their Taylor series (13 terms: truncation below 1e-16 relative);
+:func:`ship_multipliers_naive` keeps the textbook form as the documented failure.
+
+The new waves matter only near the ship, so they are computed on a 2M × 2M patch of
+the grid around it and added to the N × N field; :func:`patch_leak` measures how much
+of them a patch misses (against a patch twice as large) and the simulation refuses a
+Δt whose leak exceeds a tolerance.
+
+Two methods make the new waves (:data:`SHIP_METHODS`): :func:`ship_waves_kernels`
+(Φ1/Φ2, exact for straight motion within a step) and :func:`ship_waves_impulses` (the
+naive row of dropped stones the paper warns about, kept for comparison). A
+:class:`Ship` is a source of the simulation: it adds its waves after each step's cutoff.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from functools import lru_cache, partial
+from typing import Callable, Optional
+
+import jax
+import jax.numpy as jnp
+import numpy as np
+
+from wavephys.core.inputs import check_array, check_choice, check_instance, check_int, check_scalar
+from wavephys.core.methods import Methods
+from wavephys.physics.dispersion import angular_frequency
+from wavephys.core.grid import Grid
+from wavephys.core.water import Water
+
+__all__ = [
+    "ship_multipliers",
+    "ship_multipliers_naive",
+    "resonance_quotients",
+    "resonance_quotients_exact",
+    "Hull",
+    "Path",
+    "straight_path",
+    "turning_path",
+    "Ship",
+    "hull_spectrum",
+    "ship_waves_kernels",
+    "ship_waves_impulses",
+    "SHIP_METHODS",
+    "ship_patch_waves",
+    "add_ship_waves",
+    "patch_leak",
+    "max_patch_dt",
+]
+
+_SERIES_TERMS = 13
+_SERIES_RADIUS = 0.5
+
+
+def resonance_quotients(alpha):
+    """(Q1, Q2) = ((e^{−iα} + iα − 1)/α², (e^{iα} − iα − 1)/α²), cancellation-free.
+
+    Taylor series Σ_{j≥2} (∓iα)^j / (j! α²) for |α| < 1/2, the closed form elsewhere.
+    """
+    alpha = jnp.asarray(alpha)
+    small = jnp.abs(alpha) < _SERIES_RADIUS
+    a_s = jnp.where(small, alpha, 0.0)
+    a_b = jnp.where(small, 1.0, alpha)
+
+    def series(sign):
+        # Horner on c_j = (sign·i)^j / j!, j = 2 … 2 + terms − 1, divided by α²
+        acc = jnp.zeros_like(a_s, dtype=jnp.result_type(a_s, jnp.complex64))
+        for j in range(_SERIES_TERMS + 1, 1, -1):
+            acc = acc * a_s + (sign * 1j) ** j / math.factorial(j)
+        return acc
+
+    q1 = jnp.where(small, series(-1), (jnp.exp(-1j * a_b) + 1j * a_b - 1.0) / (a_b * a_b))
+    q2 = jnp.where(small, series(+1), (jnp.exp(1j * a_b) - 1j * a_b - 1.0) / (a_b * a_b))
+    return q1, q2
+
+
+def resonance_quotients_exact(alpha):
+    """Reference (Q1, Q2) for float64 inputs, independent of :func:`resonance_quotients`:
+    exact rational arithmetic on the Taylor series (41 terms: below double precision for
+    |α| ≤ 2), rounded once at the end. Slow; for tests and checks."""
+    from fractions import Fraction
+
+    out = []
+    for sign in (-1, 1):
+        vals = []
+        for a in np.atleast_1d(np.asarray(alpha, np.float64)):
+            af = Fraction(float(a))
+            re, im, term = Fraction(0), Fraction(0), Fraction(1)
+            for j in range(1, 42):
+                term = term * af / j  # α^j / j!
+                if j >= 2:
+                    unit = [(1, 0), (0, 1), (-1, 0), (0, -1)][(j * (1 if sign > 0 else 3)) % 4]  # (±i)^j
+                    re += unit[0] * term
+                    im += unit[1] * term
+            vals.append(complex(float(re / af**2), float(im / af**2)))
+        out.append(np.asarray(vals))
+    return out[0], out[1]
+
+
+def _multipliers(k_dot_v, omega, dt, quotients):
+    alpha = (k_dot_v - omega) * dt
+    q1, q2 = quotients(alpha)
+    wdt = omega * dt
+    m1 = jnp.exp(-1j * wdt) * (-1.0 + 1j * wdt * q1)
+    m2 = 1.0 + 1j * wdt * q2
+    return m1, m2
+
+
+def _k_dot_v_omega(grid: Grid, water: Water, velocity):
+    ky, kx = grid.wavenumbers()
+    return kx * velocity[0] + ky * velocity[1], angular_frequency(grid.wavenumber_magnitude(), water)
+
+
+def _check_velocity(velocity):
+    check_array("velocity", velocity, min_ndim=1, shape_tail=(2,))
+    return jnp.asarray(velocity, dtype=jnp.result_type(float, jnp.asarray(velocity)))
+
+
+def ship_multipliers(grid: Grid, water: Water, velocity, dt):
+    """Fourier multipliers (M1, M2) of a hull moving at ``velocity`` (m/s, (vx, vy)) for Δt (s).
+
+    Complex arrays ``(n, n)`` on the grid's full ``fft2`` spectrum; dimensionless.
+    Stable near the resonance α = 0 in float32 and float64 (module doc).
+    """
+    velocity = _check_velocity(velocity)
+    check_scalar("dt", dt, lo=0.0, lo_open=True)
+    kv, omega = _k_dot_v_omega(grid, water, velocity)
+    return _multipliers(kv, omega, dt, resonance_quotients)
+
+
+def ship_multipliers_naive(grid: Grid, water: Water, velocity, dt):
+    """(M1, M2) with the quotients evaluated as written: a documented failure near α = 0."""
+    velocity = _check_velocity(velocity)
+    check_scalar("dt", dt, lo=0.0, lo_open=True)
+    kv, omega = _k_dot_v_omega(grid, water, velocity)
+
+    def naive(alpha):
+        return ((jnp.exp(-1j * alpha) + 1j * alpha - 1.0) / (alpha * alpha),
+                (jnp.exp(1j * alpha) - 1j * alpha - 1.0) / (alpha * alpha))
+
+    return _multipliers(kv, omega, dt, naive)
+
+
+# -- hulls ------------------------------------------------------------------------------
+HULL_KINDS = ("ellipse", "gaussian", "mask")
+
+
+@dataclass(frozen=True, eq=False)
+class Hull:
+    """A ship's footprint f in its own frame (x forward, y to port), dimensionless.
+
+    Parameters
+    ----------
+    kind : {"ellipse", "gaussian", "mask"}
+        ``"ellipse"``: 1 inside the ellipse of the given length × width; ``"gaussian"``:
+        exp(−x²/(2(L/4)²) − y²/(2(W/4)²)); ``"mask"``: the array ``mask`` (values in
+        [0, 1], rows = y, columns = x) spanning length × width.
+    length, width : float
+        m, > 0.
+    blur : float
+        Standard deviation of the Gaussian blur applied in Fourier space, m, ≥ 0.
+    mask : array, optional
+        For ``kind="mask"``.
+
+    Hulls compare and hash by value (the mask by its bytes), so compiled patch kernels
+    are shared by equal hulls.
+    """
+
+    kind: str = "ellipse"
+    length: float = 1.0
+    width: float = 0.4
+    blur: float = 0.0
+    mask: Optional[np.ndarray] = None
+
+    def __post_init__(self):
+        check_choice("kind", self.kind, HULL_KINDS)
+        check_scalar("length", self.length, lo=0.0, lo_open=True)
+        check_scalar("width", self.width, lo=0.0, lo_open=True)
+        check_scalar("blur", self.blur, lo=0.0)
+        if self.kind == "mask":
+            if self.mask is None:
+                raise ValueError("mask must be given for kind='mask'")
+            check_array("mask", self.mask, lo=0.0, hi=1.0, ndim=2)
+            object.__setattr__(self, "mask", np.asarray(self.mask, np.float32))
+        elif self.mask is not None:
+            raise ValueError(f"mask is only used with kind='mask', got kind={self.kind!r} and a mask")
+
+    def _key(self):
+        mask = None if self.mask is None else (self.mask.shape, self.mask.tobytes())
+        return (self.kind, float(self.length), float(self.width), float(self.blur), mask)
+
+    def __eq__(self, other):
+        return isinstance(other, Hull) and self._key() == other._key()
+
+    def __hash__(self):
+        return hash(self._key())
+
+    def evaluate(self, u, v):
+        """f at ship-frame coordinates (u forward, v to port), m → dimensionless."""
+        a, b = self.length / 2, self.width / 2
+        if self.kind == "ellipse":
+            return ((u / a) ** 2 + (v / b) ** 2 <= 1.0).astype(jnp.float32)
+        if self.kind == "gaussian":
+            return jnp.exp(-0.5 * ((u / (a / 2)) ** 2 + (v / (b / 2)) ** 2))
+        mask = jnp.asarray(self.mask, jnp.float32)
+        rows, cols = mask.shape
+        i = jnp.round((v / self.width + 0.5) * rows - 0.5).astype(jnp.int32)
+        j = jnp.round((u / self.length + 0.5) * cols - 0.5).astype(jnp.int32)
+        inside = (i >= 0) & (i < rows) & (j >= 0) & (j < cols)
+        return jnp.where(inside, mask[jnp.clip(i, 0, rows - 1), jnp.clip(j, 0, cols - 1)], 0.0)
+
+    @property
+    def radius(self):
+        """Radius of the circle that holds the hull (3σ for a Gaussian), m."""
+        r = 0.5 * math.hypot(self.length, self.width)
+        return 1.5 * r if self.kind == "gaussian" else r
+
+
+# -- paths ------------------------------------------------------------------------------
+@dataclass(frozen=True)
+class Path:
+    """A ship's pose over time: ``pose(t) → (x, y, heading)`` in m, m, rad (grid frame)."""
+
+    pose: Callable[[float], tuple]
+
+    def __post_init__(self):
+        if not callable(self.pose):
+            raise TypeError(f"pose must be a callable t → (x, y, heading), got {type(self.pose).__name__}")
+
+    def __call__(self, t: float):
+        out = self.pose(float(t))
+        if not isinstance(out, (tuple, list)) or len(out) != 3:
+            raise ValueError(f"path pose(t) must return (x, y, heading), got {out!r} at t={t}")
+        x, y, heading = out
+        for name, v in (("x", x), ("y", y), ("heading", heading)):
+            if not math.isfinite(float(v)):
+                raise ValueError(f"path gave a non-finite {name} at t={t}: {v}")
+        return float(x), float(y), float(heading)
+
+
+def straight_path(start, velocity) -> Path:
+    """Straight line from ``start`` (x, y; m, at t = 0) at constant ``velocity`` (m/s)."""
+    check_array("start", start, ndim=1, shape_tail=(2,))
+    check_array("velocity", velocity, ndim=1, shape_tail=(2,))
+    (x0, y0), (vx, vy) = np.asarray(start, float), np.asarray(velocity, float)
+    heading = math.atan2(vy, vx)
+    return Path(lambda t: (x0 + vx * t, y0 + vy * t, heading))
+
+
+def turning_path(center, radius: float, speed: float, start_angle: float = 0.0) -> Path:
+    """Circle of ``radius`` (m) about ``center`` at ``speed`` (m/s, > 0: counter-clockwise)."""
+    check_array("center", center, ndim=1, shape_tail=(2,))
+    check_scalar("radius", radius, lo=0.0, lo_open=True)
+    check_scalar("speed", speed)
+    check_scalar("start_angle", start_angle)
+    cx, cy = np.asarray(center, float)
+    w = speed / radius
+
+    def pose(t):
+        a = start_angle + w * t
+        return cx + radius * math.cos(a), cy + radius * math.sin(a), a + math.copysign(math.pi / 2, speed)
+
+    return Path(pose)
+
+
+@dataclass(frozen=True)
+class Ship:
+    """A hull moving on a path, with a strength s (m²/s) scaling its wave source s·f.
+
+    A source of the simulation (``wavephys.simulation.Source``): after each step's cutoff
+    it adds the waves it made over [t, t + Δt] on its patch, by the model's
+    ``ship_method``.
+    """
+
+    hull: Hull
+    path: Path
+    strength: float = 0.01
+
+    def __post_init__(self):
+        check_instance("hull", self.hull, Hull, "wavephys.physics.ship_waves.Hull")
+        check_instance("path", self.path, Path, "wavephys.physics.ship_waves.Path")
+        check_scalar("strength", self.strength)
+
+    # -- the simulation's source protocol -------------------------------------------
+    def check(self, model) -> None:
+        """Host-side checks: the patch fits the grid (nothing else is known before the step)."""
+        if model.ship_patch > model.grid.n:
+            raise ValueError(f"ship_patch {model.ship_patch} must not exceed the grid's n = {model.grid.n}")
+
+    def add(self, model, fields, t: float):
+        """Add this step's ship waves to the stacked (φ, χ) ``fields`` (donated), after the cutoff.
+
+        Refuses a Δt whose patch leak (:func:`patch_leak`) exceeds ``model.leak_tolerance``.
+        """
+        half, n = model.ship_patch // 2, model.grid.n
+        leak = _leak_at_speed(self, model, t)
+        if leak > model.leak_tolerance:
+            raise ValueError(f"dt = {float(model.dt)} s is too large for the ship patch of {2 * half} points: "
+                             f"{leak:.2g} of the new waves leak past it (leak_tolerance {model.leak_tolerance}); "
+                             f"lower dt or raise ship_patch")
+        return add_ship_waves(fields, self, model.grid, model.water, t, float(model.dt), half, model.ship_method,
+                              interior=(model.margin, n - model.margin))
+
+
+def _leak_at_speed(ship: Ship, model, t: float) -> float:
+    """patch_leak of the ship over this step, cached by hull, speed and the model's numbers."""
+    p0, p1 = ship.path(t), ship.path(t + float(model.dt))
+    speed = round(math.hypot(p1[0] - p0[0], p1[1] - p0[1]) / float(model.dt), 6)
+    args = (ship.hull, speed, float(model.dt), model.ship_patch // 2, model.grid.n, float(model.grid.length),
+            model.water, model.ship_method)
+    try:
+        return _leak_cached(*args)
+    except TypeError:  # unhashable values (arrays in Water): measure without the cache
+        return _leak_cached.__wrapped__(*args)
+
+
+@lru_cache(maxsize=256)
+def _leak_cached(hull, speed, dt, half, n, length, water, method):
+    probe = Ship(hull, straight_path((0.0, 0.0), (speed, 0.0)), 1.0)
+    return patch_leak(probe, Grid(n, length), water, 0.0, dt, half, method)
+
+
+# -- patch computation -----------------------------------------------------------------
+def hull_spectrum(hull: Hull, patch: Grid, center, pose):
+    """FFT of the hull at ``pose`` = (x, y, heading) on a patch grid centred at ``center``, blurred.
+
+    Pure ``jnp`` (poses may be traced)."""
+    x, y = patch.mesh()
+    dxp, dyp = pose[0] - center[0], pose[1] - center[1]
+    c, s = jnp.cos(pose[2]), jnp.sin(pose[2])
+    u = c * (x - dxp) + s * (y - dyp)
+    v = -s * (x - dxp) + c * (y - dyp)
+    spec = jnp.fft.fft2(hull.evaluate(u, v))
+    if hull.blur > 0:
+        spec = spec * jnp.exp(-0.5 * patch.wavenumber_magnitude() ** 2 * hull.blur**2)
+    return spec
+
+
+def ship_waves_kernels(f0_hat, f1_hat, patch: Grid, water: Water, velocity, dt):
+    """New waves F⁻¹[f̂_t·M1 + f̂_{t+Δt}·M2] per unit strength (Loviscach 2003, eq. 2), m²/s per m²/s.
+
+    ``f0_hat``, ``f1_hat``: FFTs of the hull at the step's start and end on ``patch``;
+    ``velocity`` (m/s, (vx, vy)) its straight motion over the step, ``dt`` the step (s).
+    """
+    kv, omega = _k_dot_v_omega(patch, water, velocity)
+    m1, m2 = _multipliers(kv, omega, dt, resonance_quotients)
+    return jnp.fft.ifft2(f0_hat * m1 + f1_hat * m2)
+
+
+def ship_waves_impulses(f0_hat, f1_hat, patch: Grid, water: Water, velocity, dt):
+    """The naive way: the change f_{t+Δt} − f_t added at once, a row of dropped stones
+    without the time integration (the paper's warning; documented failure)."""
+    return jnp.fft.ifft2(f1_hat - f0_hat)
+
+
+SHIP_METHODS = Methods("ship waves", kernels=ship_waves_kernels, impulses=ship_waves_impulses)
+"""How a moving hull makes waves, by name."""
+
+
+def _patch_place(ship: Ship, grid: Grid, t: float, dt: float, half: int):
+    """Poses at t and t + Δt, and the patch (row0, col0, centre) that holds the hull's motion."""
+    p0, p1 = ship.path(t), ship.path(t + dt)
+    reach = 0.5 * math.hypot(p1[0] - p0[0], p1[1] - p0[1]) + ship.hull.radius
+    if reach > half * float(grid.dx):
+        raise ValueError(f"the hull and its motion over dt reach {reach:.3g} m from the patch centre, more than "
+                         f"the patch half-size {half * float(grid.dx):.3g} m: use a larger patch or a smaller dt")
+    if 2 * half > grid.n:
+        raise ValueError(f"the patch (2·half = {2 * half}) must not be larger than the grid ({grid.n})")
+    r0, c0, center = grid.window(0.5 * (p0[0] + p1[0]), 0.5 * (p0[1] + p1[1]), half)
+    return p0, p1, r0, c0, center
+
+
+def ship_patch_waves(ship: Ship, grid: Grid, water: Water, t: float, dt: float, half: int,
+                     method: str = "kernels"):
+    """Complex waves the ship adds over [t, t + Δt], on its 2M × 2M patch (M = ``half``).
+
+    ``method`` is a name in :data:`SHIP_METHODS`. Returns ``(waves, (row0, col0))``: the
+    ``(2M, 2M)`` complex field (m²/s) and the grid index of its first row and column
+    (wrap them modulo n to add it to the field).
+    """
+    SHIP_METHODS.check(method)
+    check_scalar("t", t)
+    check_scalar("dt", dt, lo=0.0, lo_open=True)
+    p0, p1, r0, c0, center = _patch_place(ship, grid, t, dt, half)
+    kernel = _kernels(ship.hull, half, float(grid.dx), water, method)[0]
+    waves = kernel(jnp.asarray(center), jnp.asarray(p0), jnp.asarray(p1), dt, ship.strength)
+    return waves, (r0, c0)
+
+
+def add_ship_waves(fields, ship: Ship, grid: Grid, water: Water, t: float, dt: float, half: int,
+                   method: str = "kernels", interior: tuple[int, int] | None = None):
+    """Add the ship's new waves over [t, t + Δt] to a stacked (Re ψ, Im ψ) field in one program.
+
+    ``fields`` is donated (updated in place): do not use the array passed in afterwards.
+    The same waves as :func:`ship_patch_waves`, computed and added (indices wrapping)
+    without a round trip through Python; ``interior`` = (lo, hi) restricts the patch to
+    rows and columns in [lo, hi) (ValueError otherwise).
+    """
+    SHIP_METHODS.check(method)
+    p0, p1, r0, c0, center = _patch_place(ship, grid, t, dt, half)
+    if interior is not None:
+        lo, hi = interior
+        if not (lo <= r0 and r0 + 2 * half <= hi and lo <= c0 and c0 + 2 * half <= hi):
+            raise ValueError(f"the ship patch at rows {r0}…{r0 + 2 * half}, columns {c0}…{c0 + 2 * half} "
+                             f"leaves the visible interior [{lo}, {hi}): keep ships inside it")
+    add = _kernels(ship.hull, half, float(grid.dx), water, method)[1]
+    return add(fields, jnp.asarray(center), jnp.asarray(p0), jnp.asarray(p1), dt, ship.strength, r0, c0)
+
+
+def _kernels(hull, half, dx, water, method):
+    try:
+        return _patch_kernel(hull, half, dx, water, method)
+    except TypeError:  # unhashable values (arrays in Water): compile for this call only
+        return _patch_kernel.__wrapped__(hull, half, dx, water, method)
+
+
+@lru_cache(maxsize=64)
+def _patch_kernel(hull: Hull, half: int, dx: float, water: Water, method: str):
+    """The compiled patch computation for one hull and patch (shared by equal hulls)."""
+    patch = Grid(2 * half, 2 * half * dx)
+    make = SHIP_METHODS[method]
+
+    @jax.jit
+    def kernel(center, p0, p1, dt, strength):
+        f0, f1 = hull_spectrum(hull, patch, center, p0), hull_spectrum(hull, patch, center, p1)
+        return make(f0, f1, patch, water, (p1[:2] - p0[:2]) / dt, dt) * strength
+
+    @partial(jax.jit, donate_argnums=0)  # update the field in place, no 2·n² copy
+    def add(fields, center, p0, p1, dt, strength, r0, c0):
+        waves = kernel(center, p0, p1, dt, strength)
+        n, m = fields.shape[-1], waves.shape[-1]
+        rows = (r0 + jnp.arange(m)) % n
+        cols = (c0 + jnp.arange(m)) % n
+        both = jnp.stack([waves.real, waves.imag]).astype(fields.dtype)
+        return fields.at[..., rows[:, None], cols[None, :]].add(both)
+
+    return kernel, add
+
+
+def patch_leak(ship: Ship, grid: Grid, water: Water, t: float, dt: float, half: int,
+               method: str = "kernels") -> float:
+    """Fraction of one step's new waves a 2M × 2M patch gets wrong: relative energy of the
+    difference from the same waves computed on a patch twice as large (4M × 4M)."""
+    try:
+        small, (r0, c0) = ship_patch_waves(ship, grid, water, t, dt, half, method)
+    except ValueError:
+        return 1.0  # the hull itself does not fit: everything is missed
+    big, (r1, c1) = ship_patch_waves(ship, grid, water, t, dt, 2 * half, method)
+    big_on_small = big[r0 - r1:r0 - r1 + 2 * half, c0 - c1:c0 - c1 + 2 * half]
+    total = float(jnp.sum(jnp.abs(big) ** 2))
+    inside = float(jnp.sum(jnp.abs(small - big_on_small) ** 2))
+    outside = total - float(jnp.sum(jnp.abs(big_on_small) ** 2))
+    return (inside + max(outside, 0.0)) / total if total > 0 else 0.0
+
+
+def max_patch_dt(ship: Ship, grid: Grid, water: Water, half: int, tolerance: float = 1e-3,
+                 lo: float = 1e-4, hi: float = 10.0, iterations: int = 20) -> float:
+    """The largest Δt (s) whose :func:`patch_leak` stays below ``tolerance`` (bisection in log Δt)."""
+    check_int("half", half, lo=2)
+    check_scalar("tolerance", tolerance, lo=0.0, hi=1.0, lo_open=True, hi_open=True)
+    check_scalar("lo", lo, lo=0.0, lo_open=True)
+    check_scalar("hi", hi, lo=lo, lo_open=True)
+    iterations = check_int("iterations", iterations, lo=1, hi=60)
+    if patch_leak(ship, grid, water, 0.0, lo, half) > tolerance:
+        raise ValueError(f"the patch of half-size {half} leaks more than {tolerance} even at Δt = {lo} s")
+    if patch_leak(ship, grid, water, 0.0, hi, half) <= tolerance:
+        return hi
+    a, b = math.log(lo), math.log(hi)
+    for _ in range(iterations):
+        m = 0.5 * (a + b)
+        a, b = (m, b) if patch_leak(ship, grid, water, 0.0, math.exp(m), half) <= tolerance else (a, m)
+    return math.exp(a)

@@ -1,0 +1,227 @@
+r"""Steady wakes of moving pressure sources, and wake-angle measurement (any simulator).
+
+Steady wake (ship frame, source moving at speed U in +x): the complex wave field ψ
+obeys ψ_t = −iωψ + S with the pressure forcing S = −p/ρ (linearized Bernoulli), so a
+steady pattern Ψ(x − Ut) has, per Fourier mode,
+
+.. math::
+
+    \hat\Psi(\mathbf k) = \frac{-\hat p(\mathbf k)/\rho}{i(\omega(k) - k_x U) + \varepsilon},
+    \qquad \hat\eta = \mathrm{Re}\text{-part of } \frac{iK}{\omega}\hat\Psi,
+
+where ε > 0 is Rayleigh's fictitious damping: the radiation condition that puts the
+waves behind the source (ε → 0⁺ is the physical limit; a finite ε fades the wake over
+a distance ≈ U/ε so that it does not wrap around the periodic grid). Gravity,
+capillarity and finite depth all enter through ω(k) and K(k) (docs/physics.md §1.1). At U = 0 it
+reduces to the hydrostatic depression η = −p/(ρg) for a broad source.
+
+Kelvin's result for deep water, gravity only: the wake is confined to a wedge of
+half-angle arcsin(1/3) = 19.47° whose edge (the cusp line) carries the largest
+amplitude for a point source; transverse waves on the track have wavelength 2πU²/g.
+For sources that are not small against 2πU²/g the angle of maximum amplitude shrinks
+(Rabaud & Moisy 2013: ∝ 1/Fr at large Froude number). Measuring angles from any height
+field is the harness's job: :func:`wavephys.harness.wake.wake_angle`.
+
+The cusp line for any dispersion relation (:func:`cusp_line`): a wave stationary in the
+ship frame has c(k) = U cos θ (θ: angle of its wavevector to the track); its energy moves
+in the ship frame at (c_g cos θ − U, c_g sin θ), i.e. along the ray at angle φ behind the
+source with
+
+.. math::
+
+    \tan\varphi(\theta) = \frac{c_g \sin\theta}{U - c_g\cos\theta}.
+
+The wake ends where φ(θ) is largest: the cusp line. In deep water (c_g = c/2) that is
+tan φ = t/(1 + 2t²), t = tan θ, largest at t = 1/√2: φ = arcsin(1/3), θ = 35.26°, and the
+cusp waves have wavenumber k_c = g/(U² cos² θ) = 1.5 g/U². Because φ is stationary
+there, waves whose wavenumber lies near k_c all travel along the cusp line, whatever the
+shape of the source; that is what ``wake_angle(..., method="cusp")`` measures.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import jax.numpy as jnp
+import numpy as np
+
+from wavephys.core.inputs import check_array, check_choice, check_int, check_scalar
+from wavephys.physics.dispersion import angular_frequency, group_speed, min_phase_speed, phase_speed, surface_operator
+from wavephys.physics.heights import height_multiplier
+from wavephys.core.grid import Grid
+from wavephys.core.water import Water
+
+__all__ = ["GaussianPressure", "HullSource", "steady_wake", "KELVIN_ANGLE", "transverse_wavelength", "CuspLine",
+           "cusp_line", "stationary_wavenumber"]
+
+KELVIN_ANGLE = math.degrees(math.asin(1.0 / 3.0))
+"""Kelvin's wake half-angle for deep-water gravity waves, degrees (19.47°)."""
+
+
+def transverse_wavelength(speed, water: Water = Water(sigma=0.0)):
+    """Deep-water gravity wavelength of the transverse waves on the track, 2πU²/g, m."""
+    check_scalar("speed", speed, lo=0.0, lo_open=True)
+    return 2 * math.pi * speed**2 / float(water.g)
+
+
+@dataclass(frozen=True)
+class CuspLine:
+    """The outer edge of a steady wake: ray ``angle`` (degrees) behind the source, carried by
+    waves of wavenumber ``wavenumber`` (rad/m) whose crests make ``wave_angle`` (degrees,
+    between wavevector and track)."""
+
+    angle: float
+    wavenumber: float
+    wave_angle: float
+
+
+def stationary_wavenumber(target_speed, water: Water):
+    """Gravity-branch k (rad/m) with phase speed c(k) = ``target_speed`` (m/s, array; NaN where
+    none exists): the waves that stand still behind a source whose speed along their
+    wavevector is the target. Bisection in log k, 80 steps (float64)."""
+    target = np.asarray(target_speed, np.float64)
+    g = float(water.g)
+    if float(water.sigma) > 0:
+        c_min, k_hi = min_phase_speed(water)
+        k_hi = k_hi if k_hi > 0 else None
+    else:
+        c_min, k_hi = 0.0, None
+    if k_hi is None:  # no capillary minimum: the speed falls without bound (or to c_min at k = 0)
+        k_hi = 1e6 * g / np.maximum(target, 1e-12) ** 2
+    lo = np.full(target.shape, math.log(1e-9 * g / max(float(np.max(target)), 1e-12) ** 2))
+    hi = np.log(np.broadcast_to(k_hi, target.shape).astype(np.float64))
+    speed = lambda u: np.asarray(phase_speed(jnp.asarray(np.exp(u)), water), np.float64)
+    for _ in range(80):
+        mid = 0.5 * (lo + hi)
+        faster = speed(mid) > target  # on the gravity branch c falls with k
+        lo, hi = np.where(faster, mid, lo), np.where(faster, hi, mid)
+    k = np.exp(0.5 * (lo + hi))
+    c_long = phase_speed(jnp.asarray(0.0), water)
+    none = (target <= c_min) | (target >= float(c_long))
+    return np.where(none, np.nan, k)
+
+
+def cusp_line(speed, water: Water = Water(sigma=0.0), samples: int = 4001) -> CuspLine:
+    """The cusp line (outer edge) of the steady wake of a source moving at ``speed``.
+
+    Maximizes the ray angle φ(θ) (module docstring) over the wave directions θ that
+    have a stationary gravity-branch wave, for any depth and surface tension (gravity
+    branch only: the capillary branch of a capillary-gravity wake, ahead of the source,
+    is not covered). Deep water, gravity only: 19.47° at k_c = 1.5 g/U², θ = 35.26°.
+    Finite depth widens the wedge as U approaches sqrt(g h) (Havelock).
+
+    Parameters
+    ----------
+    speed : float
+        U, m/s, > 0 (and > c_min with surface tension).
+    water : Water
+    samples : int
+        Directions θ tried in (0, π/2); the maximum is then refined parabolically.
+    """
+    check_scalar("speed", speed, lo=0.0, lo_open=True)
+    samples = check_int("samples", samples, lo=3)
+    theta = np.linspace(0.0, math.pi / 2, samples + 2)[1:-1]
+    k = stationary_wavenumber(speed * np.cos(theta), water)
+    if not np.isfinite(k).any():
+        raise ValueError(f"speed {speed} m/s: no stationary gravity wave (below c_min = "
+                         f"{min_phase_speed(water)[0]:.4g} m/s?), so there is no wake")
+    cg = np.asarray(group_speed(jnp.asarray(np.where(np.isfinite(k), k, 1.0)), water), np.float64)
+    phi = np.where(np.isfinite(k), np.arctan2(cg * np.sin(theta), speed - cg * np.cos(theta)), -np.inf)
+    i = int(np.argmax(phi))
+    t, kk = theta[i], k[i]
+    if 0 < i < samples - 1 and np.all(np.isfinite(phi[i - 1:i + 2])):
+        a, b, c = phi[i - 1:i + 2]
+        den = a - 2 * b + c
+        if den < 0:
+            off = 0.5 * (a - c) / den
+            t = theta[i] + off * (theta[1] - theta[0])
+            kk = float(stationary_wavenumber(np.array([speed * math.cos(t)]), water)[0])
+            cgt = float(group_speed(jnp.asarray(kk), water))
+            return CuspLine(math.degrees(math.atan2(cgt * math.sin(t), speed - cgt * math.cos(t))), kk,
+                            math.degrees(t))
+    return CuspLine(math.degrees(float(phi[i])), float(kk), math.degrees(float(t)))
+
+
+@dataclass(frozen=True)
+class GaussianPressure:
+    """Surface pressure p(x) = p0·exp(−|x − x_s|²/(2σ²)) (Pa), x_s at the origin (0, 0).
+
+    Parameters
+    ----------
+    amplitude : float
+        p0, Pa (positive pushes the surface down).
+    size : float
+        σ, m, > 0 (resolved: ≥ the grid spacing).
+    """
+
+    amplitude: float = 100.0
+    size: float = 0.1
+
+    def __post_init__(self):
+        check_scalar("amplitude", self.amplitude)
+        check_scalar("size", self.size, lo=0.0, lo_open=True)
+
+    def spectrum(self, grid: Grid):
+        """DFT of p on the grid (Pa per point, DFT convention), full spectrum (n, n)."""
+        k2 = grid.wavenumber_magnitude() ** 2
+        ky, kx = grid.wavenumbers()
+        return ((self.amplitude * 2 * jnp.pi * self.size**2 / grid.dx**2) * jnp.exp(-0.5 * k2 * self.size**2)
+                * grid.source_phase(0.0, 0.0))
+
+
+@dataclass(frozen=True)
+class HullSource:
+    """The moving-hull source of Loviscach's ship kernels, as a steady-wake forcing.
+
+    A hull f (``wavephys.ship_waves.Hull``) of strength s (m²/s) moving at U in +x feeds
+    ψ at the rate ∂(s f)/∂t = −s U ∂f/∂x; as a pressure, p = ρ s U ∂f/∂x (a dipole).
+    Use it to compare :class:`~wavephys.simulation.Simulation` ships with their steady wake.
+    """
+
+    hull: object
+    strength: float = 0.01
+
+    def forcing(self, grid: Grid, water: Water, speed: float):
+        from wavephys.physics.ship_waves import hull_spectrum
+
+        ky, kx = grid.wavenumbers()
+        # sampled on the grid's own points with the hull at (0, 0): the DFT of :meth:`Grid.source_phase`
+        f_hat = hull_spectrum(self.hull, grid, (0.0, 0.0), (0.0, 0.0, 0.0))
+        return -1j * kx * speed * self.strength * f_hat
+
+
+def steady_wake(grid: Grid, water: Water, speed: float, source, damping: float | None = None):
+    """Steady first-order height (m) of ``source`` moving in +x at ``speed``, centred on the grid.
+
+    Parameters
+    ----------
+    grid : Grid
+    water : Water
+    speed : float
+        U, m/s, ≥ 0.
+    source : GaussianPressure
+        The pressure distribution (its size must be ≥ the grid spacing).
+    damping : float, optional
+        ε, 1/s, > 0 (default 8U/L: the wake fades to e⁻⁴ over half the grid).
+    """
+    if not isinstance(grid, Grid):
+        raise TypeError(f"grid must be a wavephys.Grid, got {type(grid).__name__}")
+    check_scalar("speed", speed, lo=0.0)
+    if not isinstance(source, (GaussianPressure, HullSource)):
+        raise TypeError(f"source must be a GaussianPressure or HullSource, got {type(source).__name__}")
+    if isinstance(source, GaussianPressure) and source.size < float(grid.dx):
+        raise ValueError(f"source size {source.size} m must be ≥ the grid spacing {float(grid.dx)} m")
+    if damping is None:
+        damping = 8.0 * max(speed, 1e-3) / float(grid.length)
+    check_scalar("damping", damping, lo=0.0, lo_open=True)
+    k = grid.wavenumber_magnitude()
+    ky, kx = grid.wavenumbers()
+    omega = angular_frequency(k, water)
+    forcing = (-source.spectrum(grid) / water.rho if isinstance(source, GaussianPressure)
+               else source.forcing(grid, water, speed))
+    psi_hat = forcing / (1j * (omega - kx * speed) + damping)
+    eta_hat = 1j * height_multiplier(k, water) * psi_hat
+    return jnp.fft.ifft2(eta_hat).real
+
+

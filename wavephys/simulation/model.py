@@ -1,0 +1,183 @@
+"""The simulation model: grid, water, Δt and the numerical options, as one frozen pytree.
+
+The grid's side length, the water's g, ρ, σ and depth, and Δt are leaves (``jit``,
+``vmap`` and ``grad`` sweep them); the sizes and switches are static (they fix array
+shapes and compiled programs). ``dataclasses.replace(model, water=...)`` makes variants.
+:func:`operators` turns a model into the Fourier multipliers the step applies.
+"""
+
+from __future__ import annotations
+
+import functools
+from dataclasses import dataclass
+from typing import NamedTuple, Optional
+
+import jax
+import jax.numpy as jnp
+import numpy as np
+
+from wavephys.core.grid import Grid
+from wavephys.core.inputs import check_bool, check_instance, check_int, check_scalar, is_traced
+from wavephys.core.pytree import register
+from wavephys.core.water import Water
+from wavephys.physics.boundary import CUTOFF_METHODS, cutoff_mask
+from wavephys.physics.dispersion import angular_frequency, surface_operator
+from wavephys.physics.heights import height_multiplier
+from wavephys.physics.ship_waves import SHIP_METHODS
+
+__all__ = ["Model", "Operators", "operators", "DTYPES"]
+
+DTYPES = ("float32", "float64")
+
+
+def _dtype_name(dtype) -> str:
+    try:
+        name = jnp.dtype(dtype).name
+    except TypeError as exc:
+        raise TypeError(f"dtype must be float32 or float64, got {dtype!r}") from exc
+    if name not in DTYPES:
+        raise ValueError(f"dtype must be float32 or float64, got {name}")
+    if name == "float64" and not jax.config.jax_enable_x64:
+        raise ValueError("dtype float64 needs jax_enable_x64: "
+                         "jax.config.update('jax_enable_x64', True) before creating arrays")
+    return name
+
+
+@dataclass(frozen=True)
+class Model:
+    """What the spectral step needs to know: grid, water, Δt and numerical options.
+
+    Parameters
+    ----------
+    grid : Grid
+        The n × n periodic grid.
+    water : Water
+        Water properties (σ = 0 switches capillarity off, depth = inf finite depth).
+    dt : float
+        Time step Δt, s, finite and > 0. The propagation is exact for any Δt; what limits
+        Δt is what you do with the frames (Hermite error grows with ωΔt) and ships'
+        patches.
+    margin : int
+        Open-ocean cutoff margin M, samples, 0 ≤ M < n/2 (0: periodic, no cutoff).
+    cutoff : {"quadratic", "linear"}
+        Cutoff shape, a name in :data:`wavephys.physics.boundary.CUTOFF_METHODS`.
+    second_order : bool
+        Add the second-order height term to η (docs/physics.md §1.5).
+    dtype : "float32" (default) or "float64" (needs ``jax_enable_x64``).
+    ship_patch : int
+        Side 2M of the patch on which each ship's new waves are computed (even, 4 ≤ 2M ≤ n;
+        default min(64, n)).
+    leak_tolerance : float
+        Largest fraction of a step's ship waves the patch may miss
+        (:func:`wavephys.physics.ship_waves.patch_leak`); a larger leak is refused.
+    ship_method : {"kernels", "impulses"}
+        A name in :data:`wavephys.physics.ship_waves.SHIP_METHODS`.
+
+    Examples
+    --------
+    >>> from dataclasses import replace
+    >>> from wavephys import Grid, Water
+    >>> model = Model(Grid(64, 2.0), Water(), dt=0.02, margin=8)
+    >>> shallow = replace(model, water=Water(depth=0.1))
+    """
+
+    grid: Grid
+    water: Water = Water()
+    dt: float = 1.0 / 30.0
+    margin: int = 0
+    cutoff: str = "quadratic"
+    second_order: bool = False
+    dtype: str = "float32"
+    ship_patch: Optional[int] = None
+    leak_tolerance: float = 1e-3
+    ship_method: str = "kernels"
+
+    def __post_init__(self):
+        check_instance("grid", self.grid, Grid, "wavephys.Grid")
+        check_instance("water", self.water, Water, "wavephys.Water")
+        check_scalar("dt", self.dt, lo=0.0, lo_open=True)
+        set_ = lambda k, v: object.__setattr__(self, k, v)
+        set_("margin", check_int("margin", self.margin, lo=0))
+        if 2 * self.margin >= self.grid.n:
+            raise ValueError(f"margin must be < n/2 = {self.grid.n // 2}, got {self.margin}")
+        CUTOFF_METHODS.check(self.cutoff, "cutoff")
+        set_("second_order", check_bool("second_order", self.second_order))
+        set_("dtype", _dtype_name(self.dtype))
+        patch = min(64, self.grid.n) if self.ship_patch is None else self.ship_patch
+        set_("ship_patch", check_int("ship_patch", patch, lo=4, hi=self.grid.n, even=True))
+        check_scalar("leak_tolerance", self.leak_tolerance, lo=0.0, hi=1.0, lo_open=True)
+        set_("leak_tolerance", float(self.leak_tolerance))
+        SHIP_METHODS.check(self.ship_method, "ship_method")
+
+    @property
+    def real_dtype(self):
+        """The model's floating dtype as a numpy dtype."""
+        return np.dtype(self.dtype)
+
+
+register(Model, ("grid", "water", "dt"),
+         ("margin", "cutoff", "second_order", "dtype", "ship_patch", "leak_tolerance", "ship_method"))
+
+
+class Operators(NamedTuple):
+    """Fourier multipliers of one model on the rfft2 half spectrum ``(n, n//2 + 1)``.
+
+    ``cos``, ``sin``: rotation of (φ̂, χ̂) by ωΔt; ``height`` K/ω (s/m) and
+    ``inverse_height`` ω/K; ``K`` = |k| tanh(|k|h) (rad/m); ``k`` = |k| (rad/m);
+    ``omega`` = ω(|k|) (rad/s);
+    ``duhamel_sin`` = sin(ωΔt)/ω and ``duhamel_cos`` = (1 − cos ωΔt)/ω (s) for
+    continuous sources; ``mask`` the cutoff weights ``(n, n)`` or None.
+    """
+
+    cos: jax.Array
+    sin: jax.Array
+    height: jax.Array
+    inverse_height: jax.Array
+    K: jax.Array
+    k: jax.Array
+    omega: jax.Array
+    duhamel_sin: jax.Array
+    duhamel_cos: jax.Array
+    mask: Optional[jax.Array]
+
+
+def _build(model: Model, dtype) -> Operators:
+    """The multipliers in ``dtype`` (computed in the precision of the model's leaves)."""
+    k = model.grid.wavenumber_magnitude(real=True)
+    omega = angular_frequency(k, model.water)
+    phase = omega * model.dt
+    pos = omega > 0
+    w = jnp.where(pos, omega, 1.0)
+    hm = height_multiplier(k, model.water)
+    ops = Operators(
+        cos=jnp.cos(phase), sin=jnp.sin(phase), height=hm,
+        inverse_height=jnp.where(hm > 0, 1.0 / jnp.where(hm > 0, hm, 1.0), 0.0),
+        K=surface_operator(k, model.water), k=k, omega=omega,
+        duhamel_sin=jnp.where(pos, jnp.sin(phase) / w, model.dt),
+        duhamel_cos=jnp.where(pos, (1.0 - jnp.cos(phase)) / w, 0.0),
+        mask=cutoff_mask(model.grid.n, model.margin, model.cutoff, dtype) if model.margin else None)
+    return Operators(*(None if a is None else jnp.asarray(a, dtype) for a in ops))
+
+
+@functools.lru_cache(maxsize=8)
+def _concrete(model: Model) -> Operators:
+    return _build_float64(model)
+
+
+def _build_float64(model: Model) -> Operators:
+    """Concrete models: multipliers computed in float64 on the host, then cast, so that the
+    phase ωΔt keeps its digits for any Δt (docs/physics.md §1.2)."""
+    with jax.enable_x64(True):
+        ops = _build(model, jnp.float64)
+        return Operators(*(None if a is None else jnp.asarray(a, model.dtype) for a in ops))
+
+
+def operators(model: Model) -> Operators:
+    """The Fourier multipliers of ``model`` (cached for concrete models, traced otherwise)."""
+    check_instance("model", model, Model, "wavephys.simulation.Model")
+    if is_traced(model):
+        return _build(model, model.dtype)
+    try:
+        return _concrete(model)
+    except TypeError:  # unhashable leaves (arrays): build without the cache
+        return _build_float64(model)

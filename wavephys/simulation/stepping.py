@@ -1,0 +1,278 @@
+"""The spectral wave simulation as pure functions: Loviscach (2003), §3, on real FFTs.
+
+State: the complex wave field ψ = φ + iχ (m²/s) stored as its two real parts, stacked,
+so each step needs only real transforms, batched. :func:`step` does, in the paper's order:
+
+1. one batched ``rfft2`` of (φ, χ);
+2. impulse sources (stones, wind seas) added in Fourier space at t;
+3. the surface of this state: η = −F⁻¹[(K/ω)χ̂] (+ the second-order term if enabled)
+   and η̇ = F⁻¹[Kφ̂] (:mod:`wavephys.physics.heights`);
+4. exact propagation by Δt, a rotation of (φ̂, χ̂) by ωΔt (:mod:`wavephys.physics.ring_waves`),
+   plus continuous sources integrated exactly over the step;
+5. two batched ``irfft2``: (φ', χ') → the next state, (η̂, η̇̂) → the surface
+   [and (q̂, Λη̂, Λq̂) for the second-order term];
+6. the open-ocean cutoff on the next state (if ``margin`` > 0; :mod:`wavephys.physics.boundary`);
+7. host-side sources (ships) add this step's waves after the cutoff.
+
+It returns the state at t + Δt and the surface at t: 2 forward and 4 inverse real
+transforms per step (7 inverse with second order). Steps 1–4 and 5–6 are two compiled
+programs that each start with their FFTs (the XLA CPU note in :mod:`wavephys.core.spectral`);
+under a user's ``jit``/``vmap``/``grad`` they fuse into the caller's program.
+"""
+
+from __future__ import annotations
+
+from functools import partial
+
+import jax
+import jax.numpy as jnp
+import numpy as np
+
+from wavephys.core.inputs import check_array, check_instance, check_int, check_scalar, is_traced
+from wavephys.physics.heights import potential_from_height, second_order_correction
+from wavephys.physics.interpolation import hermite_frame
+from wavephys.physics.ring_waves import rotate_pair
+from wavephys.simulation.model import Model, Operators, operators
+from wavephys.simulation.sources import sort_sources
+from wavephys.simulation.state import State, Surface, unchecked
+
+__all__ = ["step", "run", "surface", "energy", "frame", "initial_state", "state_from_psi", "add_height",
+           "add_source"]
+
+
+# -- the compiled pieces (pure) ---------------------------------------------------------
+def _spectra(model: Model, ops: Operators, fields, time, impulses):
+    """rfft2 of the state with the impulses of t added: (φ̂, χ̂)."""
+    spec = jnp.fft.rfft2(fields)
+    ph, ch = spec[..., 0, :, :], spec[..., 1, :, :]
+    for source in impulses:
+        d_ph, d_ch = source.impulse(model, ops, time)
+        ph = ph if d_ph is None else ph + d_ph
+        ch = ch if d_ch is None else ch + d_ch
+    return ph, ch
+
+
+def _surface_spectra(model: Model, ops: Operators, ph, ch):
+    eta_hat = -ops.height * ch
+    surf = [eta_hat, ops.K * ph]
+    if model.second_order:
+        q_hat = ops.height * ph
+        surf += [q_hat, ops.k * eta_hat, ops.k * q_hat]
+    return jnp.stack(surf, axis=-3)
+
+
+@jax.jit
+def _forward(model: Model, ops: Operators, fields, time, impulses, rates):
+    """Steps 1–4: transforms, impulses, surface spectra, propagation and continuous sources."""
+    ph, ch = _spectra(model, ops, fields, time, impulses)
+    surf = _surface_spectra(model, ops, ph, ch)
+    ph, ch = rotate_pair(ph, ch, ops.cos, ops.sin)
+    for source in rates:
+        for s_hat, a, b in _duhamel(model, ops, source, time):
+            ph, ch = ph + a * s_hat, ch - b * s_hat
+    return jnp.stack([ph, ch], axis=-3), surf
+
+
+def _duhamel(model: Model, ops: Operators, source, time):
+    """(Ŝ_j, a_j, b_j) for a continuous source over [t, t + Δt]: composite midpoint rule on the
+    source's ``substeps`` M sub-intervals δ = Δt/M, each propagated exactly to the step's end:
+    Δψ̂ = Σ_j Ŝ(t + (j + ½)δ)·e^{−iω(M−1−j)δ}(1 − e^{−iωδ})/(iω) = Σ_j Ŝ_j (a_j − i b_j)."""
+    m = getattr(source, "substeps", 1)
+    if m == 1:
+        return [(source.rate(model, ops, time + 0.5 * model.dt), ops.duhamel_sin, ops.duhamel_cos)]
+    delta = model.dt / m
+    pos = ops.omega > 0
+    w = jnp.where(pos, ops.omega, 1.0)
+    big_a = jnp.where(pos, jnp.sin(ops.omega * delta) / w, delta)
+    big_b = jnp.where(pos, (1.0 - jnp.cos(ops.omega * delta)) / w, 0.0)
+    terms = []
+    for j in range(m):
+        c, s = jnp.cos(ops.omega * (m - 1 - j) * delta), jnp.sin(ops.omega * (m - 1 - j) * delta)
+        s_hat = source.rate(model, ops, time + (j + 0.5) * delta)
+        terms.append((s_hat, c * big_a - s * big_b, c * big_b + s * big_a))
+    return terms
+
+
+def _surface_fields(model: Model, surf):
+    if model.second_order:
+        eta = surf[..., 0, :, :] + second_order_correction(surf[..., 0, :, :], surf[..., 2, :, :],
+                                                           surf[..., 3, :, :], surf[..., 4, :, :])
+        return jnp.stack([eta, surf[..., 1, :, :]], axis=-3)
+    return surf
+
+
+@jax.jit
+def _inverse(model: Model, ops: Operators, state_spec, surf_spec, time):
+    """Steps 5–6: the two batched irfft2 (next state, surface) and the cutoff."""
+    n = model.grid.n
+    new = jnp.fft.irfft2(state_spec, s=(n, n))
+    if ops.mask is not None:
+        new = new * ops.mask
+    surf = _surface_fields(model, jnp.fft.irfft2(surf_spec, s=(n, n)))
+    dtype = model.real_dtype
+    return (unchecked(State, new.astype(dtype), time + jnp.asarray(model.dt, dtype)),
+            unchecked(Surface, surf.astype(dtype), time))
+
+
+def _pure_step(model, ops, state, impulses=(), rates=()):
+    return _inverse(model, ops, *_forward(model, ops, state.fields, state.time, impulses, rates), state.time)
+
+
+# -- checks -------------------------------------------------------------------------------
+def _check_model(model):
+    check_instance("model", model, Model, "wavephys.simulation.Model")
+
+
+def _check_state(model: Model, state, name: str = "state"):
+    check_instance(name, state, State, "wavephys.simulation.State")
+    n = model.grid.n
+    shape = np.shape(state.fields)
+    if shape[-3:] != (2, n, n):
+        raise ValueError(f"{name}.fields must have shape (..., 2, {n}, {n}) for this model's grid, got {shape}")
+    if np.dtype(state.fields.dtype) != model.real_dtype:
+        raise ValueError(f"{name}.fields must be {model.dtype} like the model, got {state.fields.dtype}")
+
+
+# -- public -------------------------------------------------------------------------------
+def step(model: Model, state: State, sources=()):
+    """Advance ``state`` by Δt: returns ``(state at t + Δt, surface at t)``.
+
+    Pure: the same inputs give the same outputs, and it works under ``jax.jit``,
+    ``jax.vmap`` (e.g. over a batch of :class:`~wavephys.Water`) and ``jax.grad``
+    (e.g. with respect to ``model.water.depth``) when no host-side source (ship) is given.
+
+    Parameters
+    ----------
+    model : Model
+        Grid, water, Δt and numerical options.
+    state : State
+        The wave field at t (``initial_state(model)`` for still water).
+    sources : sequence of sources
+        Objects of the source protocol (:mod:`wavephys.simulation.sources`): impulses
+        (``Stones``, ``WindSea``) are added at t, before the surface is taken; continuous
+        sources (``Forcing``) act over [t, t + Δt]; ships add their waves after the cutoff.
+
+    Examples
+    --------
+    >>> from wavephys import Grid, Water, Stones
+    >>> model = Model(Grid(64, 2.0), Water(), dt=0.02, margin=8)
+    >>> new, surf = step(model, initial_state(model), [Stones(0.0, 0.0, 0.1, 0.01)])
+    >>> surf.eta.shape, round(float(new.time), 2)
+    ((64, 64), 0.02)
+    """
+    _check_model(model)
+    _check_state(model, state)
+    impulses, rates, adders = sort_sources(model, sources)
+    new, surf = _pure_step(model, operators(model), state, impulses, rates)
+    if adders:
+        if is_traced(state) or is_traced(model):
+            raise TypeError("ships (host-side sources) cannot be stepped under jit/vmap/grad: call step "
+                            "outside JAX transformations, or leave them out")
+        fields, t = new.fields, float(state.time)
+        for source in adders:
+            fields = source.add(model, fields, t)
+        new = unchecked(State, fields, new.time)
+    return new, surf
+
+
+@partial(jax.jit, static_argnames=("steps",))
+def _run(model, ops, state, rates, steps):
+    return jax.lax.scan(lambda s, _: _pure_step(model, ops, s, (), rates), state, None, length=steps)
+
+
+def run(model: Model, state: State, steps: int, sources=()):
+    """``steps`` steps in one compiled loop: ``(final state, Surface of stacked arrays)``.
+
+    The surfaces are those at t, t + Δt, …, t + (steps − 1)Δt (shape ``(steps, n, n)``).
+    Only continuous sources (``rate``: forcing functions) can act in the loop; add
+    impulses with :func:`add_source` first, and step ships one :func:`step` at a time.
+    """
+    _check_model(model)
+    _check_state(model, state)
+    steps = check_int("steps", steps, lo=1)
+    impulses, rates, adders = sort_sources(model, sources)
+    if impulses or adders:
+        raise ValueError("run takes continuous sources (forcing functions) only: apply impulses (stones, "
+                         "wind) with add_source before the loop, and step ships with step()")
+    return _run(model, operators(model), state, rates, steps)
+
+
+@jax.jit
+def _surface(model, ops, fields, time):
+    ph, ch = _spectra(model, ops, fields, time, ())
+    surf = jnp.fft.irfft2(_surface_spectra(model, ops, ph, ch), s=(model.grid.n,) * 2)
+    return unchecked(Surface, _surface_fields(model, surf).astype(model.real_dtype), time)
+
+
+def surface(model: Model, state: State) -> Surface:
+    """The surface (η, η̇) of ``state``, without stepping."""
+    _check_model(model)
+    _check_state(model, state)
+    return _surface(model, operators(model), state.fields, state.time)
+
+
+def energy(model: Model, state: State):
+    """Wave energy per unit area of ``state`` (linear theory), J/m².
+
+    E = ½ρ⟨φ·Kφ + χ·Kχ⟩, which equals potential + capillary + kinetic energy of the
+    first-order surface (docs/physics.md §1.8); conserved exactly by propagation.
+    """
+    _check_model(model)
+    _check_state(model, state)
+    n = model.grid.n
+    kf = jnp.fft.irfft2(operators(model).K * jnp.fft.rfft2(state.fields), s=(n, n))
+    return model.water.rho * jnp.mean(state.fields * kf, axis=(-3, -2, -1))
+
+
+def frame(model: Model, before: Surface, after: Surface, s: float):
+    """Hermite-interpolated height (m) at t + sΔt between two consecutive surfaces."""
+    _check_model(model)
+    check_instance("before", before, Surface, "wavephys.simulation.Surface")
+    check_instance("after", after, Surface, "wavephys.simulation.Surface")
+    return hermite_frame(before.eta, after.eta, before.eta_dot, after.eta_dot, model.dt, s)
+
+
+def initial_state(model: Model, time: float = 0.0) -> State:
+    """Still water at ``time`` (s)."""
+    _check_model(model)
+    check_scalar("time", time)
+    n = model.grid.n
+    return unchecked(State, jnp.zeros((2, n, n), model.dtype), jnp.asarray(time, model.dtype))
+
+
+def state_from_psi(model: Model, psi, time: float = 0.0) -> State:
+    """A state from a complex field ψ (m²/s, shape ``(n, n)``)."""
+    _check_model(model)
+    n = model.grid.n
+    check_array("psi", psi, complex_ok=True, ndim=2, shape_tail=(n, n))
+    check_scalar("time", time)
+    psi = jnp.asarray(psi)
+    return unchecked(State, jnp.stack([jnp.real(psi), jnp.imag(psi)]).astype(model.dtype),
+                     jnp.asarray(time, model.dtype))
+
+
+def add_height(model: Model, state: State, eta) -> State:
+    """Add a height disturbance η (m, ``(n, n)``) with the fluid at rest (its mean drops)."""
+    _check_model(model)
+    _check_state(model, state)
+    n = model.grid.n
+    check_array("eta", eta, ndim=2, shape_tail=(n, n))
+    psi = potential_from_height(jnp.asarray(eta, model.dtype), model.grid, model.water)
+    return unchecked(State, state.fields + jnp.stack([psi.real, psi.imag]).astype(model.dtype), state.time)
+
+
+@jax.jit
+def _apply(model, ops, fields, time, impulses):
+    ph, ch = _spectra(model, ops, fields, time, impulses)
+    return jnp.fft.irfft2(jnp.stack([ph, ch], axis=-3), s=(model.grid.n,) * 2).astype(model.real_dtype)
+
+
+def add_source(model: Model, state: State, source) -> State:
+    """Apply an impulse source (stones, a wind sea) to ``state`` now, without stepping."""
+    _check_model(model)
+    _check_state(model, state)
+    impulses, rates, adders = sort_sources(model, (source,))
+    if not impulses:
+        raise TypeError(f"source must be an impulse source (Stones, WindSea), got {type(source).__name__}: "
+                        f"continuous sources and ships act during step()")
+    return unchecked(State, _apply(model, operators(model), state.fields, state.time, impulses), state.time)
