@@ -23,8 +23,8 @@ from optics.light.fresnel import (N_AIR, N_WATER, approximation_errors, normal_r
 from wavephys.core.grid import Grid
 from wavephys.harness.checks import Check, bound, compare
 
-__all__ = ["CHECKS", "plain_numpy_water_srgb", "sinusoid_scene", "flat_pool", "flat_pool_colour", "underwater_view",
-           "check_fresnel", "check_absorption", "check_caustics", "check_renderer"]
+# the scenes and helpers below the checks (flat_pool, sinusoid_scene, ...) are the checks' own
+__all__ = ["CHECKS", "check_fresnel", "check_absorption", "check_caustics", "check_renderer"]
 
 
 def check_fresnel() -> list[Check]:

@@ -109,7 +109,7 @@ def test_nan_heights_are_refused():
     ground = np.full((16, 16), -1.0)
     water = np.zeros((16, 16))
     water[3, 4] = np.nan
-    with pytest.raises(ValueError, match="water contains NaN"):
+    with pytest.raises(ValueError, match="water must be finite"):
         Scene(ground, water, 4.0)
 
 

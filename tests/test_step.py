@@ -12,7 +12,7 @@ from wavephys.physics.forcing import Forcing
 from wavephys.physics.ship_waves import Hull, Ship, straight_path
 from wavephys.physics.wake import GaussianPressure, steady_wake
 from wavephys.physics.wind import WindSea
-from wavephys.simulation import Model, add_source, initial_state, run, step, surface
+from wavephys.simulation import Model, add_height, add_source, checked, initial_state, run, step, surface
 
 GRID = Grid(64, 4.0)
 STONE = Stones(0.3, -0.2, 0.25, 1e-3)
@@ -203,3 +203,28 @@ class TestSources:
             step(model, other)
         with pytest.raises(TypeError, match="state"):
             step(model, other.fields)
+
+
+class TestChecked:
+    def test_checked_step_equals_step(self):
+        model = Model(GRID, Water(), dt=0.05)
+        state = _ring(model, 1)
+        a, _ = step(model, state)
+        b, _ = checked(step)(model, state)
+        np.testing.assert_array_equal(a.fields, b.fields)
+
+    def test_checked_catches_a_nan_made_inside(self):
+        model = Model(GRID, Water(), dt=0.05)
+
+        def broken(model, state):
+            new, surf = step(model, state)
+            return jnp.log(new.fields - 1.0)  # log of a negative number: NaN inside the trace
+
+        with pytest.raises(ValueError, match="not finite"):
+            checked(broken)(model, initial_state(model))
+
+
+def test_heights_in_the_wrong_units_get_a_hint():
+    model = Model(GRID, Water(), dt=0.05)
+    with pytest.raises(ValueError, match="mm or cm"):
+        add_height(model, initial_state(model), np.full((64, 64), 5.0))  # 5 "m" on a 4 m domain: millimetres?

@@ -45,7 +45,7 @@ def test_leapfrog_stability_limit():
     dt = max_stable_dt(st, GRID)
     eta = jax.random.normal(jax.random.PRNGKey(1), (64, 64))
     ok, _ = kernel_run(eta, eta, st, 0.95 * dt, 400)
-    bad, _ = kernel_run(eta, eta, st, 1.05 * dt, 400)
+    bad, _ = kernel_run(eta, eta, st, 1.05 * dt, 400, check_stability=False)
     assert float(jnp.abs(ok).max()) < 20 * float(jnp.abs(eta).max())
     assert not bool(jnp.all(jnp.abs(bad) < 1e6))
 

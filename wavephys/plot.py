@@ -14,6 +14,31 @@ import io
 import numpy as np
 from matplotlib.figure import Figure
 
+from wavephys.core.inputs import Array, Bool, Int, Items, Mapping, Maybe, Real, Spec, Text, Vector, describe, validate
+
+_ETA = Array(ndim=2)
+_DX = Real(lo=0.0, lo_open=True)
+_TEXT = Text()
+
+
+class _Samples(Spec):
+    """Measured dispersion samples: an object with arrays ``k`` and ``omega``."""
+
+    def __call__(self, name, value, arguments):
+        if not (hasattr(value, "k") and hasattr(value, "omega")):
+            raise TypeError(f"{name} must be wavephys.harness.DispersionSamples, got {describe(value)}")
+        return value
+
+
+class _Angles(Spec):
+    """A measured angle (degrees, or an object with ``angle``), or a list or tuple of them."""
+
+    def __call__(self, name, value, arguments):
+        items = list(value) if isinstance(value, (list, tuple)) else [value]
+        for i, a in enumerate(items):
+            Real(lo=0.0, hi=90.0)(name if len(items) == 1 else f"{name}[{i}]", getattr(a, "angle", a), arguments)
+        return value
+
 __all__ = ["WaveFigure", "plot_surface", "plot_dispersion", "plot_error_vs_time", "plot_curves", "plot_wake",
            "plot_images"]
 
@@ -31,13 +56,14 @@ def _figure(**kw):
     return WaveFigure(**kw)
 
 
+@validate(eta=_ETA, dx=_DX, title=_TEXT, limit=Maybe(_DX))
 def plot_surface(eta, dx: float, title: str = "", limit: float | None = None):
     """Height field η (m) on a grid of spacing dx (m), centred axes in metres.
 
     ``limit`` (m) sets the symmetric colour range (default: max |η|)."""
     eta = np.asarray(eta)
-    n = eta.shape[-1]
-    ext = np.array([-n / 2, n / 2, -n / 2, n / 2]) * dx  # cell edges: samples sit at the cell centres
+    ny, nx = eta.shape
+    ext = np.array([-nx / 2, nx / 2, -ny / 2, ny / 2]) * dx  # cell edges: samples sit at the cell centres
     fig = _figure(figsize=(5.5, 4.5))
     ax = fig.add_subplot()
     lim = limit or float(np.abs(eta).max()) or 1.0
@@ -50,8 +76,15 @@ def plot_surface(eta, dx: float, title: str = "", limit: float | None = None):
     return fig
 
 
+@validate(samples=_Samples(), theory_k=Maybe(Array(lo=0.0, ndim=1)), theory_omega=Maybe(Array(lo=0.0, ndim=1)),
+          title=_TEXT)
 def plot_dispersion(samples, theory_k=None, theory_omega=None, title: str = ""):
-    """Measured (k, ω) samples against a theory curve."""
+    """Measured (k, ω) samples against a theory curve (``theory_k``, ``theory_omega``: 1-D, rad/m
+    and rad/s, given together)."""
+    if (theory_k is None) != (theory_omega is None) or (
+            theory_k is not None and np.shape(theory_k) != np.shape(theory_omega)):
+        raise ValueError(f"theory_k and theory_omega must be given together with one shape, got "
+                         f"{np.shape(theory_k)} and {np.shape(theory_omega)}")
     fig = _figure(figsize=(5.5, 4))
     ax = fig.add_subplot()
     ax.loglog(samples.k, samples.omega, ".", ms=3, label="measured ridge")
@@ -65,6 +98,16 @@ def plot_dispersion(samples, theory_k=None, theory_omega=None, title: str = ""):
     return fig
 
 
+class _Row(Spec):
+    def __call__(self, name, value, arguments):
+        if not isinstance(value, dict) or not {"method", "seconds", "error"} <= set(value):
+            raise TypeError(f"{name} must be a dict with 'method', 'seconds' and 'error', got {describe(value)}")
+        Real(lo=0.0, lo_open=True)(f"{name}['seconds']", value["seconds"], arguments)
+        Real(lo=0.0, lo_open=True)(f"{name}['error']", value["error"], arguments)
+        return value
+
+
+@validate(rows=Items(_Row(), min_len=1), title=_TEXT)
 def plot_error_vs_time(rows, title: str = "error against cost"):
     """Log-log error against seconds, one line per method; ``rows`` are dicts with
     ``method``, ``seconds``, ``error`` and optionally ``label``."""
@@ -87,6 +130,19 @@ def plot_error_vs_time(rows, title: str = "error against cost"):
     return fig
 
 
+class _Curve(Spec):
+    def __call__(self, name, value, arguments):
+        Items(length=2)(name, value, arguments)
+        x, y = value
+        Array(ndim=1)(f"{name}[0]", x, arguments)
+        Array(ndim=1, allow_inf=True)(f"{name}[1]", y, arguments)
+        if np.shape(x) != np.shape(y):
+            raise ValueError(f"{name}: x and y must have one length, got {np.shape(x)} and {np.shape(y)}")
+        return value
+
+
+@validate(curves=Mapping(_Curve()), xlabel=_TEXT, ylabel=_TEXT, title=_TEXT, logx=Bool(), logy=Bool(),
+          hlines=Maybe(Mapping(Real())))
 def plot_curves(curves: dict, xlabel: str, ylabel: str, title: str = "", logx=False, logy=True,
                 hlines: dict | None = None):
     """Several (x, y) curves by label, e.g. a failure boundary; ``hlines`` label→y."""
@@ -110,6 +166,8 @@ def plot_curves(curves: dict, xlabel: str, ylabel: str, title: str = "", logx=Fa
     return fig
 
 
+@validate(eta=_ETA, dx=_DX, source=Vector(2), angle=Maybe(_Angles()), kelvin=Real(lo=0.0, hi=90.0), title=_TEXT,
+          window=Maybe(Vector(4)))
 def plot_wake(eta, dx: float, *, source=(0.0, 0.0), angle=None, kelvin: float = 19.47, title: str = "",
               window: tuple | None = None):
     """A wake height field with Kelvin's lines (dashed) and measured angles (solid, dotted, …).
@@ -140,11 +198,20 @@ def plot_wake(eta, dx: float, *, source=(0.0, 0.0), angle=None, kelvin: float = 
     return fig
 
 
+class _Image(Spec):
+    def __call__(self, name, value, arguments):
+        Array(min_ndim=2)(name, value, arguments)
+        shape = np.shape(value)
+        if len(shape) > 3 or (len(shape) == 3 and shape[2] not in (3, 4)):
+            raise ValueError(f"{name} must have shape (height, width), (height, width, 3) or (..., 4), got {shape}")
+        return value
+
+
+@validate(images=Items(_Image(), min_len=1, iterable=True), titles=Items(_TEXT, iterable=True),
+          columns=Maybe(Int(lo=1)), size=Real(lo=0.0, hi=100.0, lo_open=True))
 def plot_images(images, titles=(), columns: int | None = None, size: float = 3.2):
     """A row (or grid) of RGB images, e.g. rendered frames (uint8 or linear float in [0, 1])."""
     images = list(images)
-    if not images:
-        raise ValueError("images must hold at least one image")
     cols = columns or len(images)
     rows = -(-len(images) // cols)
     h, w = np.asarray(images[0]).shape[:2]

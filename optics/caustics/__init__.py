@@ -30,7 +30,7 @@ from wavephys.core.methods import Methods
 
 __all__ = ["FLOOR_IRRADIANCE_METHODS", "floor_irradiance", "floor_irradiance_beam", "floor_irradiance_photon",
            "floor_irradiance_reference", "floor_irradiance_blinn_phong", "first_fold_depth", "focal_depth",
-           "sinusoid_irradiance", "surface_fields", "bilateral_filter", "blur_121"]
+           "sinusoid_irradiance", "bilateral_filter", "blur_121"]
 
 FLOOR_IRRADIANCE_METHODS = Methods("floor irradiance", beam=floor_irradiance_beam, photon=floor_irradiance_photon,
                                    reference=floor_irradiance_reference, blinn_phong=floor_irradiance_blinn_phong)

@@ -12,10 +12,12 @@ import jax.numpy as jnp
 import numpy as np
 
 from optics.light.directions import refract
-from optics.light.fresnel import N_AIR, N_WATER, reflectance_exact
+from optics.light.fresnel import MAX_INDEX, N_AIR, N_WATER, reflectance_exact
 from wavephys.core.grid import Grid
-from wavephys.core.inputs import check_array, check_bool, check_instance, check_int, check_scalar
+from wavephys.core.inputs import (Array, Int, Real, _real_kind, check_array, check_bool, check_instance, check_int, check_scalar,
+                                  validate)
 
+__internal__ = True  # tooling for the library's own modules: not fuzzed as public API
 __all__ = ["Lighting", "prepare", "surface_fields", "land", "blur_121", "bilateral_filter"]
 
 
@@ -35,7 +37,12 @@ def prepare(eta, grid: Grid, depth, sun, resolution, n_water, fresnel, check_val
     """Check a caustics call's common arguments (before any work) and normalize them."""
     check_instance("grid", grid, Grid, "wavephys.Grid")
     n = grid.n
-    check_array("eta", eta, ndim=2, shape_tail=(n, n)) if check_values else None
+    if check_values:
+        check_array("eta", eta, ndim=2, shape_tail=(n, n))
+    else:  # kinds and shapes only (values are checked on the device by the caller)
+        _real_kind("eta", eta, "an array of numbers")
+        if not np.issubdtype(np.asarray(eta).dtype if not hasattr(eta, "dtype") else eta.dtype, np.number):
+            raise TypeError(f"eta must be numeric, got dtype {getattr(eta, 'dtype', np.asarray(eta).dtype)}")
     if np.shape(eta) != (n, n):
         raise ValueError(f"eta must have shape ({n}, {n}), got {np.shape(eta)}")
     ground = np.ndim(depth) == 2
@@ -51,7 +58,7 @@ def prepare(eta, grid: Grid, depth, sun, resolution, n_water, fresnel, check_val
     sun = np.asarray(sun, float)
     if not sun[2] > 0:
         raise ValueError(f"sun must point up (z > 0), got {tuple(sun)}")
-    check_scalar("n_water", n_water, lo=1.0)
+    check_scalar("n_water", n_water, lo=N_AIR, hi=MAX_INDEX, lo_open=True)  # denser than air: light bends in
     check_bool("fresnel", fresnel)
     m = n if resolution is None else check_int("resolution", resolution, lo=2)
     return Lighting(jnp.asarray(eta, jnp.float32), grid, floor, ground, -sun / np.linalg.norm(sun), m,
@@ -90,21 +97,26 @@ def land(xs, ys, eta, gx, gy, d, floor, n_water, fresnel, iterations: int = 5):
     return xs + s * t[..., 0], ys + s * t[..., 1], trans
 
 
+_IMAGE = Array(ndim=2)
+
+
+@validate(image=_IMAGE)
 def blur_121(image):
-    """The 3 × 3 1-2-1 blur (periodic) Loviscach uses to hide the beam triangles."""
+    """The 3 × 3 1-2-1 blur (periodic) Loviscach uses to hide the beam triangles; ``image`` 2-D."""
+    image = jnp.asarray(image)
     k = lambda a, ax: 0.25 * jnp.roll(a, 1, ax) + 0.5 * a + 0.25 * jnp.roll(a, -1, ax)
     return k(k(image, 0), 1)
 
 
+@validate(image=_IMAGE, radius=Int(lo=1, hi=32), sigma_space=Real(lo=0.0, hi=1e3, lo_open=True),
+          sigma_range=Real(lo=0.0, hi=1e3, lo_open=True))
 def bilateral_filter(image, radius: int = 2, sigma_space: float = 1.0, sigma_range: float = 0.2):
     """Edge-preserving bilateral filter (periodic): weights exp(−r²/2σ_s²)·exp(−ΔE²/2σ_r²).
 
     ``sigma_space`` in pixels, ``sigma_range`` relative to the image mean (an all-zero
-    image is returned unchanged).
+    image is returned unchanged); ``image`` 2-D, ``radius`` 1 to 32 pixels.
     """
-    radius = check_int("radius", radius, lo=0)
-    check_scalar("sigma_space", sigma_space, lo=0.0, lo_open=True)
-    check_scalar("sigma_range", sigma_range, lo=0.0, lo_open=True)
+    image = jnp.asarray(image)
     scale = jnp.maximum(jnp.mean(jnp.abs(image)), jnp.finfo(jnp.float32).tiny)
     num = jnp.zeros_like(image)
     den = jnp.zeros_like(image)

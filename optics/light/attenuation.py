@@ -36,7 +36,7 @@ from importlib import resources
 
 import numpy as np
 
-from wavephys.core.inputs import check_array, check_choice, check_scalar
+from wavephys.core.inputs import check_array, check_choice, check_int, check_scalar
 
 __all__ = [
     "transmittance",
@@ -86,9 +86,19 @@ def underwater_radiance(ground, diffuse, distance, depth, absorption, depth_coef
     absorption, depth_coefficient : array_like
         a and b, 1/m, ≥ 0 (b = 0: the simplified model).
     """
+    check_array("ground", ground, lo=0.0)
+    check_array("diffuse", diffuse, lo=0.0)
+    check_array("distance", distance, lo=0.0)
     check_array("depth", depth, lo=0.0)
+    check_array("absorption", absorption, lo=0.0)
     check_array("depth_coefficient", depth_coefficient, lo=0.0)
     import jax.numpy as jnp
+
+    try:
+        np.broadcast_shapes(*(np.shape(a) for a in (ground, diffuse, distance, depth)))
+    except ValueError:
+        raise ValueError(f"ground, diffuse, distance and depth must broadcast together, got shapes "
+                         f"{[np.shape(a) for a in (ground, diffuse, distance, depth)]}") from None
 
     alpha = transmittance(distance, absorption) * jnp.exp(-jnp.asarray(depth_coefficient) * jnp.asarray(depth))
     return alpha * jnp.asarray(ground) + (1.0 - alpha) * jnp.asarray(diffuse)
@@ -187,6 +197,7 @@ def fit_rgb_coefficients(max_distance: float = 5.0, illuminant: str = "D65", sam
     (channels that are not positive are left out of their own fit).
     """
     check_scalar("max_distance", max_distance, lo=0.0, lo_open=True)
+    samples = check_int("samples", samples, lo=2, hi=100000)
     d = np.linspace(max_distance / samples, max_distance, samples)
     rgb = water_srgb(d, illuminant, gamut="none")
     coeffs = []
@@ -199,7 +210,10 @@ def fit_rgb_coefficients(max_distance: float = 5.0, illuminant: str = "D65", sam
 
 
 def rgb_error(distance, coefficients, illuminant: str = "D65"):
-    """max over channels |e^{−a_c d} − water_srgb(d)_c| (clipped gamut), per distance."""
+    """max over channels |e^{−a_c d} − water_srgb(d)_c| (clipped gamut), per distance.
+
+    ``coefficients``: a_c, 1/m, three numbers ≥ 0 (e.g. :func:`fit_rgb_coefficients`)."""
+    check_array("coefficients", coefficients, ndim=1, shape_tail=(3,), lo=0.0)
     rgb = water_srgb(distance, illuminant)
     approx = np.exp(-np.multiply.outer(np.asarray(distance, float), np.asarray(coefficients)))
     return np.max(np.abs(approx - rgb), axis=-1)

@@ -36,10 +36,15 @@ def _check_vectors(name, v):
 
 
 def normalize(v):
-    """v / |v| along the last axis (pure; no checks)."""
+    """v / |v| along the last axis. ``v`` finite, of nonzero length (a concrete zero vector is
+    refused; under ``jit`` a zero vector gives NaN)."""
+    check_array("v", v, min_ndim=1)
     xp = array_module(v)
     v = xp.asarray(v, dtype=xp.result_type(float, v))
-    return v / xp.linalg.norm(v, axis=-1, keepdims=True)
+    norm = xp.linalg.norm(v, axis=-1, keepdims=True)
+    if not is_traced(v) and not bool((norm > 0).all()):
+        raise ValueError("v must have nonzero length along its last axis (a zero vector has no direction)")
+    return v / norm
 
 
 def _facing(d, n):

@@ -50,14 +50,25 @@ N_WATER = 1.333
 
 
 def normal_reflectance(n1, n2):
-    """f0 = ((n1 − n2)/(n1 + n2))², the reflectance at normal incidence (0.0204 for water)."""
+    """f0 = ((n1 − n2)/(n1 + n2))², the reflectance at normal incidence (0.0204 for water).
+
+    ``n1``, ``n2``: refractive indices in [1, 10]."""
+    _check_indices(n1, n2)
     return ((n1 - n2) / (n1 + n2)) ** 2
+
+
+MAX_INDEX = 10.0
+"""Largest refractive index accepted (water 1.333, diamond 2.42)."""
+
+
+def _check_indices(n1, n2):
+    check_array("n1", n1, lo=1.0, hi=MAX_INDEX)
+    check_array("n2", n2, lo=1.0, hi=MAX_INDEX)
 
 
 def _check(cos_theta, n1, n2):
     check_array("cos_theta", cos_theta, lo=0.0, hi=1.0)
-    check_array("n1", n1, lo=1.0)
-    check_array("n2", n2, lo=1.0)
+    _check_indices(n1, n2)
     xp = array_module(cos_theta, n1, n2)
     return xp, xp.asarray(cos_theta, dtype=xp.result_type(float, cos_theta))
 
@@ -112,7 +123,7 @@ def reflectance_loviscach(cos_theta, n1=N_AIR, n2=N_WATER):
 
 def fresnel_lut(n1=N_AIR, n2=N_WATER, size: int = 64):
     """The exact R at ``size`` equally spaced cos θ in [0, 1] (a texture for shaders)."""
-    size = check_int("size", size, lo=2)
+    size = check_int("size", size, lo=2, hi=1 << 20)
     return reflectance_exact(jnp.linspace(0.0, 1.0, size), n1, n2)
 
 
@@ -120,7 +131,7 @@ def reflectance_lut(cos_theta, n1=N_AIR, n2=N_WATER, *, size: int = 64):
     """R by linear interpolation in a uniform table of ``size`` exact values (index arithmetic,
     as a shader does)."""
     xp, c = _check(cos_theta, n1, n2)
-    size = check_int("size", size, lo=2)
+    size = check_int("size", size, lo=2, hi=1 << 20)
     table = xp.asarray(reflectance_exact(xp.linspace(0.0, 1.0, size), n1, n2))
     u = c * (size - 1)
     i = xp.clip(xp.floor(u).astype(xp.int32), 0, size - 2)
@@ -166,7 +177,8 @@ def approximation_errors(method: str, n1=N_AIR, n2=N_WATER, samples: int = 20000
     absolute error (weight cos θ sin θ: the irradiance-weighted average over the
     hemisphere). Evaluated in float32, as a shader would.
     """
-    samples = check_int("samples", samples, lo=3)
+    samples = check_int("samples", samples, lo=3, hi=10**7)
+    _check_indices(n1, n2)
     theta = np.linspace(0.0, math.pi / 2, samples)
     c = jnp.asarray(np.cos(theta), jnp.float32)
     err = (np.asarray(reflectance(c, n1, n2, method, **options), float)

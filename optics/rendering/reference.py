@@ -32,13 +32,15 @@ import numpy as np
 
 from optics.light.directions import reflect, refract
 from optics.light.fresnel import normal_reflectance, reflectance_exact
-from optics.rendering.scene import Scene, sun_in_water, texture_sample
-from wavephys.core.inputs import check_instance, check_int
+from optics.rendering.scene import Camera, Scene, sun_in_water, texture_sample
+from wavephys.core.inputs import check_array, check_instance, check_int, check_scalar
 from wavephys.core.sampling import bilinear
 
-__all__ = ["trace", "sample", "psnr", "ray_directions", "environment", "march", "shade_ground"]
+__all__ = ["trace", "psnr", "ray_directions"]  # sample, environment, march, shade_ground: the tracer's own steps
 
 GROUND, WATER = 0, 1
+MAX_PIXELS = 16384
+"""Largest image side the CPU reference draws, pixels."""
 
 
 def sample(field, length: float, xy):
@@ -189,6 +191,8 @@ def _secondary(scene, p, d, medium, steps, refine):
 
 def ray_directions(camera, width: int, height: int):
     """Unit view directions (height, width, 3) through pixel centres, row 0 at the top."""
+    check_instance("camera", camera, Camera, "optics.rendering.Camera")
+    width, height = check_int("width", width, lo=1, hi=MAX_PIXELS), check_int("height", height, lo=1, hi=MAX_PIXELS)
     f, r, u = camera.basis()
     th = math.tan(math.radians(camera.fov) / 2)
     x = (2 * (np.arange(width) + 0.5) / width - 1) * th * width / height
@@ -246,7 +250,11 @@ def trace(scene: Scene, width: int = 160, height: int = 120, *, steps: int = 256
 
 
 def psnr(image, reference, peak: float = 1.0) -> float:
-    """Peak signal-to-noise ratio (dB) of ``image`` against ``reference``, both clipped to [0, peak]."""
+    """Peak signal-to-noise ratio (dB) of ``image`` against ``reference``, both clipped to [0, peak]
+    (``peak`` > 0, at most 1e6); inf for identical images."""
+    check_array("image", image, min_ndim=1)
+    check_array("reference", reference, min_ndim=1)
+    check_scalar("peak", peak, lo=0.0, hi=1e6, lo_open=True)
     a = np.clip(np.asarray(image, np.float64), 0, peak)
     b = np.clip(np.asarray(reference, np.float64), 0, peak)
     if a.shape != b.shape:

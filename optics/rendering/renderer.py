@@ -31,7 +31,10 @@ import numpy as np
 
 from optics.light.fresnel import normal_reflectance, reflectance_exact
 from optics.rendering.scene import Scene, sun_in_water, texture_sample
-from wavephys.core.inputs import check_instance, check_int
+from wavephys.core.files import atomic_path, output_file, output_folder
+from wavephys.core.inputs import check_array, check_bool, check_instance, check_int, describe
+
+VIDEO_SUFFIXES = (".mp4", ".gif", ".webm", ".mov", ".mkv", ".avi")
 
 __all__ = ["Renderer", "RendererUnavailable", "EGL_PACKAGES", "to_srgb8", "save_png", "render_sequence"]
 
@@ -310,6 +313,9 @@ class Renderer:
     def texture(self, name: str, array) -> "object":
         """Upload a float32 array (ny, nx) or (ny, nx, c) as a moderngl texture (nearest,
         no mipmaps), reusing the slot ``name``; returns the moderngl.Texture."""
+        if not isinstance(name, str) or not name.strip():
+            raise TypeError(f"name must be a non-empty string, got {describe(name)}")
+        check_array("array", array, min_ndim=2)
         with self.ctx:
             return self._upload(name, array)
 
@@ -398,6 +404,7 @@ class Renderer:
 
     def draw(self, scene: Scene) -> None:
         """Draw ``scene`` into the off-screen framebuffer and wait for it (no read-back): for timing."""
+        check_instance("scene", scene, Scene, "optics.rendering.Scene")
         with self.ctx:
             self._bind(scene)
             self._uniforms(scene)
@@ -407,6 +414,7 @@ class Renderer:
 
     def frame_seconds(self, scene: Scene, repeats: int = 5) -> float:
         """Median wall time of one frame (:meth:`draw`: upload, draw, finish), s, after one warm-up."""
+        check_instance("scene", scene, Scene, "optics.rendering.Scene")
         times = []
         for _ in range(check_int("repeats", repeats, lo=1) + 1):
             t = time.perf_counter()
@@ -416,22 +424,24 @@ class Renderer:
 
 
 def to_srgb8(image) -> np.ndarray:
-    """Linear RGB in [0, 1] (clipped) → 8-bit sRGB (IEC 61966-2-1 transfer function)."""
+    """Linear RGB in [0, 1] (clipped; ±inf clip too, NaN is refused) → 8-bit sRGB (IEC 61966-2-1)."""
+    check_array("image", image, allow_inf=True)
     x = np.clip(np.asarray(image, np.float64), 0.0, 1.0)
     s = np.where(x <= 0.0031308, 12.92 * x, 1.055 * np.power(x, 1 / 2.4) - 0.055)
     return np.round(s * 255).astype(np.uint8)
 
 
 def save_png(image, path) -> Path:
-    """Write a linear-RGB image as an 8-bit sRGB PNG; returns the path."""
+    """Write a linear-RGB image as an 8-bit sRGB PNG, atomically; returns the path."""
     from PIL import Image
 
+    check_array("image", image, ndim=3, allow_inf=True)
     a = np.asarray(image)
-    if a.ndim != 3 or a.shape[2] != 3:
+    if a.shape[2] != 3:
         raise ValueError(f"image must have shape (height, width, 3), got {a.shape}")
-    path = Path(path)
-    path.parent.mkdir(parents=True, exist_ok=True)
-    Image.fromarray(to_srgb8(a)).save(path)
+    path = output_file(path, "path", (".png",))
+    with atomic_path(path) as tmp:
+        Image.fromarray(to_srgb8(a)).save(tmp, format="PNG")
     return path
 
 
@@ -453,8 +463,16 @@ def render_sequence(renderer: Renderer, scenes, out_dir, *, count: int | None = 
     imageio with imageio-ffmpeg is installed; otherwise a note says so and frames remain.
     Returns the frame paths.
     """
-    out = Path(out_dir)
-    out.mkdir(parents=True, exist_ok=True)
+    check_instance("renderer", renderer, Renderer, "optics.rendering.Renderer")
+    out = output_folder(out_dir, "out_dir")
+    check_int("fps", fps, lo=1)
+    check_bool("progress", progress)
+    if not hasattr(scenes, "__iter__") or isinstance(scenes, (str, bytes)):
+        raise TypeError(f"scenes must be an iterable of optics.rendering.Scene, got {describe(scenes)}")
+    if video is not None:
+        if not isinstance(video, str) or not video.strip():
+            raise TypeError(f"video must be a file name such as 'water.mp4', got {describe(video)}")
+        output_file(out / video, "video", VIDEO_SUFFIXES)
     scenes = list(scenes) if count is None else scenes
     total = len(scenes) if count is None else check_int("count", count, lo=1)
     paths, start = [], time.perf_counter()

@@ -18,7 +18,7 @@ from dataclasses import dataclass, field, replace
 import numpy as np
 
 from optics.light.fresnel import N_AIR, N_WATER
-from wavephys.core.inputs import check_instance, check_scalar
+from wavephys.core.inputs import _real_kind, check_array, check_bool, check_instance, check_scalar
 from wavephys.core.sampling import bilinear, texel_coordinates
 
 __all__ = ["Camera", "Effects", "Scene", "look_at", "DEFAULT_ABSORPTION", "texture_sample", "sun_in_water"]
@@ -28,18 +28,45 @@ DEFAULT_ABSORPTION = (0.3353, 0.05035, 0.000547)
 (spectral absorption, D65, fitted over 0–5 m) to 4 digits (a test keeps them in step)."""
 
 
+def _check_field(name, value):
+    check_array(name, value, min_ndim=2)
+    if np.ndim(value) > 3:
+        raise ValueError(f"{name} must have shape (ny, nx) or (ny, nx, channels), got {np.shape(value)}")
+    return value
+
+
 def texture_sample(field, length: float, x, y):
     """Bilinear sample of a texture (ny, nx[, c]) covering [−L/2, L/2]² at points (x, y), m.
 
     Texel centres follow the grid convention; points outside clamp to the border texels.
     NumPy float64 for NumPy input.
     """
+    _check_field("field", field)
+    check_scalar("length", length, lo=0.0, lo_open=True, hi=MAX_LENGTH)
+    for name, v in (("x", x), ("y", y)):  # empty point sets are fine (nothing to sample)
+        check_array(name, v) if np.size(v) else _real_kind(name, v, "an array of numbers")
     f = np.asarray(field, np.float64) if isinstance(field, np.ndarray) else field
     ny, nx = np.shape(field)[:2]
     return bilinear(f, texel_coordinates(x, length, nx), texel_coordinates(y, length, ny), "clamp")
 
 
+MAX_LENGTH = 1e7
+"""Largest scene side accepted, m (float32 positions lose the texel beyond)."""
+MAX_INDEX = 10.0
+"""Largest refractive index accepted (water 1.333, diamond 2.42)."""
+
+
+def check_indices(n_air, n_water, names=("n_air", "n_water")):
+    """1 ≤ n_air < n_water ≤ MAX_INDEX: light goes from the thinner medium into the water."""
+    check_scalar(names[0], n_air, lo=1.0, hi=MAX_INDEX)
+    check_scalar(names[1], n_water, lo=1.0, hi=MAX_INDEX)
+    if not n_water > n_air:
+        raise ValueError(f"{names[1]} must exceed {names[0]} (water is the denser medium), got "
+                         f"{names[0]}={n_air!r}, {names[1]}={n_water!r}")
+
+
 def _vec3(name, v):
+    check_array(name, v, ndim=1)
     a = np.asarray(v, np.float64)
     if a.shape != (3,):
         raise ValueError(f"{name} must be 3 numbers, got shape {a.shape}")
@@ -84,7 +111,9 @@ class Camera:
 
 def look_at(eye, target, fov: float = 50.0) -> Camera:
     """A camera with z up (or y up when looking straight up or down)."""
-    f = np.asarray(target, float) - np.asarray(eye, float)
+    eye, target = _vec3("eye", eye), _vec3("target", target)
+    check_scalar("fov", fov, lo=0.0, hi=179.0, lo_open=True)
+    f = target - eye
     up = (0.0, 0.0, 1.0) if np.linalg.norm(np.cross(f, (0, 0, 1))) > 1e-6 * np.linalg.norm(f) else (0.0, 1.0, 0.0)
     return Camera(tuple(map(float, eye)), tuple(map(float, target)), up, fov)
 
@@ -107,6 +136,10 @@ class Effects:
     absorption: bool = True
     caustics: bool = True
 
+    def __post_init__(self):
+        for name in self.__dataclass_fields__:
+            check_bool(name, getattr(self, name))
+
     def only(self, *names) -> "Effects":
         """These effects on, every other off."""
         unknown = set(names) - set(self.__dataclass_fields__)
@@ -116,6 +149,7 @@ class Effects:
 
 
 def _height(name, h, max_size=16384):
+    check_array(name, h, ndim=2)
     a = np.asarray(h, np.float32)
     if a.ndim != 2:
         raise ValueError(f"{name} must be a 2-D height field, got shape {a.shape}")
@@ -187,11 +221,11 @@ class Scene:
         set_ = lambda k, v: object.__setattr__(self, k, v)
         set_("ground", _height("ground", self.ground))
         if np.ndim(self.water) == 0:
-            check_scalar("water", float(self.water))
+            check_scalar("water", self.water)
             set_("water", np.full((2, 2), float(self.water), np.float32))
         else:
             set_("water", _height("water", self.water))
-        check_scalar("length", self.length, lo=0.0, lo_open=True)
+        check_scalar("length", self.length, lo=0.0, lo_open=True, hi=MAX_LENGTH)
         check_instance("camera", self.camera, Camera, "optics.rendering.Camera")
         check_instance("effects", self.effects, Effects, "optics.rendering.Effects")
         sun = _vec3("sun", self.sun)
@@ -201,9 +235,9 @@ class Scene:
         for name in ("sun_color", "ambient", "sky_zenith", "sky_horizon", "absorption", "deep_color"):
             set_(name, _colour(name, getattr(self, name)))
         check_scalar("sun_glow", self.sun_glow, lo=0.0)
-        check_scalar("n_air", self.n_air, lo=1.0)
-        check_scalar("n_water", self.n_water, lo=1.0)
+        check_indices(self.n_air, self.n_water)
         if self.albedo is not None:
+            check_array("albedo", self.albedo, ndim=3)
             a = np.asarray(self.albedo, np.float32)
             if a.ndim != 3 or a.shape[2] != 3:
                 raise ValueError(f"albedo must have shape (ny, nx, 3), got {a.shape}")
@@ -217,6 +251,7 @@ class Scene:
                 raise ValueError("caustics must be ≥ 0 (irradiance relative to a flat surface)")
             set_("caustics", c)
         if self.environment is not None:
+            check_array("environment", self.environment, ndim=3)
             e = np.asarray(self.environment, np.float32)
             if e.ndim != 3 or e.shape[2] != 3 or min(e.shape[:2]) < 2:
                 raise ValueError(f"environment must have shape (h, w, 3) with h, w ≥ 2, got {e.shape}")
@@ -251,8 +286,14 @@ class Scene:
 
 
 def sun_in_water(sun, n_air: float, n_water: float):
-    """Direction toward the sun as seen under a flat surface (refracted, unit, z > 0)."""
-    s = np.asarray(sun, float)
+    """Direction toward the sun as seen under a flat surface (refracted, unit, z > 0).
+
+    ``sun`` points toward the sun (3 numbers, z > 0, any length); 1 ≤ n_air < n_water ≤ 10."""
+    s = _vec3("sun", sun)
+    if s[2] <= 0:
+        raise ValueError(f"sun must point above the horizon (z > 0), got {s.tolist()}")
+    s = s / np.linalg.norm(s)
+    check_indices(n_air, n_water)
     eta = n_air / n_water
     sin_t = eta * math.hypot(s[0], s[1])
     h = math.hypot(s[0], s[1])

@@ -17,6 +17,7 @@ import numpy as np
 
 from optics.light.attenuation import water_srgb
 from optics.light.fresnel import N_AIR, N_WATER, fresnel_lut
+from wavephys.core.files import atomic_path, output_file, output_folder
 from wavephys.core.grid import Grid
 from wavephys.core.inputs import check_array, check_choice, check_instance, check_int, check_scalar
 from wavephys.core.spectral import central_gradient, spectral_gradient
@@ -41,6 +42,16 @@ class EncodedHeight:
     amplitude: float
     length: float
 
+    def __post_init__(self):
+        check_choice("bits", self.bits, BITS)
+        check_array("data", self.data, ndim=2)
+        want = {8: np.uint8, 16: np.uint16, 32: np.float32}[self.bits]
+        if np.asarray(self.data).dtype != want:
+            raise ValueError(f"data must be {np.dtype(want).name} for bits={self.bits}, got {np.asarray(self.data).dtype}")
+        check_scalar("offset", self.offset)
+        check_scalar("amplitude", self.amplitude, lo=0.0, lo_open=True)
+        check_scalar("length", self.length, lo=0.0, lo_open=True)
+
     def metadata(self) -> dict:
         return dict(bits=self.bits, offset=self.offset, amplitude=self.amplitude, length=self.length,
                     units="m", decode="offset + amplitude * data / (2**bits - 1)" if self.bits != 32 else "data")
@@ -63,6 +74,7 @@ def encode_height(eta, grid: Grid, bits: int = 16) -> EncodedHeight:
 
 def decode_height(tex: EncodedHeight) -> np.ndarray:
     """Heights in m (float64) from an :class:`EncodedHeight`."""
+    check_instance("tex", tex, EncodedHeight, "optics.rendering.textures.EncodedHeight")
     if tex.bits == 32:
         return tex.data.astype(np.float64)
     return tex.offset + tex.amplitude * tex.data.astype(np.float64) / (2**tex.bits - 1)
@@ -124,38 +136,68 @@ def absorption_texture(max_distance: float = 20.0, size: int = 256) -> np.ndarra
     return water_srgb(np.linspace(0.0, max_distance, size)).astype(np.float32)
 
 
-def save_height_png(tex: EncodedHeight, path) -> Path:
-    """Write an 8- or 16-bit height texture as a grayscale PNG and its metadata as JSON beside it."""
+def write_png(array, path) -> Path:
+    """Write an image array (uint8/uint16 grey, uint8 RGB) as a PNG atomically; rows flipped so
+    that y points up in viewers (row 0 of the array is the lowest y)."""
     from PIL import Image
 
+    with atomic_path(path) as tmp:
+        Image.fromarray(np.ascontiguousarray(np.flipud(array))).save(tmp, format="PNG")
+    return Path(path)
+
+
+def _write_text(text: str, path) -> Path:
+    with atomic_path(path) as tmp:
+        tmp.write_text(text)
+    return Path(path)
+
+
+def _write_npy(array, path) -> Path:
+    with atomic_path(path) as tmp, open(tmp, "wb") as f:
+        np.save(f, array)
+    return Path(path)
+
+
+def save_height_png(tex: EncodedHeight, path) -> Path:
+    """Write an 8- or 16-bit height texture as a grayscale PNG and its metadata as JSON beside it."""
+    check_instance("tex", tex, EncodedHeight, "optics.rendering.textures.EncodedHeight")
     if tex.bits == 32:
-        raise ValueError("bits must be 8 or 16 for PNG (use save_npz for float32)")
-    path = Path(path)
-    path.parent.mkdir(parents=True, exist_ok=True)
-    # uint8 → mode "L", uint16 → mode "I;16"; rows flipped so that y points up in viewers
-    Image.fromarray(np.ascontiguousarray(np.flipud(tex.data))).save(path)
-    path.with_suffix(".json").write_text(json.dumps(tex.metadata(), indent=2))
+        raise ValueError("tex.bits must be 8 or 16 for PNG, got 32 (use save_npz for float32)")
+    path = output_file(path, "path", (".png",))
+    # uint8 → mode "L", uint16 → mode "I;16"
+    write_png(tex.data, path)
+    _write_text(json.dumps(tex.metadata(), indent=2), path.with_suffix(".json"))
     return path
 
 
 def save_npz(path, **textures) -> Path:
-    """Save textures (arrays or EncodedHeight) and their decoding metadata in one .npz."""
-    path = Path(path)
-    path.parent.mkdir(parents=True, exist_ok=True)
+    """Save textures (arrays or EncodedHeight) and their decoding metadata in one .npz (atomically)."""
+    path = output_file(path, "path", (".npz",))
+    if not textures:
+        raise ValueError("textures: give at least one array to save, as name=array")
     arrays, meta = {}, {}
     for name, value in textures.items():
         if isinstance(value, EncodedHeight):
             arrays[name] = value.data
             meta[name] = value.metadata()
         else:
+            check_array(name, value, allow_inf=True)
             arrays[name] = np.asarray(value)
-    np.savez_compressed(path, **arrays, metadata=json.dumps(meta))
+    with atomic_path(path) as tmp, open(tmp, "wb") as f:
+        np.savez_compressed(f, **arrays, metadata=json.dumps(meta))
     return path
 
 
 def load_npz(path) -> dict:
     """Load what :func:`save_npz` wrote; EncodedHeight entries are decoded to metres."""
+    from wavephys.core.files import _as_path
+
+    path = _as_path("path", path)
+    if not path.is_file():
+        raise ValueError(f"path {str(path)!r} is not a file")
     with np.load(path) as f:
+        if "metadata" not in f.files:
+            raise ValueError(f"path {str(path)!r} is not a texture file written by save_npz (no metadata)")
         meta = json.loads(str(f["metadata"]))
         out = {}
         for name in f.files:
@@ -185,10 +227,10 @@ def export_scene(scene, out_dir) -> dict:
     0–20 m), and ``textures.npz`` with all of them in float32 and the metadata.
     Returns {name: path}.
     """
-    from PIL import Image
+    from optics.rendering.scene import Scene
 
-    out = Path(out_dir)
-    out.mkdir(parents=True, exist_ok=True)
+    check_instance("scene", scene, Scene, "optics.rendering.Scene")
+    out = output_folder(out_dir, "out_dir")
     paths = {}
     heights = {}
     for name in ("water", "ground"):
@@ -201,8 +243,7 @@ def export_scene(scene, out_dir) -> dict:
         paths[f"{name}_height"] = save_height_png(tex, out / f"{name}_height.png")
     w = np.asarray(scene.water, np.float64)
     normals = normal_map(w, Grid(w.shape[0], float(scene.length)))
-    Image.fromarray(np.ascontiguousarray(np.flipud(_normals_rgb8(normals)))).save(out / "water_normals.png")
-    paths["water_normals"] = out / "water_normals.png"
+    paths["water_normals"] = write_png(_normals_rgb8(normals), out / "water_normals.png")
     arrays = dict(water=heights["water"], ground=heights["ground"], water_normals=normals,
                   fresnel=fresnel_texture(256, scene.n_air, scene.n_water), absorption=absorption_texture())
     if scene.caustics is not None:
@@ -210,8 +251,7 @@ def export_scene(scene, out_dir) -> dict:
         tex = encode_height(c, Grid(c.shape[0], float(scene.length)), 16)
         paths["caustics"] = save_height_png(tex, out / "caustics.png")
         arrays["caustics"] = tex
-    np.save(out / "fresnel.npy", arrays["fresnel"])
-    np.save(out / "absorption.npy", arrays["absorption"])
-    paths["fresnel"], paths["absorption"] = out / "fresnel.npy", out / "absorption.npy"
+    paths["fresnel"] = _write_npy(arrays["fresnel"], out / "fresnel.npy")
+    paths["absorption"] = _write_npy(arrays["absorption"], out / "absorption.npy")
     paths["npz"] = save_npz(out / "textures.npz", **arrays)
     return paths

@@ -1,28 +1,74 @@
-"""The ``wavephys`` command.
+"""The wavephys command: validate the physics, simulate the default scene, render, export textures.
 
-``wavephys validate [--json PATH] [--only NAME ...] [--x64]`` runs the built-in validations
-(:mod:`wavephys.app.registry`) and prints quantity, expected, measured, error,
-tolerance and verdict; exit status 1 if any fails. Progress goes to stderr.
-``wavephys run`` simulates the built-in default scene (stones dropped into a pool with
-an open-ocean margin) and writes the height field as ``.npz`` and a PNG figure.
-``wavephys render --scene pool --out frame.png [--frames N]`` draws a built-in scene
-with the headless moderngl renderer (frames go to a folder when N > 1).
-``wavephys textures --scene pool --out DIR`` writes the scene's textures (heights,
-normals, caustics, Fresnel and absorption lookups) as PNG, .npy and .npz.
+  wavephys run                 simulate the built-in default scene (the main job)
+  wavephys validate            run the built-in validations, expected against measured
+  wavephys render              render a built-in scene with the headless renderer
+  wavephys textures            export a built-in scene's textures
 """
 
 from __future__ import annotations
 
 import argparse
 import json
+import math
 import sys
 import time
-from pathlib import Path
+
+EXIT_CODES = """exit status:
+  0  done (every validation row ok)
+  1  a validation row failed
+  2  usage error: a bad option or output path (checked before any work starts)
+  3  no OpenGL context (headless EGL missing: apt-get install libegl1 libegl-mesa0 libgl1-mesa-dri)"""
+
+EFFECTS = ("refraction", "reflection", "fresnel", "absorption", "caustics")
+from wavephys.app import SCENES  # light: --help answers at once
 
 
-def _progress(i: int, total: int, name: str, start: list) -> None:
-    elapsed = time.perf_counter() - start[0]
-    print(f"[{i + 1}/{total}] {name} … ({elapsed:.1f} s elapsed)", file=sys.stderr, flush=True)
+class _Parser(argparse.ArgumentParser):
+    """Usage errors on one line, exit status 2."""
+
+    def error(self, message):
+        self.exit(2, f"{self.prog}: error: {message} (see '{self.prog} --help')\n")
+
+
+def _int(lo: int, even: bool = False):
+    def parse(text: str) -> int:
+        try:
+            value = int(text)
+        except ValueError:
+            raise argparse.ArgumentTypeError(f"expected an integer, got {text!r}") from None
+        if value < lo:
+            raise argparse.ArgumentTypeError(f"must be ≥ {lo}, got {value}")
+        if even and value % 2:
+            raise argparse.ArgumentTypeError(f"must be even, got {value}")
+        return value
+
+    return parse
+
+
+def _float(lo: float, open_lo: bool = False):
+    def parse(text: str) -> float:
+        try:
+            value = float(text)
+        except ValueError:
+            raise argparse.ArgumentTypeError(f"expected a number, got {text!r}") from None
+        if not math.isfinite(value) or value < lo or (open_lo and value == lo):
+            raise argparse.ArgumentTypeError(f"must be a finite number {'>' if open_lo else '≥'} {lo}, got {text}")
+        return value
+
+    return parse
+
+
+def _checked(parser, check, *args):
+    """Run a path check; a bad path is a usage error (one line, exit 2)."""
+    try:
+        return check(*args)
+    except (TypeError, ValueError) as exc:
+        parser.error(str(exc))
+
+
+def _progress(i: int, total: int, name: str, start: float) -> None:
+    print(f"[{i + 1}/{total}] {name} ... ({time.perf_counter() - start:.1f} s elapsed)", file=sys.stderr, flush=True)
 
 
 def _table(rows) -> str:
@@ -34,14 +80,16 @@ def _table(rows) -> str:
         err = "-" if r.error is None else f"{r.error:.3g}"
         lines.append((r.quantity + (f" [{r.unit}]" if r.unit else ""), f"{r.expected:.6g}",
                       f"{r.measured:.6g}", err, tol, "ok" if r.ok else "FAIL"))
-    widths = [max(len(h), *(len(l[i]) for l in lines)) for i, h in enumerate(head)]
+    widths = [max(len(h), *(len(line[i]) for line in lines)) for i, h in enumerate(head)]
     fmt = "  ".join(f"{{:<{w}}}" for w in widths)
     out = [fmt.format(*head), fmt.format(*("-" * w for w in widths))]
-    out += [fmt.format(*l) for l in lines]
-    return "\n".join(out)
+    return "\n".join(out + [fmt.format(*line) for line in lines])
 
 
-def cmd_validate(args) -> int:
+def cmd_validate(args, parser) -> int:
+    from wavephys.core.files import atomic_path, output_file
+
+    json_path = _checked(parser, output_file, args.json, "--json", (".json",)) if args.json else None
     import jax
 
     if args.x64:
@@ -56,49 +104,52 @@ def cmd_validate(args) -> int:
     names = args.only or list(registry)
     unknown = [n for n in names if n not in registry]
     if unknown:
-        print(f"unknown check(s) {unknown}; choose from {list(registry)}", file=sys.stderr)
-        return 2
-    start = [time.perf_counter()]
+        parser.error(f"unknown check(s) {', '.join(unknown)}; 'wavephys validate --list' names them")
+    start = time.perf_counter()
     rows = []
     for i, name in enumerate(names):
         _progress(i, len(names), name, start)
         rows.extend(registry[name]())
     print(_table(rows))
     failed = [r for r in rows if not r.ok]
-    print(f"\n{len(rows) - len(failed)} passed, {len(failed)} failed "
-          f"({time.perf_counter() - start[0]:.1f} s)")
-    if args.json:
-        Path(args.json).parent.mkdir(parents=True, exist_ok=True)
-        Path(args.json).write_text(json.dumps([r.as_dict() for r in rows], indent=2))
-        print(f"wrote {args.json}")
+    print(f"\n{len(rows) - len(failed)} passed, {len(failed)} failed ({time.perf_counter() - start:.1f} s)")
+    if json_path is not None:
+        with atomic_path(json_path) as tmp:
+            tmp.write_text(json.dumps([r.as_dict() for r in rows], indent=2))
+        print(f"wrote {json_path}")
     return 1 if failed else 0
 
 
-def cmd_run(args) -> int:
+def cmd_run(args, parser) -> int:
+    from wavephys.core.files import atomic_path, output_folder
+
+    out = _checked(parser, output_folder, args.out, "--out")
     import numpy as np
 
     from wavephys.app.scenes import default_scene
+    from wavephys.plot import plot_surface
 
     start = time.perf_counter()
     result = default_scene(n=args.n, steps=args.steps, progress=lambda m: print(m, file=sys.stderr, flush=True))
-    out = Path(args.out)
-    out.mkdir(parents=True, exist_ok=True)
-    np.savez_compressed(out / "surface.npz", eta=result["eta"], eta_dot=result["eta_dot"],
-                        dx=result["dx"], time=result["time"], units="m, m/s, m, s")
-    from wavephys.plot import plot_surface
-
+    with atomic_path(out / "surface.npz") as tmp, open(tmp, "wb") as f:
+        np.savez_compressed(f, eta=result["eta"], eta_dot=result["eta_dot"], dx=result["dx"], time=result["time"],
+                            units="m, m/s, m, s")
     fig = plot_surface(result["eta"], result["dx"], title=f"default scene at t = {result['time']:.2f} s")
-    fig.savefig(out / "surface.png", dpi=120)
-    print(f"simulated {args.steps} steps on {args.n}² in {time.perf_counter() - start:.1f} s; "
+    with atomic_path(out / "surface.png") as tmp:
+        fig.savefig(tmp, dpi=120, format="png")
+    print(f"simulated {args.steps} steps on {args.n}x{args.n} in {time.perf_counter() - start:.1f} s; "
           f"energy drift without the cutoff {result['energy_ratio'] - 1:.2e}; wrote {out}/surface.npz, "
           f"{out}/surface.png")
     return 0
 
 
-EFFECTS = ("refraction", "reflection", "fresnel", "absorption", "caustics")
+def cmd_render(args, parser) -> int:
+    from wavephys.core.files import output_file, output_folder
 
-
-def cmd_render(args) -> int:
+    if args.frames == 1:
+        out = _checked(parser, output_file, args.out, "--out", (".png",))
+    else:
+        out = _checked(parser, output_folder, args.out, "--out")
     from optics.rendering.renderer import Renderer, RendererUnavailable, render_sequence, save_png
     from wavephys.app.scenes import builtin_scene, scene_frames
 
@@ -109,75 +160,92 @@ def cmd_render(args) -> int:
     except RendererUnavailable as exc:
         print(f"wavephys render: {exc}", file=sys.stderr)
         return 3
+    except ValueError as exc:  # e.g. an image larger than the context allows
+        parser.error(str(exc))
     with renderer:
         if args.frames == 1:
+            print(f"rendering {args.scene} ({args.width}x{args.height}) ...", file=sys.stderr, flush=True)
             scene = builtin_scene(args.scene, n=args.n, time=args.time).with_effects(**off)
-            path = save_png(renderer.render(scene), args.out)
-            print(f"rendered {args.scene} ({args.width}×{args.height}, {renderer.renderer_name}) in "
+            path = save_png(renderer.render(scene), out)
+            print(f"rendered {args.scene} ({args.width}x{args.height}, {renderer.renderer_name}) in "
                   f"{time.perf_counter() - start:.1f} s; wrote {path}")
             return 0
-        out = Path(args.out)
-        folder = out.with_suffix("") if out.suffix else out
         scenes = (s.with_effects(**off) for s in scene_frames(args.scene, args.frames, fps=args.fps, n=args.n,
                                                                   start=args.time))
-        paths = render_sequence(renderer, scenes, folder, count=args.frames, video=args.video, fps=int(args.fps))
-        print(f"rendered {len(paths)} frames of {args.scene} in {time.perf_counter() - start:.1f} s; wrote {folder}/")
+        paths = render_sequence(renderer, scenes, out, count=args.frames, video=args.video, fps=round(args.fps))
+        print(f"rendered {len(paths)} frames of {args.scene} in {time.perf_counter() - start:.1f} s; wrote {out}/")
     return 0
 
 
-def cmd_textures(args) -> int:
+def cmd_textures(args, parser) -> int:
+    from wavephys.core.files import output_folder
+
+    out = _checked(parser, output_folder, args.out, "--out")
     from optics.rendering.textures import export_scene
     from wavephys.app.scenes import builtin_scene
 
-    paths = export_scene(builtin_scene(args.scene, n=args.n, time=args.time), args.out)
+    paths = export_scene(builtin_scene(args.scene, n=args.n, time=args.time), out)
     for name, p in paths.items():
         print(f"{name:15s} {p}")
     return 0
 
 
-def main(argv=None) -> int:
-    parser = argparse.ArgumentParser(prog="wavephys", description=__doc__.split("\n\n")[0])
-    sub = parser.add_subparsers(dest="command")
-    v = sub.add_parser("validate", help="run the built-in physics validations")
-    v.add_argument("--json", metavar="PATH", help="also write the table as JSON")
+def _version() -> str:
+    from wavephys import __version__
+
+    return f"wavephys {__version__}"
+
+
+def build_parser() -> argparse.ArgumentParser:
+    """The argument parser (no heavy imports: ``--help`` answers at once)."""
+    fmt = argparse.RawDescriptionHelpFormatter
+    parser = _Parser(prog="wavephys", description=__doc__, epilog=EXIT_CODES, formatter_class=fmt)
+    parser.add_argument("--version", action="version", version=_version())
+    sub = parser.add_subparsers(dest="command", parser_class=_Parser)
+    v = sub.add_parser("validate", help="run the built-in physics validations", epilog=EXIT_CODES, formatter_class=fmt,
+                       description="Run the built-in validations and print expected against measured.")
+    v.add_argument("--json", metavar="PATH", help="also write the table as JSON (a .json file in an existing folder)")
     v.add_argument("--only", nargs="+", metavar="NAME", help="run only these checks (names from --list)")
     v.add_argument("--list", action="store_true", help="list the checks and exit")
     v.add_argument("--x64", action="store_true", help="run in float64")
     v.set_defaults(func=cmd_validate)
-    r = sub.add_parser("run", help="simulate the built-in default scene")
-    r.add_argument("--n", type=int, default=256, help="grid points per side (even)")
-    r.add_argument("--steps", type=int, default=120, help="steps of 1/30 s")
-    r.add_argument("--out", default="wavephys-out", help="output folder")
+    r = sub.add_parser("run", help="simulate the built-in default scene (the main job)", epilog=EXIT_CODES,
+                       formatter_class=fmt, description="Three stones in 16 m of open water; writes surface.npz "
+                                                        "(heights, m) and surface.png.")
+    r.add_argument("--n", type=_int(128, even=True), default=256, help="grid points per side (even, ≥ 128)")
+    r.add_argument("--steps", type=_int(1), default=120, help="steps of 1/30 s (≥ 1)")
+    r.add_argument("--out", default="wavephys-out", help="output folder (created if its parent exists)")
     r.set_defaults(func=cmd_run)
-    from wavephys.app.scenes import SCENES
-
-    g = sub.add_parser("render", help="render a built-in scene with the headless moderngl renderer")
+    g = sub.add_parser("render", help="render a built-in scene with the headless moderngl renderer",
+                       epilog=EXIT_CODES, formatter_class=fmt)
     g.add_argument("--scene", choices=SCENES, default="pool")
-    g.add_argument("--out", default="frame.png", help="PNG file (one frame) or folder (--frames > 1)")
-    g.add_argument("--frames", type=int, default=1, help="number of frames (an animation when > 1)")
-    g.add_argument("--fps", type=float, default=30.0, help="frames per second of the animation")
-    g.add_argument("--time", type=float, default=1.0, help="scene time of the (first) frame, s")
-    g.add_argument("--width", type=int, default=800)
-    g.add_argument("--height", type=int, default=600)
-    g.add_argument("--n", type=int, default=256, help="height-field texels per side")
-    g.add_argument("--steps", type=int, default=256, help="ray-march steps")
-    g.add_argument("--off", nargs="+", choices=EFFECTS, metavar="EFFECT",
-                   help=f"switch effects off ({', '.join(EFFECTS)})")
-    g.add_argument("--video", metavar="NAME", help="also write a video (needs imageio-ffmpeg), e.g. water.mp4")
+    g.add_argument("--out", default="frame.png", help="a .png file (one frame) or a folder (--frames > 1)")
+    g.add_argument("--frames", type=_int(1), default=1, help="number of frames (an animation when > 1)")
+    g.add_argument("--fps", type=_float(0.0, open_lo=True), default=30.0, help="frames per second of the animation")
+    g.add_argument("--time", type=_float(0.0), default=1.0, help="scene time of the (first) frame, s")
+    g.add_argument("--width", type=_int(1), default=800, help="image width, pixels")
+    g.add_argument("--height", type=_int(1), default=600, help="image height, pixels")
+    g.add_argument("--n", type=_int(64, even=True), default=256, help="height-field texels per side (even, ≥ 64)")
+    g.add_argument("--steps", type=_int(1), default=256, help="ray-march steps")
+    g.add_argument("--off", nargs="+", choices=EFFECTS, metavar="EFFECT", help=f"switch effects off: {', '.join(EFFECTS)}")
+    g.add_argument("--video", metavar="NAME", help="also write a video in the folder (needs imageio-ffmpeg)")
     g.set_defaults(func=cmd_render)
-    t = sub.add_parser("textures", help="export a built-in scene's textures")
+    t = sub.add_parser("textures", help="export a built-in scene's textures", epilog=EXIT_CODES, formatter_class=fmt)
     t.add_argument("--scene", choices=SCENES, default="pool")
-    t.add_argument("--out", default="textures", help="output folder")
-    t.add_argument("--n", type=int, default=256)
-    t.add_argument("--time", type=float, default=1.0)
+    t.add_argument("--out", default="textures", help="output folder (created if its parent exists)")
+    t.add_argument("--n", type=_int(64, even=True), default=256, help="texels per side (even, ≥ 64)")
+    t.add_argument("--time", type=_float(0.0), default=1.0, help="scene time, s")
     t.set_defaults(func=cmd_textures)
+    return parser
+
+
+def main(argv=None) -> int:
+    parser = build_parser()
     args = parser.parse_args(argv)
-    if getattr(args, "frames", 1) < 1:
-        parser.error(f"--frames must be ≥ 1, got {args.frames}")
     if args.command is None:
         parser.print_help()
         return 2
-    return args.func(args)
+    return args.func(args, parser)
 
 
 if __name__ == "__main__":

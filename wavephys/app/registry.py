@@ -53,6 +53,10 @@ def __getattr__(name):
 def run(names=None, progress: Callable[[int, int, str], None] | None = None) -> list[Check]:
     """Run the named check groups (default: all); ``progress(i, total, name)`` before each."""
     checks = registry()
+    if names is not None and (isinstance(names, (str, bytes)) or not hasattr(names, "__iter__")):
+        raise TypeError(f"names must be a list of check names (see registry()), got {type(names).__name__}")
+    if progress is not None and not callable(progress):
+        raise TypeError(f"progress must be a function (i, total, name), or None, got {type(progress).__name__}")
     names = list(checks) if names is None else list(names)
     unknown = [n for n in names if n not in checks]
     if unknown:

@@ -20,15 +20,19 @@ from typing import Callable, Iterator, Optional
 import numpy as np
 
 from optics.rendering.scene import Camera, Scene, look_at
+from wavephys.app import SCENES
 from wavephys.core.grid import Grid
-from wavephys.core.inputs import check_choice, check_instance, check_int, check_scalar
+from wavephys.core.inputs import check_bool, check_choice, check_instance, check_int, check_scalar
 from wavephys.core.water import Water
 from wavephys.physics.disturbances import Stones
 
 __all__ = ["default_scene", "SCENES", "builtin_scene", "scene_frames", "scene_water", "scene_grid"]
 
-SCENES = ("pool", "shore", "ship")
 SUN = (0.35, -0.45, 0.82)
+MAX_TIME = 3600.0
+"""Latest time of a built-in scene, s (the pool steps its simulation up to it)."""
+MAX_N = 8192
+"""Largest resolution of a built-in scene, texels per side."""
 POOL_LENGTH, POOL_DEPTH = 8.0, 1.5
 SHORE_LENGTH = 16.0
 SWELL = ((4, 0, 0.05, 0.0), (5, 1, 0.03, 1.3), (3, -1, 0.035, 2.1))  # (m_x, m_y, amplitude m, phase)
@@ -45,8 +49,10 @@ def default_scene(n: int = 256, steps: int = 120, progress: Optional[Callable[[s
     """
     from wavephys.simulation import Simulation
 
-    n = check_int("n", n, lo=128, even=True)
-    steps = check_int("steps", steps, lo=1)
+    n = check_int("n", n, lo=128, hi=MAX_N, even=True)
+    steps = check_int("steps", steps, lo=1, hi=10**6)
+    if progress is not None and not callable(progress):
+        raise TypeError(f"progress must be a function of one message (or None), got {type(progress).__name__}")
     grid = Grid(n, 16.0)
     sim = Simulation(grid, Water(), dt=1.0 / 30.0, margin=max(1, n // 8))
     state = sim.drop(sim.initial_state(), Stones([-3.0, 2.0, 0.5], [1.0, -2.5, 3.0], [0.25, 0.15, 0.3],
@@ -151,8 +157,9 @@ def _cameras():
 def scene_water(name: str, n: int = 256, time: float = 0.0, ship: bool = True) -> np.ndarray:
     """The water height field (m) of a built-in scene at ``time`` (s), on :func:`scene_grid`."""
     check_choice("name", name, SCENES)
-    n = check_int("n", n, lo=64, even=True)
-    check_scalar("time", time, lo=0.0)
+    n = check_int("n", n, lo=64, hi=MAX_N, even=True)
+    check_scalar("time", time, lo=0.0, hi=MAX_TIME)
+    check_bool("ship", ship)
     if name == "pool":
         sim, state = _pool_simulation(n)
         steps = int(round(time / sim.dt))
@@ -189,17 +196,27 @@ def builtin_scene(name: str, *, n: int = 256, time: float = 1.0, ship: bool = Tr
     """
     if camera is not None:
         check_instance("camera", camera, Camera, "optics.rendering.Camera")
+    check_bool("caustics", caustics)
     return _assemble(name, n, scene_water(name, n, time, ship), caustics, camera)
 
 
 def scene_frames(name: str, count: int, *, fps: float = 30.0, n: int = 256, start: float = 0.5,
                  caustics: bool = True) -> Iterator[Scene]:
-    """``count`` successive scenes ``1/fps`` s apart from ``start`` (the pool steps its simulation once per frame)."""
+    """``count`` successive scenes ``1/fps`` s apart from ``start`` (the pool steps its simulation once per frame).
+
+    The arguments are checked when it is called, before the first frame is made."""
     check_choice("name", name, SCENES)
     count = check_int("count", count, lo=1)
-    check_scalar("fps", fps, lo=0.0, lo_open=True)
-    check_scalar("start", start, lo=0.0)
-    n = check_int("n", n, lo=64, even=True)
+    check_scalar("fps", fps, lo=0.0, hi=1000.0, lo_open=True)
+    check_scalar("start", start, lo=0.0, hi=MAX_TIME)
+    n = check_int("n", n, lo=64, hi=MAX_N, even=True)
+    check_bool("caustics", caustics)
+    if start + count / fps > MAX_TIME:
+        raise ValueError(f"count: {count} frames at {fps} fps from {start} s end after MAX_TIME = {MAX_TIME} s")
+    return _frames(name, count, fps, n, start, caustics)
+
+
+def _frames(name, count, fps, n, start, caustics):
     if name != "pool":
         for i in range(count):
             yield _assemble(name, n, scene_water(name, n, start + i / fps), caustics)

@@ -5,6 +5,7 @@ from __future__ import annotations
 import jax
 import jax.numpy as jnp
 
+__internal__ = True  # tooling for the library's own modules: not fuzzed as public API
 __all__ = ["working_dtype"]
 
 

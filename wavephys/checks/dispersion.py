@@ -11,6 +11,7 @@ import numpy as np
 
 from wavephys.checks.common import working_dtype
 from wavephys.core.grid import Grid
+from wavephys.core.inputs import check_int, check_scalar
 from wavephys.core.water import Water
 from wavephys.harness.checks import Check, bound, compare
 from wavephys.harness.dispersion import dispersion_error, measure_dispersion
@@ -76,6 +77,8 @@ def dispersion_scene(water: Water, n: int, length: float, dt: float, frames: int
     """A random still-water disturbance run by the spectral simulation; its measured ω(k)."""
     from wavephys.simulation import Simulation
 
+    check_int("frames", frames, lo=8, hi=1 << 16)
+    check_int("seed", seed, lo=0)
     grid = Grid(n, length)
     sim = Simulation(grid, water, dt=dt, dtype=working_dtype())
     eta0 = 1e-3 * jax.random.normal(jax.random.PRNGKey(seed), (n, n), sim.dtype)
@@ -99,6 +102,9 @@ def check_measured_dispersion() -> list[Check]:
 
 def check_fd_dispersion(n: int = 64, courant: float = 0.5, frames: int = 1024) -> list[Check]:
     """The finite-difference peer measured: one speed for every wavelength (its failure)."""
+    check_int("n", n, lo=8, hi=4096)
+    check_scalar("courant", courant, lo=0.0, hi=1.0 / 2**0.5, lo_open=True)
+    check_int("frames", frames, lo=8, hi=1 << 16)
     dx, c = 1.0, 1.0
     dt = courant * dx / c
     eta0 = 1e-3 * jax.random.normal(jax.random.PRNGKey(1), (n, n))

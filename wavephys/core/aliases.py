@@ -16,6 +16,7 @@ import importlib.util
 import sys
 import types
 
+__internal__ = True  # tooling for the library's own modules: not fuzzed as public API
 __all__ = ["install"]
 
 

@@ -14,12 +14,33 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import jax.numpy as jnp
+import numpy as np
 
 from wavephys.core import sampling, spectral
-from wavephys.core.inputs import check_array, check_int, check_scalar
+from wavephys.core.inputs import Array, Bool, Int, Real, check_array, check_int, check_scalar, validate
 from wavephys.core.pytree import register
 
 __all__ = ["Grid"]
+
+
+_POINTS = Array()  # coordinates, m: finite numbers of any shape
+_COORD = Real()
+_FIELD = Array(shape=lambda a: (a["self"].n, a["self"].n), min_ndim=2)
+
+
+class _FieldWithChannels(Array):
+    """(n, n) or (n, n, c) on this grid."""
+
+    def __call__(self, name, value, arguments):
+        n = arguments["self"].n
+        shape = np.shape(value)
+        check_array(name, value, min_ndim=2, complex_ok=True)
+        if shape[:2] != (n, n) or len(shape) > 3:
+            raise ValueError(f"{name} must have shape ({n}, {n}) or ({n}, {n}, channels), got {shape}")
+        return value
+
+
+_FIELD_CHANNELS = _FieldWithChannels()
 
 
 @dataclass(frozen=True)
@@ -79,16 +100,19 @@ class Grid:
         c = self.coordinates
         return jnp.broadcast_to(c[None, :], (self.n, self.n)), jnp.broadcast_to(c[:, None], (self.n, self.n))
 
+    @validate(x=_POINTS, y=_POINTS)
     def texel(self, x, y):
         """Continuous (u, v) texel coordinates of points (x, y) in m: u = 0 at column 0's centre."""
         return (sampling.texel_coordinates(x, self.length, self.n),
                 sampling.texel_coordinates(y, self.length, self.n))
 
+    @validate(x=_COORD, y=_COORD)
     def nearest(self, x: float, y: float) -> tuple[int, int]:
         """(row, column) of the sample nearest the point (x, y), wrapped periodically."""
         u, v = self.texel(float(x), float(y))
         return int(round(float(v))) % self.n, int(round(float(u))) % self.n
 
+    @validate(x=_COORD, y=_COORD, half=Int(lo=1))
     def window(self, x: float, y: float, half: int):
         """The 2·``half`` × 2·``half`` block of samples centred as near (x, y) as the samples allow.
 
@@ -96,13 +120,13 @@ class Grid:
         (not wrapped) and the world coordinates of the block's centre (a cell corner), m.
         A ``Grid(2·half, 2·half·dx)`` centred at (cx, cy) has its samples on the block's.
         """
-        check_int("half", half, lo=1)
         dx, edge = float(self.dx), -0.5 * float(self.length)
         c0 = int(round((float(x) - edge) / dx)) - half
         r0 = int(round((float(y) - edge) / dx)) - half
         return r0, c0, (edge + (c0 + half) * dx, edge + (r0 + half) * dx)
 
     # -- spectra --------------------------------------------------------------------
+    @validate(real=Bool())
     def wavenumbers(self, real: bool = False):
         """``(ky, kx)`` angular wavenumbers, rad/m, shaped to broadcast to the spectrum.
 
@@ -110,6 +134,7 @@ class Grid:
         """
         return spectral.angular_wavenumbers((self.n, self.n), self.dx, real, xp=jnp)
 
+    @validate(real=Bool())
     def wavenumber_magnitude(self, real: bool = False):
         """|k| on the spectrum, rad/m, shape ``(n, n)`` or ``(n, n//2 + 1)``."""
         ky, kx = self.wavenumbers(real)
@@ -125,6 +150,7 @@ class Grid:
         """Wavenumber spacing 2π/L, rad/m."""
         return 2.0 * jnp.pi / self.length
 
+    @validate(x=_POINTS, y=_POINTS, real=Bool())
     def source_phase(self, x, y, real: bool = False):
         """DFT phase factor e^{−i(kx(x − x₀) + ky(y − y₀))} of a feature centred at (x, y), m.
 
@@ -137,41 +163,53 @@ class Grid:
         y = jnp.asarray(y)[..., None, None] - self.origin
         return jnp.exp(-1j * (kx * x + ky * y))
 
+    @validate(field=_FIELD)
     def gradient(self, field, method: str = "spectral"):
         """(∂f/∂x, ∂f/∂y) of a periodic field ``(..., n, n)``: ``"spectral"`` (exact) or
         ``"central"`` differences (:data:`wavephys.core.spectral.GRADIENT_METHODS`)."""
+        from wavephys.core.inputs import check_choice
+
+        check_choice("method", method, spectral.GRADIENT_METHODS)
         return spectral.gradient(field, self.dx, method)
 
+    @validate(field=_FIELD)
     def laplacian(self, field):
         """∇²f of a periodic field by FFT, 1/m² × f."""
         return spectral.spectral_laplacian(field, self.dx)
 
+    @validate(field=_FIELD, factor=Int(lo=1, hi=64))
     def refine(self, field, factor: int):
         """``field`` on ``Grid(n·factor, length)`` by Fourier interpolation (band-limited fields)."""
-        check_int("factor", factor, lo=1)
-        check_array("field", field, shape_tail=(self.n, self.n))
         return spectral.fourier_refine(field, factor)
 
-    def shift(self, field, dx, dy=0.0):
-        """The periodic ``field`` (..., n, n) translated by (dx, dy) m: f(x − dx, y − dy).
+    @validate(field=_FIELD, x=Real(), y=Real())
+    def shift(self, field, x, y=0.0):
+        """The periodic ``field`` (..., n, n) translated by (x, y) m: f(x' − x, y' − y).
 
         Spectral (exact for band-limited fields, any fraction of a cell)."""
-        check_array("field", field, shape_tail=(self.n, self.n))
         ky, kx = self.wavenumbers(real=True)
         spec = jnp.fft.rfft2(jnp.asarray(field))
-        return jnp.fft.irfft2(spec * jnp.exp(-1j * (kx * dx + ky * dy)), s=(self.n, self.n))
+        return jnp.fft.irfft2(spec * jnp.exp(-1j * (kx * x + ky * y)), s=(self.n, self.n))
 
     # -- sampling -------------------------------------------------------------------
+    @validate(field=_FIELD_CHANNELS, x=_POINTS, y=_POINTS)
     def sample(self, field, x, y):
         """Periodic bilinear interpolation of ``field`` (n, n[, c]) at points (x, y), m."""
+        try:
+            np.broadcast_shapes(np.shape(x), np.shape(y))
+        except ValueError:
+            raise ValueError(f"x and y must broadcast to one shape, got {np.shape(x)} and {np.shape(y)}") from None
         u, v = self.texel(x, y)
         return sampling.bilinear(field, u, v, "wrap")
 
+    @validate(x=_POINTS, y=_POINTS, values=Array(allow_inf=False))
     def deposit(self, x, y, values):
         """Cloud-in-cell sums of ``values`` at points (x, y) on this grid's cells (periodic).
 
         Divide by ``dx²`` for a density per square metre. The total is conserved exactly.
         """
+        if not (np.shape(x) == np.shape(y) == np.shape(values)):
+            raise ValueError(f"x, y and values must have one shape, got {np.shape(x)}, {np.shape(y)}, {np.shape(values)}")
         u, v = self.texel(x, y)
         return sampling.cloud_in_cell(u, v, values, (self.n, self.n), "wrap")
 

@@ -24,6 +24,7 @@ from typing import Any
 import jax
 import numpy as np
 
+__internal__ = True  # tooling for the library's own modules: not fuzzed as public API
 __all__ = ["is_traced", "check_scalar", "check_array", "check_int", "check_choice", "check_bool",
            "check_instance", "describe"]
 
@@ -198,6 +199,17 @@ def check_choice(name: str, value: Any, choices) -> Any:
     return value
 
 
+def check_key(name: str, value: Any) -> Any:
+    """A ``jax.random`` key: ``jax.random.key(seed)`` or the legacy ``PRNGKey(seed)`` (uint32, shape (2,))."""
+    dtype = getattr(value, "dtype", None)
+    if dtype is not None and jax.dtypes.issubdtype(dtype, jax.dtypes.prng_key):
+        return value
+    if dtype is None or np.dtype(dtype) != np.uint32 or np.shape(value) != (2,):
+        raise TypeError(f"{name} must be a jax.random key (jax.random.key(seed) or jax.random.PRNGKey(seed)), "
+                        f"got {describe(value)}")
+    return value
+
+
 def check_instance(name: str, value: Any, cls, what: str | None = None) -> Any:
     """TypeError naming the expected class unless ``value`` is an instance of ``cls``."""
     if not isinstance(value, cls):
@@ -205,3 +217,199 @@ def check_instance(name: str, value: Any, cls, what: str | None = None) -> Any:
                          else " or ".join(c.__name__ for c in cls))
         raise TypeError(f"{name} must be a {label}, got {describe(value)}")
     return value
+
+
+# -- declarative checks ---------------------------------------------------------------------
+class Spec:
+    """A check of one argument: ``spec(name, value, arguments) -> value`` (possibly normalized)."""
+
+    def __call__(self, name, value, arguments):
+        raise NotImplementedError
+
+
+class Real(Spec):
+    """A real number in a range (:func:`check_scalar`)."""
+
+    def __init__(self, lo=None, hi=None, lo_open=False, hi_open=False, allow_inf=False):
+        self.kw = dict(lo=lo, hi=hi, lo_open=lo_open, hi_open=hi_open, allow_inf=allow_inf)
+
+    def __call__(self, name, value, arguments):
+        return check_scalar(name, value, **self.kw)
+
+
+class Int(Spec):
+    """An integer in a range (:func:`check_int`)."""
+
+    def __init__(self, lo=None, hi=None, even=False):
+        self.kw = dict(lo=lo, hi=hi, even=even)
+
+    def __call__(self, name, value, arguments):
+        return check_int(name, value, **self.kw)
+
+
+class Bool(Spec):
+    """A switch (:func:`check_bool`)."""
+
+    def __call__(self, name, value, arguments):
+        return check_bool(name, value)
+
+
+class Choice(Spec):
+    """One of a list of names (:func:`check_choice`)."""
+
+    def __init__(self, choices):
+        self.choices = tuple(choices)
+
+    def __call__(self, name, value, arguments):
+        return check_choice(name, value, self.choices)
+
+
+class Instance(Spec):
+    """An object of a class (:func:`check_instance`); ``cls`` may be a zero-argument callable
+    returning the class, to avoid import cycles."""
+
+    def __init__(self, cls, what=None):
+        self.cls, self.what = cls, what
+
+    def __call__(self, name, value, arguments):
+        cls = self.cls if isinstance(self.cls, (type, tuple)) else self.cls()
+        return check_instance(name, value, cls, self.what)
+
+
+class Array(Spec):
+    """An array of numbers (:func:`check_array`); ``shape`` is a trailing shape, or a callable
+    of the other (already checked) arguments returning one."""
+
+    def __init__(self, shape=None, **kw):
+        self.shape, self.kw = shape, kw
+
+    def __call__(self, name, value, arguments):
+        tail = self.shape(arguments) if callable(self.shape) else self.shape
+        return check_array(name, value, shape_tail=tail, **self.kw)
+
+
+def field_of(grid_argument: str = "grid", **kw) -> Array:
+    """A field on the grid passed as ``grid_argument``: trailing shape (n, n), finite."""
+    return Array(shape=lambda a: (a[grid_argument].n, a[grid_argument].n), min_ndim=2, **kw)
+
+
+class Vector(Array):
+    """A 1-D array of ``size`` numbers (a direction, a point)."""
+
+    def __init__(self, size, **kw):
+        super().__init__(shape=(size,), ndim=1, **kw)
+
+
+class Maybe(Spec):
+    """None, or a value that passes ``spec``."""
+
+    def __init__(self, spec):
+        self.spec = spec
+
+    def __call__(self, name, value, arguments):
+        return None if value is None else self.spec(name, value, arguments)
+
+
+class Function(Spec):
+    """A callable."""
+
+    def __call__(self, name, value, arguments):
+        if not callable(value):
+            raise TypeError(f"{name} must be a function, got {describe(value)}")
+        return value
+
+
+class Text(Spec):
+    """A string (a title, a label, a name); ``empty`` allows ""."""
+
+    def __init__(self, empty=True):
+        self.empty = empty
+
+    def __call__(self, name, value, arguments):
+        if not isinstance(value, str):
+            raise TypeError(f"{name} must be a string, got {describe(value)}")
+        if not self.empty and not value.strip():
+            raise ValueError(f"{name} must not be empty")
+        return value
+
+
+class Items(Spec):
+    """A list or tuple (or any iterable but a string, with ``iterable``), each item passing
+    ``item`` (named ``name[i]``); at least ``min_len`` items. Iterables are turned into lists."""
+
+    def __init__(self, item=None, min_len=0, iterable=False, length=None):
+        self.item, self.min_len, self.iterable, self.length = item, min_len, iterable, length
+
+    def __call__(self, name, value, arguments):
+        ok = isinstance(value, (list, tuple)) or (self.iterable and hasattr(value, "__iter__")
+                                                   and not isinstance(value, (str, bytes, dict)))
+        if not ok:
+            raise TypeError(f"{name} must be a list or tuple, got {describe(value)}")
+        items = list(value) if not isinstance(value, (list, tuple)) else value
+        if len(items) < self.min_len:
+            raise ValueError(f"{name} must hold at least {self.min_len} item(s), got {len(items)}")
+        if self.length is not None and len(items) != self.length:
+            raise ValueError(f"{name} must hold {self.length} items, got {len(items)}")
+        if self.item is not None:
+            for i, v in enumerate(items):
+                self.item(f"{name}[{i}]", v, arguments)
+        return items if not isinstance(value, (list, tuple)) else value
+
+
+class Mapping(Spec):
+    """A dict whose keys are strings and whose values pass ``value``."""
+
+    def __init__(self, value=None):
+        self.value = value
+
+    def __call__(self, name, value, arguments):
+        if not isinstance(value, dict):
+            raise TypeError(f"{name} must be a dict, got {describe(value)}")
+        for key, v in value.items():
+            if not isinstance(key, str):
+                raise TypeError(f"{name} keys must be strings, got {describe(key)}")
+            if self.value is not None:
+                self.value(f"{name}[{key!r}]", v, arguments)
+        return value
+
+
+class FilePath(Spec):
+    """A file system path (str or os.PathLike, not empty)."""
+
+    def __call__(self, name, value, arguments):
+        import os
+
+        if not isinstance(value, (str, os.PathLike)) or (isinstance(value, str) and not value.strip()):
+            raise TypeError(f"{name} must be a file system path (str or pathlib.Path), got {describe(value)}")
+        return value
+
+
+def validate(**specs):
+    """Decorator: check the named arguments at the boundary, in the order given, before the call.
+
+    Each spec is a :class:`Spec` (``Real(lo=0, lo_open=True)``, ``Instance(Grid)``,
+    ``field_of("grid")``, …). Missing arguments raise Python's own TypeError naming them.
+    Checks on traced values (inside ``jit``) look at kinds and shapes only.
+    """
+    import functools
+    import inspect
+
+    def decorate(fn):
+        sig = inspect.signature(fn)
+        unknown = set(specs) - set(sig.parameters)
+        if unknown:
+            raise TypeError(f"validate: {fn.__qualname__} has no parameter(s) {sorted(unknown)}")
+
+        @functools.wraps(fn)
+        def wrapper(*args, **kwargs):
+            bound = sig.bind(*args, **kwargs)
+            bound.apply_defaults()
+            arguments = bound.arguments
+            for name, spec in specs.items():
+                arguments[name] = spec(name, arguments[name], arguments)
+            return fn(*bound.args, **bound.kwargs)
+
+        wrapper.__signature__ = sig
+        return wrapper
+
+    return decorate

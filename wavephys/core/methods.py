@@ -15,6 +15,7 @@ import inspect
 from collections.abc import Mapping
 from typing import Callable
 
+__internal__ = True  # tooling for the library's own modules: not fuzzed as public API
 __all__ = ["Methods", "dispatch"]
 
 

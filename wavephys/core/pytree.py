@@ -11,6 +11,7 @@ from __future__ import annotations
 import jax
 import jax.numpy as jnp
 
+__internal__ = True  # tooling for the library's own modules: not fuzzed as public API
 __all__ = ["register", "stack"]
 
 
@@ -43,6 +44,8 @@ def stack(items):
     >>> batch.depth.shape
     (3,)
     """
+    if isinstance(items, (str, bytes, dict)) or not hasattr(items, "__iter__"):
+        raise TypeError(f"items must be a list of pytrees of one structure, got {type(items).__name__}")
     items = list(items)
     if not items:
         raise ValueError("items must hold at least one pytree, got none")

@@ -15,6 +15,7 @@ import jax
 import jax.numpy as jnp
 import numpy as np
 
+__internal__ = True  # tooling for the library's own modules (users call the Grid's methods)
 __all__ = ["texel_coordinates", "bilinear", "cloud_in_cell", "array_module"]
 
 MODES = ("wrap", "clamp")

@@ -19,6 +19,7 @@ import math
 
 from wavephys.core.sampling import array_module
 
+__internal__ = True  # tooling for the library's own modules (users call the Grid's methods)
 __all__ = ["angular_wavenumbers", "spectral_gradient", "central_gradient", "GRADIENT_METHODS", "gradient",
            "spectral_laplacian", "fourier_refine"]
 

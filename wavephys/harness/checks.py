@@ -12,7 +12,19 @@ import math
 from dataclasses import asdict, dataclass
 from typing import Optional
 
-from wavephys.core.inputs import check_choice, check_instance, check_scalar
+from wavephys.core.inputs import Real, Text, _real_kind, check_bool, check_choice, check_instance, check_scalar, validate
+
+_QUANTITY = Text(empty=False)
+_TEXT = Text()
+
+
+def _measured(name, value):
+    """A measured value: a real scalar; NaN and inf are allowed (the row then fails)."""
+    _real_kind(name, value)
+    try:
+        return float(value)
+    except (TypeError, ValueError):
+        raise TypeError(f"{name} must be a real number, got {type(value).__name__}") from None
 
 __all__ = ["Check", "compare", "bound", "assert_check", "RELATIONS"]
 
@@ -28,7 +40,7 @@ class Check:
     quantity : str
         What is measured (a sentence fragment, with its conditions).
     measured : float
-        The measured value.
+        The measured value (NaN or inf make a failed row: a measurement that did not work).
     expected : float
         The expected value (``"~="``) or the limit (``"<="``, ``">="``).
     tolerance : float
@@ -52,7 +64,14 @@ class Check:
     note: str = ""
 
     def __post_init__(self):
+        _QUANTITY("quantity", self.quantity, {})
+        object.__setattr__(self, "measured", _measured("measured", self.measured))
+        check_scalar("expected", self.expected, allow_inf=True)
+        check_scalar("tolerance", self.tolerance, lo=0.0)
         check_choice("relation", self.relation, RELATIONS)
+        check_bool("relative", self.relative)
+        _TEXT("unit", self.unit, {})
+        _TEXT("note", self.note, {})
 
     @property
     def error(self) -> Optional[float]:
@@ -93,6 +112,7 @@ class Check:
                 f"{'ok' if self.ok else 'FAILED'}{note}")
 
 
+@validate(quantity=_QUANTITY, unit=_TEXT, note=_TEXT)
 def compare(quantity: str, measured, expected, *, rtol: Optional[float] = None, atol: Optional[float] = None,
             unit: str = "", note: str = "") -> Check:
     """A ``"~="`` row: ``measured`` agrees with ``expected`` within ``rtol`` (relative) or ``atol``."""
@@ -100,13 +120,16 @@ def compare(quantity: str, measured, expected, *, rtol: Optional[float] = None, 
         raise ValueError("give exactly one of rtol, atol")
     tol = rtol if rtol is not None else atol
     check_scalar("rtol" if rtol is not None else "atol", tol, lo=0.0)
-    return Check(quantity, float(measured), float(expected), float(tol), "~=", rtol is not None, unit, note)
+    check_scalar("expected", expected, allow_inf=True)
+    return Check(quantity, _measured("measured", measured), float(expected), float(tol), "~=", rtol is not None,
+                 unit, note)
 
 
+@validate(quantity=_QUANTITY, limit=Real(allow_inf=True), unit=_TEXT, note=_TEXT)
 def bound(quantity: str, measured, limit, *, relation: str = "<=", unit: str = "", note: str = "") -> Check:
     """A bound row: ``measured`` <= ``limit`` (or >= with ``relation=">="``)."""
     check_choice("relation", relation, ("<=", ">="))
-    return Check(quantity, float(measured), float(limit), 0.0, relation, False, unit, note)
+    return Check(quantity, _measured("measured", measured), float(limit), 0.0, relation, False, unit, note)
 
 
 def assert_check(check: Check) -> Check:

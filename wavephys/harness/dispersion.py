@@ -10,15 +10,16 @@ code, not the hot path.
 from __future__ import annotations
 
 import math
+import warnings
 from dataclasses import dataclass
 
 import numpy as np
 
-from wavephys.core.inputs import check_array, check_instance, check_scalar
+from wavephys.core.inputs import check_array, check_instance, check_int, check_scalar
 from wavephys.core.spectral import angular_wavenumbers
 from wavephys.core.water import Water
 
-__all__ = ["DispersionSamples", "measure_dispersion", "dispersion_error"]
+__all__ = ["DispersionSamples", "measure_dispersion", "dispersion_error", "dispersion_check"]
 
 
 @dataclass(frozen=True)
@@ -94,16 +95,21 @@ def measure_dispersion(eta, dx: float, dt: float, *, min_relative_power: float =
     -------
     DispersionSamples
     """
-    check_array("eta", eta, min_ndim=3)
+    check_array("eta", eta, ndim=3)
     eta = np.asarray(eta, dtype=np.float64)
-    if eta.ndim != 3:
-        raise ValueError(f"eta must have shape (n_t, n_y, n_x), got {eta.shape}")
     nt, ny, nx = eta.shape
+    time_last = ny != nx and nt == ny and nx != nt
     if nt < 8:
-        raise ValueError(f"eta must have at least 8 time samples, got {nt}")
+        hint = (" (time looks like the last axis: pass np.moveaxis(eta, -1, 0))" if time_last or
+                (eta.shape[2] >= 8 and nt == ny) else "")
+        raise ValueError(f"eta must have at least 8 time samples on its first axis, got shape {eta.shape}{hint}")
+    if time_last:
+        warnings.warn(f"eta has shape {eta.shape}: time must be the first axis (n_t, n_y, n_x); a square grid "
+                      f"with time last would be np.moveaxis(eta, -1, 0)", stacklevel=2)
     check_scalar("dx", dx, lo=0.0, lo_open=True)
     check_scalar("dt", dt, lo=0.0, lo_open=True)
     check_scalar("min_relative_power", min_relative_power, lo=0.0, hi=1.0)
+    check_scalar("min_bins", min_bins, lo=0.0, hi=nt / 4)
 
     eta = eta - eta.mean(axis=0)
     window = np.hanning(nt + 2)[1:-1]
@@ -148,3 +154,86 @@ def dispersion_error(samples: DispersionSamples, water: Water) -> np.ndarray:
 
     theory = np.asarray(angular_frequency(np.asarray(samples.k, np.float32), water), np.float64)
     return samples.omega / theory - 1.0
+
+
+def _likely_cause(samples: DispersionSamples, water: Water, dt: float, err: np.ndarray) -> str:
+    """A guess, in words, at why measured ω(k) departs from theory (empty when none fits)."""
+    from dataclasses import replace
+
+    def worst(w):
+        return float(np.max(np.abs(dispersion_error(samples, w)))) if samples.k.size else math.inf
+
+    theory = samples.omega / (1.0 + err)
+    if np.any(theory > math.pi / dt):
+        k_alias = float(samples.k[np.argmax(theory > math.pi / dt)])
+        return (f"aliased sampling: theory puts omega above the Nyquist frequency pi/dt = {math.pi / dt:.4g} "
+                f"rad/s from k = {k_alias:.4g} rad/m on; record frames closer together or limit k_range")
+    c = samples.omega / samples.k
+    c_theory = theory / samples.k
+    if samples.k.size >= 3 and samples.k.max() > 2 * samples.k.min():
+        # log-log slope of phase speed against k: -1/2 for deep gravity waves, 0 for no dispersion
+        slope = np.polyfit(np.log(samples.k), np.log(c), 1)[0]
+        slope_theory = np.polyfit(np.log(samples.k), np.log(c_theory), 1)[0]
+        if abs(slope) < 0.2 and abs(slope_theory) > 0.3:
+            return (f"non-dispersive: every k moves at about one speed c = {np.median(c):.4g} m/s (d log c / "
+                    f"d log k = {slope:.2f}; water waves here have {slope_theory:.2f}, c from "
+                    f"{c_theory.min():.4g} to {c_theory.max():.4g} m/s): a wave equation, not water waves")
+    tolerance = 0.25 * float(np.max(np.abs(err)))
+    if math.isfinite(water.depth) and worst(replace(water, depth=math.inf)) < tolerance:
+        return "wrong depth: the data match deep water, not the given depth"
+    if not math.isfinite(water.depth) and samples.k.size:
+        for depth in np.geomspace(0.5 / samples.k.max(), 5.0 / samples.k.min(), 24):
+            if worst(replace(water, depth=float(depth))) < tolerance:
+                return f"wrong depth: the data match finite depth h = {depth:.3g} m, not deep water"
+    if water.sigma > 0 and worst(replace(water, sigma=0.0)) < tolerance:
+        return "surface tension missing: the data match sigma = 0"
+    if water.sigma == 0 and worst(replace(water, sigma=0.0728)) < tolerance:
+        return "surface tension present: the data match sigma = 0.0728 N/m"
+    ratio = float(np.median(1.0 + err))
+    if np.std(1.0 + err) < 0.02 * ratio and abs(ratio - 1.0) > 0.02:
+        return (f"omega off by a constant factor {ratio:.4g}: a time step or g scaled (g would be "
+                f"{water.g * ratio ** 2:.4g} m/s^2 in deep water)")
+    return ""
+
+
+def dispersion_check(samples: DispersionSamples, water: Water, dt: float, *, rtol: float = 0.005,
+                     k_range=(0.0, math.inf), min_samples: int = 3):
+    """A :class:`~wavephys.harness.Check` of measured ω(k) against ``water``'s theory that explains itself.
+
+    The row is max |ω_measured/ω_theory − 1| over the shells with k in ``k_range`` (rad/m)
+    against ``rtol``; its note names the band covered (k range and number of shells), the
+    worst k with its measured and expected ω, and when the row fails the likely cause if
+    one is recognizable (aliased sampling, no dispersion, wrong depth, surface tension,
+    a constant factor). Fewer than ``min_samples`` shells in the band fail the row too.
+    ``dt`` (s) is the time between frames of the record.
+    """
+    from wavephys.harness.checks import bound, compare
+
+    check_instance("samples", samples, DispersionSamples, "wavephys.harness.DispersionSamples")
+    check_instance("water", water, Water, "wavephys.Water")
+    check_scalar("dt", dt, lo=0.0, lo_open=True)
+    check_scalar("rtol", rtol, lo=0.0)
+    check_int("min_samples", min_samples, lo=1)
+    check_array("k_range", k_range, ndim=1, shape_tail=(2,), lo=0.0, allow_inf=True)
+    if not k_range[0] < k_range[1]:
+        raise ValueError(f"k_range must be (k_min, k_max) with k_min < k_max, got {tuple(k_range)}")
+    k_range = (float(k_range[0]), float(k_range[1]))
+    all_k = samples.k
+    samples = samples.select(*k_range)
+    quantity = "max |omega_measured/omega_theory - 1|"
+    if samples.k.size < min_samples:
+        span = f"{all_k.min():.4g}..{all_k.max():.4g} rad/m" if all_k.size else "none"
+        return bound("dispersion shells measured in k_range", samples.k.size, min_samples, relation=">=",
+                     note=f"k_range {k_range[0]:.4g}..{k_range[1]:.4g} rad/m; shells measured anywhere: "
+                          f"{all_k.size} ({span}); a longer record or more frames per period measures more")
+    err = dispersion_error(samples, water)
+    i = int(np.argmax(np.abs(err)))
+    theory = samples.omega[i] / (1.0 + err[i])
+    note = (f"band k = {samples.k.min():.4g}..{samples.k.max():.4g} rad/m, {samples.k.size} shells; worst at "
+            f"k = {samples.k[i]:.4g} rad/m: omega measured {samples.omega[i]:.4g}, expected {theory:.4g} rad/s")
+    row = compare(quantity, float(np.abs(err[i])), 0.0, atol=rtol, note=note)
+    if not row.ok:
+        cause = _likely_cause(samples, water, dt, err)
+        if cause:
+            row = compare(quantity, float(np.abs(err[i])), 0.0, atol=rtol, note=f"{note}; likely cause: {cause}")
+    return row

@@ -104,6 +104,15 @@ def _sections(field, grid: Grid, source, direction, ds, ys):
     return grid.sample(field, source[0] - c * D - s * Y, source[1] - s * D + c * Y)
 
 
+def _check_reach(near, far, length):
+    """0 < near < far ≤ L/2 (m behind the source), with both names in the message."""
+    check_scalar("near", near, lo=0.0, hi=length / 2, lo_open=True, hi_open=True)
+    check_scalar("far", far, lo=0.0, hi=length / 2, lo_open=True)
+    if not near < far:
+        raise ValueError(f"near must be less than far (0 < near < far <= L/2 = {length / 2:g} m), "
+                         f"got near={near!r}, far={far!r}")
+
+
 def _lattice(eta, grid: Grid, source, near: float, far: float, exclude: float):
     """Checked inputs and the (distance, lateral) sample lattice of the section fits."""
     check_instance("grid", grid, Grid, "wavephys.Grid")
@@ -111,9 +120,8 @@ def _lattice(eta, grid: Grid, source, near: float, far: float, exclude: float):
     check_array("eta", eta, ndim=2, shape_tail=(n, n))
     check_array("source", source, ndim=1, shape_tail=(2,))
     L, dx = float(grid.length), float(grid.dx)
-    check_scalar("near", near, lo=0.0, lo_open=True)
-    check_scalar("far", far, lo=near, hi=L / 2, lo_open=True)
-    check_scalar("exclude", exclude, lo=0.0)
+    _check_reach(near, far, L)
+    check_scalar("exclude", exclude, lo=0.0, hi=L / 2, hi_open=True)
     ds = np.arange(near, far + dx / 2, dx)
     ys = np.arange(-L / 2 + dx, L / 2, dx / 2) * 0.98
     return np.asarray(eta, np.float64), ds, ys
@@ -160,7 +168,7 @@ def wake_angle_max(eta, grid: Grid, *, source=(0.0, 0.0), direction: float = 0.0
     transverse waves).
     """
     eta, ds, ys = _lattice(eta, grid, source, near, far, exclude)
-    check_scalar("direction", direction)
+    check_scalar("direction", direction, lo=-2 * math.pi, hi=2 * math.pi)
     env = dict.fromkeys((1, -1), _envelope(_sections(eta, grid, source, direction, ds, ys)))
     angle, unc, used = _ridge_angle(env, ds, ys, exclude, lambda d: np.stack([np.ones_like(d), d, np.cbrt(d)], 1))
     return WakeAngle(angle, unc, "max", used)
@@ -182,7 +190,7 @@ def wake_angle_cusp(eta, grid: Grid, *, source=(0.0, 0.0), direction: float = 0.
     with the wrong dispersion puts these waves elsewhere, and the measured angle shows it.
     """
     eta, ds, ys = _lattice(eta, grid, source, near, far, exclude)
-    check_scalar("direction", direction)
+    check_scalar("direction", direction, lo=-2 * math.pi, hi=2 * math.pi)
     check_scalar("speed", speed, lo=0.0, lo_open=True)
     check_instance("water", water, Water, "wavephys.Water")
     check_scalar("bandwidth", bandwidth, lo=0.0, hi=0.5, lo_open=True)
@@ -190,6 +198,9 @@ def wake_angle_cusp(eta, grid: Grid, *, source=(0.0, 0.0), direction: float = 0.
     if cusp.wavenumber >= math.pi / float(grid.dx):
         raise ValueError(f"the cusp wavenumber {cusp.wavenumber:.4g} rad/m is not resolved by the grid "
                          f"(Nyquist {math.pi / float(grid.dx):.4g} rad/m): lower speed or finer grid")
+    if 2 * math.pi / cusp.wavenumber > far - near:
+        raise ValueError(f"speed {speed!r} m/s: the cusp waves ({2 * math.pi / cusp.wavenumber:.4g} m long) do not "
+                         f"fit between near and far ({far - near:.4g} m): lower the speed or use a larger domain")
     env = {side: np.abs(_sections(_cusp_band(eta, grid, cusp.wavenumber, bandwidth, direction, side), grid,
                                   source, direction, ds, ys)) for side in (1, -1)}
     angle, unc, used = _ridge_angle(env, ds, ys, exclude, lambda d: np.stack([np.ones_like(d), d], 1))
@@ -221,8 +232,8 @@ def track_wavelength(eta, grid: Grid, *, source=(0.0, 0.0), near: float, far: fl
     check_instance("grid", grid, Grid, "wavephys.Grid")
     n = grid.n
     check_array("eta", eta, ndim=2, shape_tail=(n, n))
-    check_scalar("near", near, lo=0.0, lo_open=True)
-    check_scalar("far", far, lo=near, hi=float(grid.length) / 2, lo_open=True)
+    check_array("source", source, ndim=1, shape_tail=(2,))
+    _check_reach(near, far, float(grid.length))
     dx = float(grid.dx)
     row, col = grid.nearest(source[0], source[1])
     line = np.asarray(eta, np.float64)[row, np.arange(col, col - n // 2, -1) % n]

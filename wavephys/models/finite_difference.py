@@ -25,8 +25,9 @@ import math
 
 import jax
 import jax.numpy as jnp
+import numpy as np
 
-from wavephys.core.inputs import check_int, check_scalar
+from wavephys.core.inputs import Array, Real, Spec, check_array, check_bool, check_int, check_scalar, validate
 from wavephys.models.two_level import check_levels, run_two_level
 from wavephys.core.grid import Grid
 from wavephys.core.sampling import array_module
@@ -42,6 +43,9 @@ __all__ = [
     "fd_moving_source",
 ]
 
+MAX_STEPS = 10**6
+"""Most steps :func:`fd_moving_source` runs (a bound, so that no input makes it run for days)."""
+
 STABILITY_LIMIT = 1.0 / math.sqrt(2.0)
 """Largest stable Courant number c·Δt/Δx of the explicit 2-D 5-point scheme."""
 
@@ -54,6 +58,29 @@ def courant_number(speed, dt, dx):
     return speed * dt / dx
 
 
+class _Level(Spec):
+    """A height field (..., ny, nx) with ny, nx ≥ 3 (the 5-point stencil); with ``like``, the
+    shape of that other argument."""
+
+    def __init__(self, like=None):
+        self.like = like
+
+    def __call__(self, name, value, arguments):
+        check_array(name, value, min_ndim=2)
+        shape = np.shape(value)
+        if min(shape[-2:]) < 3:
+            raise ValueError(f"{name} must be at least 3 x 3 on its last two axes, got shape {shape}")
+        if self.like is not None and shape != np.shape(arguments[self.like]):
+            raise ValueError(f"{name} must have the shape of {self.like} {np.shape(arguments[self.like])}, got {shape}")
+        return value
+
+
+_COURANT = Real(lo=0.0, hi=10.0, lo_open=True)
+_DAMPING = Real(lo=0.0, hi=1.0, hi_open=True)
+_POSITIVE = Real(lo=0.0, lo_open=True)
+
+
+@validate(eta=_Level())
 def laplacian(eta):
     """Periodic 5-point Laplacian on the last two axes, in grid units (1/Δx² omitted).
 
@@ -63,8 +90,11 @@ def laplacian(eta):
             + xp.roll(eta, -1, -2) - 4.0 * eta)
 
 
+@validate(eta=_Level(), eta_prev=_Level(like="eta"), courant=_COURANT, damping=_DAMPING)
 def fd_step(eta, eta_prev, courant, damping=0.0):
-    """One explicit step: returns η^{n+1} from η^n (``eta``) and η^{n−1} (``eta_prev``), m."""
+    """One explicit step: returns η^{n+1} from η^n (``eta``) and η^{n−1} (``eta_prev``), m.
+
+    ``courant`` C = cΔt/Δx in (0, 10] (stable up to 1/√2), ``damping`` d in [0, 1)."""
     return (2.0 - damping) * eta - (1.0 - damping) * eta_prev + courant**2 * laplacian(eta)
 
 
@@ -84,7 +114,8 @@ def fd_run(eta, eta_prev, courant, steps: int, damping=0.0, check_stability: boo
         d in [0, 1).
     """
     eta, eta_prev = check_levels(eta, eta_prev)
-    check_scalar("courant", courant, lo=0.0, lo_open=True)
+    check_bool("check_stability", check_stability)
+    check_scalar("courant", courant, lo=0.0, hi=10.0, lo_open=True)
     if check_stability:
         check_scalar("courant", courant, lo=0.0, hi=STABILITY_LIMIT, lo_open=True)
     check_scalar("damping", damping, lo=0.0, hi=1.0, hi_open=True)
@@ -96,11 +127,17 @@ def _fd_run(eta, eta_prev, courant, damping, steps):
     return run_two_level(fd_step, eta, eta_prev, (courant, damping), steps, True)
 
 
+@validate(kx=Array(), ky=Array(), speed=_POSITIVE, dt=_POSITIVE, dx=_POSITIVE)
 def fd_angular_frequency(kx, ky, speed, dt, dx):
     """The scheme's own ω(k), rad/s, from its discrete dispersion relation (module doc).
 
-    NaN where the scheme is unstable for that mode (right-hand side > 1).
+    ``kx``, ``ky`` (rad/m) broadcast together. The result is NaN, by design, where the
+    scheme is unstable for that mode (right-hand side > 1): there the scheme has no real ω.
     """
+    try:
+        np.broadcast_shapes(np.shape(kx), np.shape(ky))
+    except ValueError:
+        raise ValueError(f"kx and ky must broadcast together, got shapes {np.shape(kx)} and {np.shape(ky)}") from None
     c2 = (speed * dt / dx) ** 2
     rhs = c2 * (jnp.sin(kx * dx / 2) ** 2 + jnp.sin(ky * dx / 2) ** 2)
     return 2.0 / dt * jnp.arcsin(jnp.sqrt(jnp.where(rhs <= 1.0, rhs, jnp.nan)))
@@ -154,7 +191,11 @@ def fd_moving_source(n: int = 512, length: float = 40.0, wave_speed: float = 0.5
     dx = length / n
     dt = courant * dx / wave_speed
     x, y = grid.mesh()
-    steps = int(round(duration / dt))
+    steps = duration / dt
+    if steps > MAX_STEPS:
+        raise ValueError(f"duration {duration!r} s at wave_speed {wave_speed!r} m/s takes {steps:.3g} steps of "
+                         f"{dt:.3g} s: more than {MAX_STEPS:.0e}; shorten duration or lower wave_speed")
+    steps = int(round(steps))
     x_start = -0.35 * length
 
     @jax.jit

@@ -18,10 +18,14 @@ and it is stable only for Δt ≤ 2/sqrt(max Ĝ_P) (:func:`max_stable_dt`).
 
 from __future__ import annotations
 
+import math
+
 import jax
 import jax.numpy as jnp
+import numpy as np
 
-from wavephys.core.inputs import check_array, check_int, check_scalar
+from wavephys.core.inputs import Array, Real, Spec, check_array, check_bool, check_int, validate
+from wavephys.core.specs import GRID, WATER
 from wavephys.models.two_level import check_levels, run_two_level
 from wavephys.physics.dispersion import angular_frequency
 from wavephys.core.grid import Grid
@@ -31,6 +35,30 @@ __all__ = ["truncated_kernel", "stencil_symbol", "max_stable_dt", "convolve_peri
            "kernel_step", "kernel_run"]
 
 
+class _Stencil(Spec):
+    """A square stencil (P, P), P odd, smaller than the grid of ``grid`` (or of the field ``eta``)."""
+
+    def __call__(self, name, value, arguments):
+        check_array(name, value, ndim=2)
+        p, q = np.shape(value)
+        if p != q or p % 2 == 0:
+            raise ValueError(f"{name} must be square with an odd side (P, P), got shape {np.shape(value)}")
+        if "grid" in arguments and isinstance(arguments["grid"], Grid):
+            n = arguments["grid"].n
+        elif "eta" in arguments:
+            n = min(np.shape(arguments["eta"])[-2:])
+        else:
+            n = None
+        if n is not None and p >= n:
+            raise ValueError(f"{name} must be smaller than the grid ({n} samples), got side {p}")
+        return value
+
+
+_STENCIL = _Stencil()
+_DT = Real(lo=0.0, hi=1e6, lo_open=True)
+
+
+@validate(grid=GRID, water=WATER)
 def truncated_kernel(grid: Grid, water: Water, size: int):
     """The P × P stencil of the ω² operator, 1/s² per point, centre at ``[P//2, P//2]``.
 
@@ -50,8 +78,10 @@ def truncated_kernel(grid: Grid, water: Water, size: int):
     return stencil.at[h, h].add(-jnp.sum(stencil))
 
 
+@validate(grid=GRID, stencil=_STENCIL)
 def stencil_symbol(stencil, grid: Grid):
     """Fourier symbol Ĝ_P(k) of a centred stencil on the grid, 1/s², shape ``(n, n)``."""
+    stencil = jnp.asarray(stencil)
     p = stencil.shape[-1]
     h = p // 2
     emb = jnp.zeros((grid.n, grid.n), stencil.dtype).at[:p, :p].set(stencil)
@@ -59,13 +89,20 @@ def stencil_symbol(stencil, grid: Grid):
     return jnp.fft.fft2(emb).real
 
 
+@validate(grid=GRID, stencil=_STENCIL)
 def max_stable_dt(stencil, grid: Grid):
     """Largest stable leapfrog step for the stencil, s: 2/sqrt(max Ĝ_P)."""
-    return float(2.0 / jnp.sqrt(jnp.max(stencil_symbol(stencil, grid))))
+    top = float(jnp.max(stencil_symbol(stencil, grid)))
+    if not top > 0:
+        raise ValueError(f"stencil has no positive Fourier symbol (max {top:.3g} 1/s^2): it is not an omega^2 "
+                         f"operator, so no step is stable")
+    return 2.0 / math.sqrt(top)
 
 
+@validate(eta=Array(min_ndim=2), stencil=_STENCIL)
 def convolve_periodic(eta, stencil):
     """Periodic 2-D convolution of ``eta`` (..., n, n) with a centred odd stencil (P, P)."""
+    eta, stencil = jnp.asarray(eta), jnp.asarray(stencil)
     h = stencil.shape[-1] // 2
     lead = eta.shape[:-2]
     x = eta.reshape((-1, 1) + eta.shape[-2:])
@@ -75,12 +112,14 @@ def convolve_periodic(eta, stencil):
     return out.reshape(lead + eta.shape[-2:])
 
 
+@validate(eta=Array(min_ndim=2), eta_prev=Array(shape=lambda a: np.shape(a["eta"]), min_ndim=2),
+          stencil=_STENCIL, dt=_DT)
 def kernel_step(eta, eta_prev, stencil, dt):
-    """One leapfrog step η^{n+1} = 2η^n − η^{n−1} − Δt²·(G_P ∗ η^n), m."""
+    """One leapfrog step η^{n+1} = 2η^n − η^{n−1} − Δt²·(G_P ∗ η^n), m (Δt in (0, 1e6] s)."""
     return 2.0 * eta - eta_prev - dt * dt * convolve_periodic(eta, stencil)
 
 
-def kernel_run(eta, eta_prev, stencil, dt, steps: int):
+def kernel_run(eta, eta_prev, stencil, dt, steps: int, check_stability: bool = True):
     """``steps`` leapfrog steps; returns (η^N, η^{N−1}), m.
 
     Parameters
@@ -90,12 +129,20 @@ def kernel_run(eta, eta_prev, stencil, dt, steps: int):
     stencil : array_like
         From :func:`truncated_kernel`.
     dt : float
-        Step, s, > 0 (see :func:`max_stable_dt`).
+        Step, s, > 0; with ``check_stability`` (default) at most :func:`max_stable_dt` on the
+        field's grid. Pass ``check_stability=False`` to explore the unstable side (it blows up).
     steps : int
         ≥ 1.
     """
     eta, eta_prev = check_levels(eta, eta_prev)
-    check_array("stencil", stencil, min_ndim=2)
-    check_scalar("dt", dt, lo=0.0, lo_open=True)
+    check_bool("check_stability", check_stability)
+    _STENCIL("stencil", stencil, {"eta": eta})
+    _DT("dt", dt, {})
     steps = check_int("steps", steps, lo=1)
+    if check_stability:
+        n = eta.shape[-1]
+        limit = max_stable_dt(stencil, Grid(n, float(n)))  # the symbol depends on the samples only
+        if dt > limit:
+            raise ValueError(f"dt must be <= {limit:.4g} s, the stability limit of this stencil (max_stable_dt), "
+                             f"got {dt!r}; pass check_stability=False to watch it blow up")
     return run_two_level(kernel_step, eta, eta_prev, (jnp.asarray(stencil, eta.dtype), dt), steps, False)

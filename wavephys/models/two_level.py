@@ -9,6 +9,7 @@ import jax.numpy as jnp
 
 from wavephys.core.inputs import check_array
 
+__internal__ = True  # tooling for the library's own modules: not fuzzed as public API
 __all__ = ["check_levels", "run_two_level"]
 
 

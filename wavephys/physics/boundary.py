@@ -25,7 +25,7 @@ import jax
 import jax.numpy as jnp
 import numpy as np
 
-from wavephys.core.inputs import check_int, check_scalar
+from wavephys.core.inputs import Array, Choice, Real, check_array, check_int, check_scalar, validate
 from wavephys.core.methods import Methods
 from wavephys.core.spectral import angular_wavenumbers
 from wavephys.core.water import Water
@@ -35,11 +35,28 @@ __all__ = ["cutoff_quadratic", "cutoff_linear", "CUTOFF_METHODS", "cutoff_profil
            "cutoff_reflection", "cutoff_boundary"]
 
 
+_S = Array(lo=0.0, hi=1.0)
+_DTYPE = Choice(("float32", "float64"))
+
+
+def _dtype_name(dtype):
+    import numpy
+
+    if dtype is None:
+        return dtype
+    try:
+        return numpy.dtype(dtype).name
+    except TypeError:
+        return dtype  # not a dtype: the Choice check says so
+
+
+@validate(s=_S)
 def cutoff_quadratic(s):
     """Quadratic cutoff weight 1 − (s − 1)² at s = p/M ∈ [0, 1) (Loviscach 2003)."""
     return 1.0 - (s - 1.0) ** 2
 
 
+@validate(s=_S)
 def cutoff_linear(s):
     """Linear cutoff weight s at s = p/M ∈ [0, 1) (Loviscach 2002)."""
     return s
@@ -72,11 +89,12 @@ def cutoff_profile(n: int, margin: int, method: str = "quadratic", dtype=jnp.flo
     """
     n, margin = _check_margin(n, margin)
     shape = CUTOFF_METHODS.check(method)
+    dtype = _DTYPE("dtype", _dtype_name(dtype), {})
     if margin == 0:
         return jnp.ones(n, dtype)
     p = jnp.arange(n, dtype=dtype)
     dist = jnp.minimum(p, n - 1 - p)  # distance to the nearer edge
-    return jnp.where(dist < margin, shape(dist / margin), 1.0).astype(dtype)
+    return jnp.where(dist < margin, shape(jnp.minimum(dist / margin, 1.0)), 1.0).astype(dtype)
 
 
 def cutoff_mask(n: int, margin: int, method: str = "quadratic", dtype=jnp.float32):
@@ -87,6 +105,9 @@ def cutoff_mask(n: int, margin: int, method: str = "quadratic", dtype=jnp.float3
 
 def interior(field, margin: int):
     """The visible inner ``(n − 2M)²`` part of ``field`` (last two axes)."""
+    check_array("field", field, min_ndim=2)
+    if np.shape(field)[-1] != np.shape(field)[-2]:
+        raise ValueError(f"field must be square on its last two axes, got shape {np.shape(field)}")
     _check_margin(np.shape(field)[-1], margin)
     n = field.shape[-1]
     return field[..., margin:n - margin, margin:n - margin]
@@ -106,7 +127,7 @@ def cutoff_reflection(ratio: float, method: str = "quadratic", margin: int = 32,
     """
     check_scalar("ratio", ratio, lo=0.0, lo_open=True, hi=64.0)
     margin = check_int("margin", margin, lo=1)
-    check_scalar("group_cells_per_step", group_cells_per_step, lo=0.0, lo_open=True)
+    check_scalar("group_cells_per_step", group_cells_per_step, lo=0.0, hi=8.0, lo_open=True)
     water = Water(sigma=0.0)
     lam = ratio * margin
     n = 1 << int(np.ceil(np.log2(2 * (9 * lam + margin))))
@@ -139,8 +160,10 @@ def cutoff_boundary(method: str = "quadratic", threshold: float = 1e-3, lo: floa
     number of ``iterations``; ``RuntimeError`` if [lo, hi] does not bracket the threshold.
     """
     check_scalar("threshold", threshold, lo=0.0, hi=1.0, lo_open=True, hi_open=True)
-    check_scalar("lo", lo, lo=0.0, lo_open=True)
-    check_scalar("hi", hi, lo=lo, lo_open=True)
+    check_scalar("lo", lo, lo=0.0, hi=64.0, lo_open=True)
+    check_scalar("hi", hi, lo=0.0, hi=64.0, lo_open=True)
+    if hi <= lo:
+        raise ValueError(f"hi must be larger than lo = {lo}, got {hi}")
     iterations = check_int("iterations", iterations, lo=1, hi=60)
     a, b = math.log(lo), math.log(hi)
     if cutoff_reflection(lo, method, **kw) > threshold or cutoff_reflection(hi, method, **kw) < threshold:

@@ -20,10 +20,13 @@ import jax
 import jax.numpy as jnp
 from jax import lax
 
-from wavephys.core.inputs import check_array, is_traced
+from wavephys.core.inputs import Array, Int, check_array, is_traced, validate
+from wavephys.core.specs import WATER
 from wavephys.core.water import Water
 
 __all__ = [
+    "K_MAX",
+    "OMEGA_MAX",
     "angular_frequency",
     "phase_speed",
     "group_speed",
@@ -37,18 +40,28 @@ __all__ = [
 
 _TANH1 = math.tanh(1.0)
 
+K_MAX = 1e9
+"""Largest wavenumber accepted, rad/m (λ ≈ 6 nm: far past where continuum capillarity holds;
+float32 overflows ω² near 1e13 rad/m)."""
+OMEGA_MAX = 1e12
+"""Largest angular frequency accepted, rad/s (ω at k = K_MAX is about 3e11)."""
+
+_K = Array(lo=0.0, hi=K_MAX)
+_OMEGA = Array(lo=0.0, hi=OMEGA_MAX)
+
 
 def _deep(water: Water):
     return jnp.isinf(water.depth)
 
 
+@validate(k=_K, water=WATER)
 def depth_factor(k, water: Water):
     """tanh(k h), with the deep-water limit 1 exactly when ``water.depth`` is infinite.
 
     Parameters
     ----------
     k : array_like
-        Angular wavenumber magnitude, rad/m, ≥ 0.
+        Angular wavenumber magnitude, rad/m, in [0, 1e9] (:data:`K_MAX`).
     water : Water
         Supplies the depth h, m.
     """
@@ -57,6 +70,7 @@ def depth_factor(k, water: Water):
     return jnp.where(deep, 1.0, jnp.tanh(k * h))
 
 
+@validate(k=_K, water=WATER)
 def surface_operator(k, water: Water):
     """K(k) = k·tanh(k h), rad/m: the Fourier symbol of ∂φ/∂z at the surface.
 
@@ -65,6 +79,7 @@ def surface_operator(k, water: Water):
     return k * depth_factor(k, water)
 
 
+@validate(k=_K, water=WATER)
 def restoring_acceleration(k, water: Water):
     """g + (σ/ρ)k², m/s²: gravity plus the capillary restoring term of mode k.
 
@@ -83,6 +98,7 @@ def _safe_sqrt(x):
     return jnp.where(pos, jnp.sqrt(jnp.where(pos, x, 1.0)), 0.0)
 
 
+@validate(k=_K, water=WATER)
 def angular_frequency(k, water: Water):
     r"""Angular frequency ω(k) of a linear capillary-gravity wave, rad/s.
 
@@ -91,7 +107,7 @@ def angular_frequency(k, water: Water):
     Parameters
     ----------
     k : array_like
-        Angular wavenumber magnitude |k|, rad/m, finite and ≥ 0, any shape.
+        Angular wavenumber magnitude |k|, rad/m, in [0, 1e9] (:data:`K_MAX`), any shape.
     water : Water
         g (m/s²), ρ (kg/m³), σ (N/m), depth h (m, ``inf`` for deep water).
 
@@ -111,7 +127,6 @@ def angular_frequency(k, water: Water):
     >>> round(float(angular_frequency(1.0, Water(sigma=0.0))), 4)   # sqrt(g k)
     3.1321
     """
-    check_array("k", k, lo=0.0)
     k = jnp.asarray(k, dtype=jnp.result_type(float, k))
     return _safe_sqrt(_omega_squared(k, water))
 
@@ -124,20 +139,20 @@ def _long_wave_speed(water: Water, dtype):
 
 
 def _positive(k):
-    """Checked k as a float array, the mask k > 0, and k with zeros replaced by 1."""
-    check_array("k", k, lo=0.0)
+    """k as a float array, the mask k > 0, and k with zeros replaced by 1."""
     k = jnp.asarray(k, dtype=jnp.result_type(float, k))
     pos = k > 0
     return k, pos, jnp.where(pos, k, 1.0)
 
 
+@validate(k=_K, water=WATER)
 def phase_speed(k, water: Water):
     """Phase speed c = ω/k, m/s.
 
     Parameters
     ----------
     k : array_like
-        Angular wavenumber magnitude, rad/m, ≥ 0.
+        Angular wavenumber magnitude, rad/m, in [0, 1e9] (:data:`K_MAX`).
     water : Water
 
     Returns
@@ -153,6 +168,7 @@ def phase_speed(k, water: Water):
     return jnp.where(pos, c, _long_wave_speed(water, k.dtype))
 
 
+@validate(k=_K, water=WATER)
 def group_speed(k, water: Water):
     r"""Group speed c_g = dω/dk in closed form, m/s.
 
@@ -164,7 +180,7 @@ def group_speed(k, water: Water):
     Parameters
     ----------
     k : array_like
-        Angular wavenumber magnitude, rad/m, ≥ 0.
+        Angular wavenumber magnitude, rad/m, in [0, 1e9] (:data:`K_MAX`).
     water : Water
 
     Returns
@@ -204,6 +220,7 @@ def _bracket(omega2, water: Water):
     return k_lo, k_hi
 
 
+@validate(omega=_OMEGA, water=WATER, iterations=Int(lo=8, hi=1000))
 def wavenumber(omega, water: Water, iterations: int = 60):
     r"""Inverse dispersion relation: the k ≥ 0 with ω(k) = ``omega``, rad/m.
 
@@ -216,11 +233,11 @@ def wavenumber(omega, water: Water, iterations: int = 60):
     Parameters
     ----------
     omega : array_like
-        Angular frequency, rad/s, finite and ≥ 0, any shape.
+        Angular frequency, rad/s, in [0, 1e12] (:data:`OMEGA_MAX`), any shape.
     water : Water
     iterations : int
-        Newton/bisection iterations (default 60; quadratic convergence typically needs
-        fewer than 8, the bracket guarantees convergence of the rest).
+        Newton/bisection iterations, 8 to 1000 (default 60; quadratic convergence typically
+        needs fewer than 8, the bracket guarantees convergence of the rest).
 
     Returns
     -------
@@ -234,7 +251,6 @@ def wavenumber(omega, water: Water, iterations: int = 60):
     >>> round(float(wavenumber(angular_frequency(2.0, w), w)), 5)
     2.0
     """
-    check_array("omega", omega, lo=0.0)
     omega = jnp.asarray(omega, dtype=jnp.result_type(float, omega))
     pos = omega > 0
     om = jnp.where(pos, omega, 1.0)
@@ -296,6 +312,7 @@ def _minimum_speed(speed, water: Water, name: str):
     return c, k
 
 
+@validate(water=WATER)
 def min_phase_speed(water: Water = Water()):
     """Minimum phase speed of capillary-gravity waves and its wavenumber.
 
@@ -317,6 +334,7 @@ def min_phase_speed(water: Water = Water()):
     return _minimum_speed(phase_speed, water, "min_phase_speed")
 
 
+@validate(water=WATER)
 def min_group_speed(water: Water = Water()):
     """Minimum group speed of capillary-gravity waves and its wavenumber.
 

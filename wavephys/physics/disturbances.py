@@ -23,7 +23,8 @@ import jax
 import jax.numpy as jnp
 import numpy as np
 
-from wavephys.core.inputs import check_array
+from wavephys.core.inputs import check_array, validate
+from wavephys.core.specs import BOOL, GRID, Instance, model_grid
 from wavephys.core.grid import Grid
 from wavephys.core.pytree import register
 
@@ -50,19 +51,20 @@ class Stones:
     depth: jax.Array
 
     def __init__(self, x, y, radius, depth):
+        names = ("x", "y", "radius", "depth")
+        limits = (dict(), dict(), dict(lo=0.0, lo_open=True), dict(lo=0.0))
+        for name, v, lim in zip(names, (x, y, radius, depth), limits):
+            check_array(name, v, **lim)
         vals = [np.atleast_1d(np.asarray(v, dtype=float)) if not _traced(v) else v
                 for v in (x, y, radius, depth)]
-        names = ("x", "y", "radius", "depth")
         shapes = {np.shape(v) for v in vals}
         if len(shapes) != 1 or len(next(iter(shapes))) != 1:
-            raise ValueError(f"x, y, radius, depth must be 1-D of one length, got shapes {shapes}")
-        check_array("x", vals[0])
-        check_array("y", vals[1])
-        check_array("radius", vals[2], lo=0.0, lo_open=True)
-        check_array("depth", vals[3], lo=0.0)
+            raise ValueError(f"x, y, radius, depth must be 1-D of one length, got shapes "
+                             f"{dict(zip(names, (np.shape(v) for v in vals)))}")
         for name, v in zip(names, vals):
             object.__setattr__(self, name, jnp.asarray(v))
 
+    @validate(grid=GRID)
     def check_on(self, grid: Grid) -> "Stones":
         """Raise ValueError if a stone lies outside ``grid``, is not resolved by it, or its
         crater (out to the rim at 2R) does not fit in the domain."""
@@ -83,7 +85,7 @@ class Stones:
     # -- the simulation's source protocol -------------------------------------------
     def check(self, model) -> None:
         """Host-side check against a simulation model (before any work)."""
-        self.check_on(model.grid)
+        self.check_on(model_grid(model))
 
     def impulse(self, model, ops, t):
         """(Δφ̂, Δχ̂) half spectra the stones add at ``t``: fluid at rest, χ̂ −= (ω/K)·η̂_stone."""
@@ -99,6 +101,7 @@ def _traced(v):
 register(Stones, ("x", "y", "radius", "depth"))
 
 
+@validate(stones=Instance(Stones, "wavephys.Stones"), grid=GRID, real=BOOL)
 def stone_height_spectrum(stones: Stones, grid: Grid, real: bool = True):
     """DFT of the stones' summed crater heights, m (DFT convention: sum over points).
 
@@ -110,6 +113,7 @@ def stone_height_spectrum(stones: Stones, grid: Grid, real: bool = True):
     return jnp.sum(amp * grid.source_phase(stones.x, stones.y, real), axis=0)
 
 
+@validate(stones=Instance(Stones, "wavephys.Stones"), grid=GRID)
 def stone_height(stones: Stones, grid: Grid):
     """The stones' crater heights in space, m, shape ``(n, n)`` (periodic images ignored)."""
     x, y = grid.mesh()

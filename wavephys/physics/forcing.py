@@ -66,6 +66,9 @@ class Forcing:
     def check(self, model) -> None:
         """The pressure on the model's grid at t = 0 must be finite and of shape (n, n)
         (evaluated once per function and grid; later values are not re-checked)."""
+        from wavephys.core.specs import model_grid
+
+        model_grid(model)
         _check_pressure(self.pressure, model.grid.n, float(model.grid.length))
 
     def rate(self, model, ops, t):

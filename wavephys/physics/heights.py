@@ -32,7 +32,8 @@ import math
 import jax.numpy as jnp
 import numpy as np
 
-from wavephys.core.inputs import check_array, check_int, check_scalar
+from wavephys.core.inputs import Array, Int, Real, check_array, check_int, check_scalar, validate
+from wavephys.core.specs import BOOL, COMPLEX_FIELD, FIELD, GRID, POSITIVE, WATER
 from wavephys.physics.dispersion import angular_frequency, surface_operator
 from wavephys.core.grid import Grid
 from wavephys.core.water import Water
@@ -41,7 +42,6 @@ __all__ = [
     "height_multiplier",
     "first_order_height",
     "height_rate",
-    "second_order_correction",
     "second_order_height",
     "potential_from_height",
     "monochromatic_wave",
@@ -51,6 +51,7 @@ __all__ = [
 ]
 
 
+@validate(k=Array(lo=0.0), water=WATER)
 def height_multiplier(k, water: Water):
     """K(k)/ω(k), s/m: η̂_c = i·(K/ω)·ψ̂. Set to 0 at k = 0 (the mean level is fixed).
 
@@ -63,7 +64,6 @@ def height_multiplier(k, water: Water):
 
 
 def _check_field(psi, grid):
-    check_array("psi", psi, complex_ok=True, min_ndim=2, shape_tail=(grid.n, grid.n))
     psi = jnp.asarray(psi)
     return psi if jnp.iscomplexobj(psi) else psi.astype(jnp.result_type(psi.dtype, jnp.complex64))
 
@@ -73,12 +73,14 @@ def _complex_height(psi_hat, grid, water):
     return jnp.fft.ifft2(1j * height_multiplier(k, water) * psi_hat)
 
 
+@validate(grid=GRID, water=WATER, psi=COMPLEX_FIELD)
 def first_order_height(psi, grid: Grid, water: Water):
     """Linear height η = Re F⁻¹[(iK/ω)ψ̂], m, from a complex field ψ (m²/s), ``(..., n, n)``."""
     psi = _check_field(psi, grid)
     return _complex_height(jnp.fft.fft2(psi), grid, water).real
 
 
+@validate(grid=GRID, water=WATER, psi=COMPLEX_FIELD)
 def height_rate(psi, grid: Grid, water: Water):
     """Linear vertical surface velocity η̇ = Re F⁻¹[K ψ̂], m/s (= ∂φ/∂z at the surface)."""
     psi = _check_field(psi, grid)
@@ -96,6 +98,7 @@ def second_order_correction(eta, q, lam_eta, lam_q):
     return 0.5 * (eta * lam_eta - q * lam_q)
 
 
+@validate(grid=GRID, water=WATER, psi=COMPLEX_FIELD)
 def second_order_height(psi, grid: Grid, water: Water):
     """Height to second order η + η₂, m (Loviscach 2003 eq. 3, generalized; module doc)."""
     psi = _check_field(psi, grid)
@@ -104,6 +107,7 @@ def second_order_height(psi, grid: Grid, water: Water):
     return eta_c.real + second_order_correction(eta_c.real, eta_c.imag, lam.real, lam.imag)
 
 
+@validate(grid=GRID, water=WATER, travelling=BOOL)
 def potential_from_height(eta, grid: Grid, water: Water, travelling: bool = False):
     """A complex field ψ whose first-order height is ``eta``.
 
@@ -137,6 +141,7 @@ def potential_from_height(eta, grid: Grid, water: Water, travelling: bool = Fals
     return 1j * chi
 
 
+@validate(grid=GRID, water=WATER, steepness=POSITIVE)
 def monochromatic_wave(grid: Grid, water: Water, steepness: float, mode: int = 4):
     """ψ = a·e^{ik(x + L/2)} travelling in +x with first-order height amplitude A = steepness/k.
 
@@ -144,7 +149,6 @@ def monochromatic_wave(grid: Grid, water: Water, steepness: float, mode: int = 4
     η = −A sin(k(x + L/2)). Returns ``(psi, k, A)``: complex ψ (m²/s) on the grid,
     k (rad/m) and A (m).
     """
-    check_scalar("steepness", steepness, lo=0.0, lo_open=True)
     mode = check_int("mode", mode, lo=1, hi=grid.n // 2 - 1)
     k = 2 * math.pi * mode / float(grid.length)
     amplitude = steepness / k
@@ -154,6 +158,7 @@ def monochromatic_wave(grid: Grid, water: Water, steepness: float, mode: int = 4
     return psi, k, amplitude
 
 
+@validate(steepness=Real(lo=0.0, hi=0.33, lo_open=True), water=WATER, n=Int(lo=32, hi=4096, even=True))
 def second_order_error(steepness: float, water: Water = Water(sigma=0.0), n: int = 256) -> dict:
     """Errors of first- and second-order heights against the exact Stokes wave (deep water).
 
@@ -179,12 +184,14 @@ STEEPNESS = tuple(float(s) for s in np.round(np.arange(0.02, 0.331, 0.02), 3))
 """Steepness values kA at which second-order heights are compared with exact Stokes waves."""
 
 
+@validate(tolerance=Real(lo=0.0, hi=1.0, lo_open=True), steepness=Array(lo=0.0, hi=0.33, lo_open=True, ndim=1))
 def second_order_breakdown(tolerance: float = 0.1, steepness=STEEPNESS) -> float:
     """Smallest kA at which the second-order height error (max |Δη| / A) reaches ``tolerance``.
 
     Linear interpolation between the sampled ``steepness`` values; ``inf`` if never.
     """
-    check_scalar("tolerance", tolerance, lo=0.0, lo_open=True)
+    if len(steepness) < 2 or np.any(np.diff(steepness) <= 0):
+        raise ValueError(f"steepness must hold at least two increasing values, got {steepness!r}")
     errs = [second_order_error(float(s))["second"] for s in steepness]
     for (s0, e0), (s1, e1) in zip(zip(steepness, errs), zip(steepness[1:], errs[1:])):
         if e0 < tolerance <= e1:

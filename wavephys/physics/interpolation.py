@@ -17,11 +17,13 @@ from __future__ import annotations
 import jax.numpy as jnp
 import numpy as np
 
-from wavephys.core.inputs import check_scalar
+from wavephys.core.inputs import Array, check_scalar, validate
+from wavephys.core.specs import FRACTION, POSITIVE
 
 __all__ = ["hermite_weights", "hermite_frame", "hermite_error"]
 
 
+@validate(s=Array(lo=0.0, hi=1.0))
 def hermite_weights(s):
     """Cubic Hermite basis (h00, h01, h10, h11) at s ∈ [0, 1] (dimensionless)."""
     s = jnp.asarray(s, dtype=jnp.result_type(float, s))
@@ -29,6 +31,7 @@ def hermite_weights(s):
     return 2 * s3 - 3 * s2 + 1, -2 * s3 + 3 * s2, s3 - 2 * s2 + s, s3 - s2
 
 
+@validate(eta0=Array(), eta1=Array(), eta_dot0=Array(), eta_dot1=Array(), dt=POSITIVE, s=FRACTION)
 def hermite_frame(eta0, eta1, eta_dot0, eta_dot1, dt, s):
     """Interpolated height at t + sΔt from heights (m) and rates (m/s) at t and t + Δt.
 
@@ -43,8 +46,6 @@ def hermite_frame(eta0, eta1, eta_dot0, eta_dot1, dt, s):
     s : float
         Fraction of the step, in [0, 1].
     """
-    check_scalar("dt", dt, lo=0.0, lo_open=True)
-    check_scalar("s", s, lo=0.0, hi=1.0)
     shapes = {jnp.shape(a) for a in (eta0, eta1, eta_dot0, eta_dot1)}
     if len(shapes) != 1:
         raise ValueError(f"eta0, eta1, eta_dot0, eta_dot1 must share one shape, got {shapes}")

@@ -20,14 +20,16 @@ from __future__ import annotations
 
 import jax.numpy as jnp
 
-from wavephys.core.inputs import check_array, check_scalar
+from wavephys.core.inputs import check_array, validate
+from wavephys.core.specs import BOOL, COMPLEX_FIELD, GRID, POSITIVE, WATER
 from wavephys.physics.dispersion import angular_frequency
 from wavephys.core.grid import Grid
 from wavephys.core.water import Water
 
-__all__ = ["propagator", "kernel", "propagate", "rotate_pair"]
+__all__ = ["propagator", "kernel", "propagate"]
 
 
+@validate(grid=GRID, water=WATER, dt=POSITIVE, real=BOOL)
 def propagator(grid: Grid, water: Water, dt, real: bool = False):
     """Fourier multiplier exp(−i ω(|k|) Δt) on the grid's spectrum.
 
@@ -46,11 +48,11 @@ def propagator(grid: Grid, water: Water, dt, real: bool = False):
     jax.Array
         Complex multiplier (complex64 for float32 grids).
     """
-    check_scalar("dt", dt, lo=0.0, lo_open=True)
     omega = angular_frequency(grid.wavenumber_magnitude(real), water)
     return jnp.exp(-1j * omega * dt)
 
 
+@validate(grid=GRID, water=WATER, dt=POSITIVE)
 def kernel(grid: Grid, water: Water, dt):
     """The ring-wave kernel Ψ for a step Δt as convolution weights by offset, zero offset at
     index ``[n // 2, n // 2]``.
@@ -63,6 +65,7 @@ def kernel(grid: Grid, water: Water, dt):
     return jnp.fft.fftshift(psi, axes=(-2, -1))
 
 
+@validate(grid=GRID, water=WATER, dt=POSITIVE, field=COMPLEX_FIELD)
 def propagate(field, grid: Grid, water: Water, dt):
     """Propagate a complex wave field by Δt exactly: ψ(t + Δt) = F⁻¹[F[ψ]·e^{−iωΔt}].
 
@@ -90,7 +93,6 @@ def propagate(field, grid: Grid, water: Water, dt):
     >>> round(float(jnp.sum(jnp.abs(out) ** 2)), 5)   # unitary
     1.0
     """
-    check_array("field", field, complex_ok=True, min_ndim=2, shape_tail=(grid.n, grid.n))
     field = jnp.asarray(field)
     if not jnp.iscomplexobj(field):
         field = field.astype(jnp.result_type(field.dtype, jnp.complex64))

@@ -45,7 +45,9 @@ import jax
 import jax.numpy as jnp
 import numpy as np
 
-from wavephys.core.inputs import check_array, check_choice, check_instance, check_int, check_scalar
+from wavephys.core.inputs import (Array, Choice, Instance, Int, Maybe, Real, check_array, check_choice, check_instance,
+                                  check_int, check_scalar, validate)
+from wavephys.core.specs import field_of, COMPLEX_ARRAY, GRID, POSITIVE, REAL, VECTOR2, WATER, model_grid
 from wavephys.core.methods import Methods
 from wavephys.physics.dispersion import angular_frequency
 from wavephys.core.grid import Grid
@@ -75,6 +77,7 @@ _SERIES_TERMS = 13
 _SERIES_RADIUS = 0.5
 
 
+@validate(alpha=COMPLEX_ARRAY)
 def resonance_quotients(alpha):
     """(Q1, Q2) = ((e^{−iα} + iα − 1)/α², (e^{iα} − iα − 1)/α²), cancellation-free.
 
@@ -97,6 +100,7 @@ def resonance_quotients(alpha):
     return q1, q2
 
 
+@validate(alpha=Array(hi=1e6, lo=-1e6))
 def resonance_quotients_exact(alpha):
     """Reference (Q1, Q2) for float64 inputs, independent of :func:`resonance_quotients`:
     exact rational arithmetic on the Taylor series (41 terms: below double precision for
@@ -107,6 +111,9 @@ def resonance_quotients_exact(alpha):
     for sign in (-1, 1):
         vals = []
         for a in np.atleast_1d(np.asarray(alpha, np.float64)):
+            if a == 0:  # the limit: (±i)²/2! = −1/2
+                vals.append(complex(-0.5, 0.0))
+                continue
             af = Fraction(float(a))
             re, im, term = Fraction(0), Fraction(0), Fraction(1)
             for j in range(1, 42):
@@ -135,10 +142,14 @@ def _k_dot_v_omega(grid: Grid, water: Water, velocity):
 
 
 def _check_velocity(velocity):
-    check_array("velocity", velocity, min_ndim=1, shape_tail=(2,))
     return jnp.asarray(velocity, dtype=jnp.result_type(float, jnp.asarray(velocity)))
 
 
+_VELOCITY = Array(min_ndim=1, shape=(2,), lo=-1e4, hi=1e4)  # m/s
+_DT = Real(lo=0.0, hi=1e4, lo_open=True)
+
+
+@validate(grid=GRID, water=WATER, velocity=_VELOCITY, dt=_DT)
 def ship_multipliers(grid: Grid, water: Water, velocity, dt):
     """Fourier multipliers (M1, M2) of a hull moving at ``velocity`` (m/s, (vx, vy)) for Δt (s).
 
@@ -146,15 +157,14 @@ def ship_multipliers(grid: Grid, water: Water, velocity, dt):
     Stable near the resonance α = 0 in float32 and float64 (module doc).
     """
     velocity = _check_velocity(velocity)
-    check_scalar("dt", dt, lo=0.0, lo_open=True)
     kv, omega = _k_dot_v_omega(grid, water, velocity)
     return _multipliers(kv, omega, dt, resonance_quotients)
 
 
+@validate(grid=GRID, water=WATER, velocity=_VELOCITY, dt=_DT)
 def ship_multipliers_naive(grid: Grid, water: Water, velocity, dt):
     """(M1, M2) with the quotients evaluated as written: a documented failure near α = 0."""
     velocity = _check_velocity(velocity)
-    check_scalar("dt", dt, lo=0.0, lo_open=True)
     kv, omega = _k_dot_v_omega(grid, water, velocity)
 
     def naive(alpha):
@@ -218,6 +228,7 @@ class Hull:
     def __hash__(self):
         return hash(self._key())
 
+    @validate(u=Array(), v=Array())
     def evaluate(self, u, v):
         """f at ship-frame coordinates (u forward, v to port), m → dimensionless."""
         a, b = self.length / 2, self.width / 2
@@ -307,8 +318,9 @@ class Ship:
     # -- the simulation's source protocol -------------------------------------------
     def check(self, model) -> None:
         """Host-side checks: the patch fits the grid (nothing else is known before the step)."""
-        if model.ship_patch > model.grid.n:
-            raise ValueError(f"ship_patch {model.ship_patch} must not exceed the grid's n = {model.grid.n}")
+        grid = model_grid(model)
+        if model.ship_patch > grid.n:
+            raise ValueError(f"ship_patch {model.ship_patch} must not exceed the grid's n = {grid.n}")
 
     def add(self, model, fields, t: float):
         """Add this step's ship waves to the stacked (φ, χ) ``fields`` (donated), after the cutoff.
@@ -343,7 +355,12 @@ def _leak_cached(hull, speed, dt, half, n, length, water, method):
     return patch_leak(probe, Grid(n, length), water, 0.0, dt, half, method)
 
 
+_SHIP = Instance(Ship, "wavephys.physics.ship_waves.Ship")
+
+
 # -- patch computation -----------------------------------------------------------------
+@validate(hull=Instance(Hull, "wavephys.physics.ship_waves.Hull"), patch=GRID, center=Array(shape=(2,), ndim=1),
+          pose=Array(shape=(3,), ndim=1))
 def hull_spectrum(hull: Hull, patch: Grid, center, pose):
     """FFT of the hull at ``pose`` = (x, y, heading) on a patch grid centred at ``center``, blurred.
 
@@ -359,6 +376,8 @@ def hull_spectrum(hull: Hull, patch: Grid, center, pose):
     return spec
 
 
+@validate(patch=GRID, water=WATER, f0_hat=field_of("patch", complex_ok=True), f1_hat=field_of("patch", complex_ok=True),
+          velocity=_VELOCITY, dt=_DT)
 def ship_waves_kernels(f0_hat, f1_hat, patch: Grid, water: Water, velocity, dt):
     """New waves F⁻¹[f̂_t·M1 + f̂_{t+Δt}·M2] per unit strength (Loviscach 2003, eq. 2), m²/s per m²/s.
 
@@ -370,6 +389,8 @@ def ship_waves_kernels(f0_hat, f1_hat, patch: Grid, water: Water, velocity, dt):
     return jnp.fft.ifft2(f0_hat * m1 + f1_hat * m2)
 
 
+@validate(patch=GRID, water=WATER, f0_hat=field_of("patch", complex_ok=True), f1_hat=field_of("patch", complex_ok=True),
+          velocity=_VELOCITY, dt=_DT)
 def ship_waves_impulses(f0_hat, f1_hat, patch: Grid, water: Water, velocity, dt):
     """The naive way: the change f_{t+Δt} − f_t added at once, a row of dropped stones
     without the time integration (the paper's warning; documented failure)."""
@@ -383,6 +404,12 @@ SHIP_METHODS = Methods("ship waves", kernels=ship_waves_kernels, impulses=ship_w
 def _patch_place(ship: Ship, grid: Grid, t: float, dt: float, half: int):
     """Poses at t and t + Δt, and the patch (row0, col0, centre) that holds the hull's motion."""
     p0, p1 = ship.path(t), ship.path(t + dt)
+    length = float(grid.length)
+    for label, (x, y, _) in (("t", p0), ("t + dt", p1)):
+        if abs(x) > length or abs(y) > length:
+            raise ValueError(f"the ship's path puts it at ({x:.4g}, {y:.4g}) m at {label} = "
+                             f"{t if label == 't' else t + dt:.4g} s, more than a grid length L = {length:.4g} m "
+                             f"from the centre")
     reach = 0.5 * math.hypot(p1[0] - p0[0], p1[1] - p0[1]) + ship.hull.radius
     if reach > half * float(grid.dx):
         raise ValueError(f"the hull and its motion over dt reach {reach:.3g} m from the patch centre, more than "
@@ -393,6 +420,7 @@ def _patch_place(ship: Ship, grid: Grid, t: float, dt: float, half: int):
     return p0, p1, r0, c0, center
 
 
+@validate(ship=_SHIP, grid=GRID, water=WATER, t=REAL, dt=_DT, half=Int(lo=2), method=Choice(("kernels", "impulses")))
 def ship_patch_waves(ship: Ship, grid: Grid, water: Water, t: float, dt: float, half: int,
                      method: str = "kernels"):
     """Complex waves the ship adds over [t, t + Δt], on its 2M × 2M patch (M = ``half``).
@@ -401,15 +429,14 @@ def ship_patch_waves(ship: Ship, grid: Grid, water: Water, t: float, dt: float, 
     ``(2M, 2M)`` complex field (m²/s) and the grid index of its first row and column
     (wrap them modulo n to add it to the field).
     """
-    SHIP_METHODS.check(method)
-    check_scalar("t", t)
-    check_scalar("dt", dt, lo=0.0, lo_open=True)
     p0, p1, r0, c0, center = _patch_place(ship, grid, t, dt, half)
     kernel = _kernels(ship.hull, half, float(grid.dx), water, method)[0]
     waves = kernel(jnp.asarray(center), jnp.asarray(p0), jnp.asarray(p1), dt, ship.strength)
     return waves, (r0, c0)
 
 
+@validate(ship=_SHIP, grid=GRID, water=WATER, t=REAL, dt=_DT, half=Int(lo=2), method=Choice(("kernels", "impulses")),
+          fields=Array(shape=lambda a: (2, a["grid"].n, a["grid"].n), min_ndim=3), interior=Maybe(Array(ndim=1, shape=(2,))))
 def add_ship_waves(fields, ship: Ship, grid: Grid, water: Water, t: float, dt: float, half: int,
                    method: str = "kernels", interior: tuple[int, int] | None = None):
     """Add the ship's new waves over [t, t + Δt] to a stacked (Re ψ, Im ψ) field in one program.
@@ -419,7 +446,6 @@ def add_ship_waves(fields, ship: Ship, grid: Grid, water: Water, t: float, dt: f
     without a round trip through Python; ``interior`` = (lo, hi) restricts the patch to
     rows and columns in [lo, hi) (ValueError otherwise).
     """
-    SHIP_METHODS.check(method)
     p0, p1, r0, c0, center = _patch_place(ship, grid, t, dt, half)
     if interior is not None:
         lo, hi = interior
@@ -460,6 +486,7 @@ def _patch_kernel(hull: Hull, half: int, dx: float, water: Water, method: str):
     return kernel, add
 
 
+@validate(ship=_SHIP, grid=GRID, water=WATER, t=REAL, dt=_DT, half=Int(lo=2), method=Choice(("kernels", "impulses")))
 def patch_leak(ship: Ship, grid: Grid, water: Water, t: float, dt: float, half: int,
                method: str = "kernels") -> float:
     """Fraction of one step's new waves a 2M × 2M patch gets wrong: relative energy of the
@@ -476,14 +503,13 @@ def patch_leak(ship: Ship, grid: Grid, water: Water, t: float, dt: float, half: 
     return (inside + max(outside, 0.0)) / total if total > 0 else 0.0
 
 
+@validate(ship=_SHIP, grid=GRID, water=WATER, half=Int(lo=2), tolerance=Real(lo=0.0, hi=1.0, lo_open=True, hi_open=True),
+          lo=Real(lo=0.0, hi=1e4, lo_open=True), hi=Real(lo=0.0, hi=1e4, lo_open=True), iterations=Int(lo=1, hi=60))
 def max_patch_dt(ship: Ship, grid: Grid, water: Water, half: int, tolerance: float = 1e-3,
                  lo: float = 1e-4, hi: float = 10.0, iterations: int = 20) -> float:
     """The largest Δt (s) whose :func:`patch_leak` stays below ``tolerance`` (bisection in log Δt)."""
-    check_int("half", half, lo=2)
-    check_scalar("tolerance", tolerance, lo=0.0, hi=1.0, lo_open=True, hi_open=True)
-    check_scalar("lo", lo, lo=0.0, lo_open=True)
-    check_scalar("hi", hi, lo=lo, lo_open=True)
-    iterations = check_int("iterations", iterations, lo=1, hi=60)
+    if hi <= lo:
+        raise ValueError(f"hi must be larger than lo = {lo} s, got {hi}")
     if patch_leak(ship, grid, water, 0.0, lo, half) > tolerance:
         raise ValueError(f"the patch of half-size {half} leaks more than {tolerance} even at Δt = {lo} s")
     if patch_leak(ship, grid, water, 0.0, hi, half) <= tolerance:

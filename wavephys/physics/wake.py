@@ -46,8 +46,9 @@ from dataclasses import dataclass
 import jax.numpy as jnp
 import numpy as np
 
-from wavephys.core.inputs import check_array, check_choice, check_int, check_scalar
-from wavephys.physics.dispersion import angular_frequency, group_speed, min_phase_speed, phase_speed, surface_operator
+from wavephys.core.inputs import check_array, check_choice, check_instance, check_int, check_scalar
+from wavephys.physics.dispersion import (K_MAX, angular_frequency, group_speed, min_phase_speed, phase_speed,
+                                         surface_operator)
 from wavephys.physics.heights import height_multiplier
 from wavephys.core.grid import Grid
 from wavephys.core.water import Water
@@ -62,6 +63,7 @@ KELVIN_ANGLE = math.degrees(math.asin(1.0 / 3.0))
 def transverse_wavelength(speed, water: Water = Water(sigma=0.0)):
     """Deep-water gravity wavelength of the transverse waves on the track, 2πU²/g, m."""
     check_scalar("speed", speed, lo=0.0, lo_open=True)
+    check_instance("water", water, Water, "wavephys.Water")
     return 2 * math.pi * speed**2 / float(water.g)
 
 
@@ -80,6 +82,8 @@ def stationary_wavenumber(target_speed, water: Water):
     """Gravity-branch k (rad/m) with phase speed c(k) = ``target_speed`` (m/s, array; NaN where
     none exists): the waves that stand still behind a source whose speed along their
     wavevector is the target. Bisection in log k, 80 steps (float64)."""
+    check_array("target_speed", target_speed, lo=0.0)
+    check_instance("water", water, Water, "wavephys.Water")
     target = np.asarray(target_speed, np.float64)
     g = float(water.g)
     if float(water.sigma) > 0:
@@ -88,8 +92,8 @@ def stationary_wavenumber(target_speed, water: Water):
     else:
         c_min, k_hi = 0.0, None
     if k_hi is None:  # no capillary minimum: the speed falls without bound (or to c_min at k = 0)
-        k_hi = 1e6 * g / np.maximum(target, 1e-12) ** 2
-    lo = np.full(target.shape, math.log(1e-9 * g / max(float(np.max(target)), 1e-12) ** 2))
+        k_hi = np.minimum(1e6 * g / np.maximum(target, 1e-12) ** 2, K_MAX)
+    lo = np.full(target.shape, math.log(min(1e-9 * g / max(float(np.max(target)), 1e-12) ** 2, 1e-3 * K_MAX)))
     hi = np.log(np.broadcast_to(k_hi, target.shape).astype(np.float64))
     speed = lambda u: np.asarray(phase_speed(jnp.asarray(np.exp(u)), water), np.float64)
     for _ in range(80):
@@ -98,7 +102,7 @@ def stationary_wavenumber(target_speed, water: Water):
         lo, hi = np.where(faster, mid, lo), np.where(faster, hi, mid)
     k = np.exp(0.5 * (lo + hi))
     c_long = phase_speed(jnp.asarray(0.0), water)
-    none = (target <= c_min) | (target >= float(c_long))
+    none = (target <= c_min) | (target >= float(c_long)) | (k >= 0.999 * K_MAX)  # past the continuum limit
     return np.where(none, np.nan, k)
 
 
@@ -120,9 +124,11 @@ def cusp_line(speed, water: Water = Water(sigma=0.0), samples: int = 4001) -> Cu
         Directions θ tried in (0, π/2); the maximum is then refined parabolically.
     """
     check_scalar("speed", speed, lo=0.0, lo_open=True)
-    samples = check_int("samples", samples, lo=3)
+    check_instance("water", water, Water, "wavephys.Water")
+    samples = check_int("samples", samples, lo=3, hi=10**6)
     theta = np.linspace(0.0, math.pi / 2, samples + 2)[1:-1]
     k = stationary_wavenumber(speed * np.cos(theta), water)
+    k = np.where(k <= K_MAX, k, np.nan)  # waves shorter than the continuum limit do not count
     if not np.isfinite(k).any():
         raise ValueError(f"speed {speed} m/s: no stationary gravity wave (below c_min = "
                          f"{min_phase_speed(water)[0]:.4g} m/s?), so there is no wake")
@@ -164,6 +170,7 @@ class GaussianPressure:
 
     def spectrum(self, grid: Grid):
         """DFT of p on the grid (Pa per point, DFT convention), full spectrum (n, n)."""
+        check_instance("grid", grid, Grid, "wavephys.Grid")
         k2 = grid.wavenumber_magnitude() ** 2
         ky, kx = grid.wavenumbers()
         return ((self.amplitude * 2 * jnp.pi * self.size**2 / grid.dx**2) * jnp.exp(-0.5 * k2 * self.size**2)
@@ -182,9 +189,19 @@ class HullSource:
     hull: object
     strength: float = 0.01
 
+    def __post_init__(self):
+        from wavephys.physics.ship_waves import Hull
+
+        check_instance("hull", self.hull, Hull, "wavephys.physics.ship_waves.Hull")
+        check_scalar("strength", self.strength)
+
     def forcing(self, grid: Grid, water: Water, speed: float):
+        """Its source spectrum at ``speed`` (m/s, > 0) on ``grid``: ψ̂ rate, m²/s² per point."""
         from wavephys.physics.ship_waves import hull_spectrum
 
+        check_instance("grid", grid, Grid, "wavephys.Grid")
+        check_instance("water", water, Water, "wavephys.Water")
+        check_scalar("speed", speed, lo=0.0, lo_open=True)
         ky, kx = grid.wavenumbers()
         # sampled on the grid's own points with the hull at (0, 0): the DFT of :meth:`Grid.source_phase`
         f_hat = hull_spectrum(self.hull, grid, (0.0, 0.0), (0.0, 0.0, 0.0))

@@ -30,7 +30,10 @@ from dataclasses import dataclass
 import jax
 import jax.numpy as jnp
 
-from wavephys.core.inputs import check_scalar
+import numpy as np
+
+from wavephys.core.inputs import check_array, check_instance, check_key, check_scalar
+from wavephys.core.specs import model_grid
 from wavephys.core.methods import Methods
 from wavephys.core.pytree import register
 from wavephys.physics.dispersion import angular_frequency, group_speed
@@ -46,6 +49,17 @@ __all__ = [
     "wind_spectrum",
     "WindSea",
 ]
+
+
+def _check_k(kx, ky, water):
+    """Wavenumber components (rad/m) that broadcast together, and the water."""
+    check_array("kx", kx)
+    check_array("ky", ky)
+    try:
+        np.broadcast_shapes(np.shape(kx), np.shape(ky))
+    except ValueError:
+        raise ValueError(f"kx and ky must broadcast together, got shapes {np.shape(kx)} and {np.shape(ky)}") from None
+    check_instance("water", water, Water, "wavephys.Water")
 
 
 def _direction_cos(kx, ky, direction):
@@ -73,6 +87,7 @@ def phillips_spectrum(kx, ky, water: Water, wind_speed, direction=0.0, amplitude
     small_wave_length : float
         ℓ, m, ≥ 0: suppresses waves shorter than ℓ by exp(−k²ℓ²).
     """
+    _check_k(kx, ky, water)
     check_scalar("wind_speed", wind_speed, lo=0.0, lo_open=True)
     check_scalar("amplitude", amplitude, lo=0.0, lo_open=True)
     check_scalar("small_wave_length", small_wave_length, lo=0.0)
@@ -103,6 +118,8 @@ def jonswap_frequency_spectrum(omega, water: Water, wind_speed, fetch, gamma=3.3
     gamma : float
         Peak enhancement γ ≥ 1 (3.3; 1 gives Pierson–Moskowitz's shape).
     """
+    check_array("omega", omega, lo=0.0)
+    check_instance("water", water, Water, "wavephys.Water")
     check_scalar("wind_speed", wind_speed, lo=0.0, lo_open=True)
     check_scalar("fetch", fetch, lo=0.0, lo_open=True)
     check_scalar("gamma", gamma, lo=1.0)
@@ -119,6 +136,7 @@ def jonswap_frequency_spectrum(omega, water: Water, wind_speed, fetch, gamma=3.3
 
 def jonswap_spectrum(kx, ky, water: Water, wind_speed, fetch, direction=0.0, gamma=3.3):
     """JONSWAP as a wavenumber spectrum F(k), m⁴, with cos² spreading (module doc)."""
+    _check_k(kx, ky, water)
     check_scalar("direction", direction)
     k = jnp.sqrt(kx * kx + ky * ky)
     pos = k > 0
@@ -146,6 +164,9 @@ def synthesize_height(spectrum, grid: Grid, key):
     complex field F⁻¹[ĥ] (its real part is the height; pass it to
     ``potential_from_height(..., travelling=True)``).
     """
+    check_instance("grid", grid, Grid, "wavephys.Grid")
+    check_array("spectrum", spectrum, ndim=2, shape_tail=(grid.n, grid.n), lo=0.0)
+    check_key("key", key)
     return jnp.fft.ifft2(_random_amplitudes(jnp.asarray(spectrum), grid, key))
 
 
@@ -169,6 +190,7 @@ class WindSea:
     params: tuple = ()
 
     def __post_init__(self):
+        check_key("key", self.key)
         SPECTRA.check(self.spectrum, "spectrum")
         params = dict(self.params) if isinstance(self.params, (dict, tuple)) else None
         if params is None:
@@ -178,6 +200,7 @@ class WindSea:
 
     def check(self, model) -> None:
         """Host-side checks against a simulation model: evaluates the spectrum once."""
+        model_grid(model)
         ky, kx = model.grid.wavenumbers()
         f = wind_spectrum(kx, ky, model.water, self.spectrum, **dict(self.params))
         if not bool(jnp.isfinite(f).all()):

@@ -15,8 +15,8 @@ from wavephys.simulation.driver import Simulation
 from wavephys.simulation.model import Model, Operators, operators
 from wavephys.simulation.sources import Source
 from wavephys.simulation.state import State, Surface
-from wavephys.simulation.stepping import (add_height, add_source, energy, frame, initial_state, run, state_from_psi,
-                                          step, surface)
+from wavephys.simulation.stepping import (add_height, add_source, checked, energy, frame, initial_state, run,
+                                          state_from_psi, step, surface)
 
 __all__ = ["Model", "Operators", "operators", "State", "Surface", "Source", "Simulation", "step", "run", "surface",
-           "energy", "frame", "initial_state", "state_from_psi", "add_height", "add_source"]
+           "energy", "frame", "initial_state", "state_from_psi", "add_height", "add_source", "checked"]

@@ -74,8 +74,10 @@ class Simulation:
         direction=0.0`` (Phillips also ``amplitude``; JONSWAP ``fetch``). ``key`` is a
         ``jax.random`` key.
         """
+        from wavephys.core.inputs import check_key
         from wavephys.physics.wind import WindSea
 
+        check_key("key", key)
         return _step.add_source(self.model, state, WindSea(key, spectrum, params))
 
     # -- stepping -------------------------------------------------------------------
@@ -85,8 +87,11 @@ class Simulation:
         ``stones`` are dropped at t, before the surface is taken; ``ships`` add the waves
         they make over [t, t + Δt] after the cutoff; ``sources`` are any other sources.
         """
-        if isinstance(ships, (str, bytes)) or not hasattr(ships, "__iter__"):
-            raise TypeError(f"ships must be a sequence of Ship, got {type(ships).__name__}")
+        for name, value in (("ships", ships), ("sources", sources)):
+            if isinstance(value, (str, bytes)) or not hasattr(value, "__iter__"):
+                raise TypeError(f"{name} must be a sequence of sources, got {type(value).__name__}")
+        if stones is not None and not hasattr(stones, "impulse"):
+            raise TypeError(f"stones must be wavephys.Stones (or None), got {type(stones).__name__}")
         everything = ([] if stones is None else [stones]) + list(ships) + list(sources)
         return _step.step(self.model, state, everything)
 

@@ -30,7 +30,8 @@ from typing import Protocol, runtime_checkable
 
 from wavephys.core.inputs import describe, is_traced
 
-__all__ = ["Source", "HOOKS", "sort_sources"]
+__internal__ = True  # tooling for the library's own modules: not fuzzed as public API
+__all__ = ["Source", "HOOKS"]
 
 HOOKS = ("impulse", "rate", "add")
 

@@ -17,6 +17,8 @@ def _check_fields(fields, time):
     check_array("fields", fields, min_ndim=3)
     if np.shape(fields)[-3] != 2:
         raise ValueError(f"fields must stack two fields on axis −3, shape (..., 2, n, n), got {np.shape(fields)}")
+    if np.shape(fields)[-1] != np.shape(fields)[-2]:
+        raise ValueError(f"fields must be square on the last two axes (a Grid is n x n), got {np.shape(fields)}")
     if np.ndim(time) == 0:
         check_scalar("time", time)
     else:

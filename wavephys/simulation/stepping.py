@@ -9,7 +9,7 @@ so each step needs only real transforms, batched. :func:`step` does, in the pape
    and η̇ = F⁻¹[Kφ̂] (:mod:`wavephys.physics.heights`);
 4. exact propagation by Δt, a rotation of (φ̂, χ̂) by ωΔt (:mod:`wavephys.physics.ring_waves`),
    plus continuous sources integrated exactly over the step;
-5. two batched ``irfft2``: (φ', χ') → the next state, (η̂, η̇̂) → the surface
+5. one batched ``irfft2`` of (φ', χ') → the next state and (η̂, η̇̂) → the surface
    [and (q̂, Λη̂, Λq̂) for the second-order term];
 6. the open-ocean cutoff on the next state (if ``margin`` > 0; :mod:`wavephys.physics.boundary`);
 7. host-side sources (ships) add this step's waves after the cutoff.
@@ -37,7 +37,7 @@ from wavephys.simulation.sources import sort_sources
 from wavephys.simulation.state import State, Surface, unchecked
 
 __all__ = ["step", "run", "surface", "energy", "frame", "initial_state", "state_from_psi", "add_height",
-           "add_source"]
+           "add_source", "checked"]
 
 
 # -- the compiled pieces (pure) ---------------------------------------------------------
@@ -63,14 +63,17 @@ def _surface_spectra(model: Model, ops: Operators, ph, ch):
 
 @jax.jit
 def _forward(model: Model, ops: Operators, fields, time, impulses, rates):
-    """Steps 1–4: transforms, impulses, surface spectra, propagation and continuous sources."""
+    """Steps 1–4: transforms, impulses, surface spectra, propagation and continuous sources.
+
+    Returns one stack of half spectra: the next state's (φ̂', χ̂') first, then the surface's,
+    so that :func:`_inverse` starts with a single batched ``irfft2``."""
     ph, ch = _spectra(model, ops, fields, time, impulses)
     surf = _surface_spectra(model, ops, ph, ch)
     ph, ch = rotate_pair(ph, ch, ops.cos, ops.sin)
     for source in rates:
         for s_hat, a, b in _duhamel(model, ops, source, time):
             ph, ch = ph + a * s_hat, ch - b * s_hat
-    return jnp.stack([ph, ch], axis=-3), surf
+    return jnp.concatenate([jnp.stack([ph, ch], axis=-3), surf], axis=-3)
 
 
 def _duhamel(model: Model, ops: Operators, source, time):
@@ -102,20 +105,24 @@ def _surface_fields(model: Model, surf):
 
 
 @jax.jit
-def _inverse(model: Model, ops: Operators, state_spec, surf_spec, time):
-    """Steps 5–6: the two batched irfft2 (next state, surface) and the cutoff."""
+def _inverse(model: Model, ops: Operators, spectra, time):
+    """Steps 5–6: one batched irfft2 (next state and surface together) and the cutoff.
+
+    One transform of all the planes, first in the program, keeps XLA's FFT on every
+    core (a second transform after other work would run on one: :mod:`wavephys.core.spectral`)."""
     n = model.grid.n
-    new = jnp.fft.irfft2(state_spec, s=(n, n))
+    planes = jnp.fft.irfft2(spectra, s=(n, n))
+    new = planes[..., :2, :, :]
     if ops.mask is not None:
         new = new * ops.mask
-    surf = _surface_fields(model, jnp.fft.irfft2(surf_spec, s=(n, n)))
+    surf = _surface_fields(model, planes[..., 2:, :, :])
     dtype = model.real_dtype
     return (unchecked(State, new.astype(dtype), time + jnp.asarray(model.dt, dtype)),
             unchecked(Surface, surf.astype(dtype), time))
 
 
 def _pure_step(model, ops, state, impulses=(), rates=()):
-    return _inverse(model, ops, *_forward(model, ops, state.fields, state.time, impulses, rates), state.time)
+    return _inverse(model, ops, _forward(model, ops, state.fields, state.time, impulses, rates), state.time)
 
 
 # -- checks -------------------------------------------------------------------------------
@@ -251,12 +258,22 @@ def state_from_psi(model: Model, psi, time: float = 0.0) -> State:
                      jnp.asarray(time, model.dtype))
 
 
+def _check_height_units(eta, grid):
+    """Heights are metres: a wave higher than a tenth of the domain is steeper than any water
+    wave can be (Stokes' limit H/λ ≈ 0.14), so it is almost surely in other units."""
+    top = float(np.max(np.abs(np.asarray(eta))))
+    if top > 0.1 * float(grid.length):
+        raise ValueError(f"eta: heights are in metres and must stay below a tenth of the {float(grid.length):g} m "
+                         f"domain (a steeper wave breaks), got max |eta| = {top:.4g}; were they in mm or cm?")
+
+
 def add_height(model: Model, state: State, eta) -> State:
-    """Add a height disturbance η (m, ``(n, n)``) with the fluid at rest (its mean drops)."""
+    """Add a height disturbance η (m, ``(n, n)``, below L/10) with the fluid at rest (its mean drops)."""
     _check_model(model)
     _check_state(model, state)
     n = model.grid.n
     check_array("eta", eta, ndim=2, shape_tail=(n, n))
+    _check_height_units(eta, model.grid)
     psi = potential_from_height(jnp.asarray(eta, model.dtype), model.grid, model.water)
     return unchecked(State, state.fields + jnp.stack([psi.real, psi.imag]).astype(model.dtype), state.time)
 
@@ -276,3 +293,34 @@ def add_source(model: Model, state: State, source) -> State:
         raise TypeError(f"source must be an impulse source (Stones, WindSea), got {type(source).__name__}: "
                         f"continuous sources and ships act during step()")
     return unchecked(State, _apply(model, operators(model), state.fields, state.time, impulses), state.time)
+
+
+def checked(fn):
+    """``fn`` with its traced values checked too: NaN/inf produced inside it raise.
+
+    Boundary checks see only kinds and shapes of traced arguments; this wraps ``fn`` (a
+    :func:`step`, a jitted loop, your own function) with
+    :func:`jax.experimental.checkify.checkify` (float checks and user checks) and raises
+    ``ValueError`` with checkify's message when a NaN or inf appears.
+
+    >>> from wavephys import Grid, Water
+    >>> model = Model(Grid(16, 1.0), Water(), dt=0.01)
+    >>> new, surf = checked(step)(model, initial_state(model))
+    """
+    import functools
+
+    from jax.experimental import checkify
+
+    if not callable(fn):
+        raise TypeError(f"fn must be a function, got {type(fn).__name__}")
+    wrapped = checkify.checkify(fn, errors=checkify.float_checks | checkify.user_checks)
+
+    @functools.wraps(fn)
+    def run_checked(*args, **kwargs):
+        err, out = wrapped(*args, **kwargs)
+        message = err.get()
+        if message is not None:
+            raise ValueError(f"{getattr(fn, '__name__', 'fn')}: a traced value is not finite: {message}")
+        return out
+
+    return run_checked

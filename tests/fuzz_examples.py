@@ -1,0 +1,270 @@
+"""Valid values for the fuzz harness (``tests/fuzzing.py``): by parameter name, with overrides.
+
+Every value is a factory (a fresh object per call). Sizes are small (16 × 16 grids) so a
+valid call costs milliseconds. The sets below say what a parameter's name promises:
+POSITIVE (> 0) and NON_NEGATIVE (≥ 0) parameters must refuse negative values, INF_OK ones
+may be infinite (``depth=inf`` is deep water), NONE_OK ones accept None though their
+default is not None, CHOICES are names chosen from a list.
+"""
+
+from __future__ import annotations
+
+import math
+import tempfile
+from pathlib import Path as FilePath
+
+import jax
+import jax.numpy as jnp
+import numpy as np
+
+from optics.rendering import Camera, Effects, Scene
+from optics.rendering.textures import EncodedHeight
+from wavephys import Grid, Stones, Water
+from wavephys.harness import Check, DispersionSamples
+from wavephys.physics.forcing import Forcing
+from wavephys.physics.ship_waves import Hull, Path, Ship, straight_path
+from wavephys.physics.wake import GaussianPressure, HullSource
+from wavephys.physics.wind import WindSea
+from wavephys.simulation import Model, Simulation, Surface, initial_state, operators
+
+N = 16
+RNG = np.random.default_rng(7)
+TMP = FilePath(tempfile.mkdtemp(prefix="wavephys-fuzz-"))
+
+
+def _grid():
+    return Grid(N, 2.0)
+
+
+def _model():
+    return Model(_grid(), Water(), dt=0.05, margin=2)
+
+
+def _field(scale=1e-3):
+    return (scale * RNG.standard_normal((N, N))).astype(np.float32)
+
+
+def _scene():
+    return Scene(np.full((N, N), -1.0), _field(), 4.0, Camera(eye=(0.0, -6.0, 4.0), target=(0.0, 0.0, -0.5)))
+
+
+def _surface():
+    return Surface(np.stack([_field(), _field()]), np.float32(0.0))
+
+
+def _ship():
+    return Ship(Hull("gaussian", 0.3, 0.15), straight_path((0.0, 0.0), (0.4, 0.0)), 0.01)
+
+
+EXAMPLES = {
+    # core objects
+    "grid": _grid, "patch": lambda: Grid(8, 1.0), "water": Water, "model": _model,
+    "state": lambda: initial_state(_model()), "before": _surface, "after": _surface,
+    "stones": lambda: Stones(0.1, -0.2, 0.25, 1e-3), "source": lambda: GaussianPressure(50.0, 0.25),
+    "ship": _ship, "hull": lambda: Hull("gaussian", 0.3, 0.15), "path": lambda: straight_path((0.0, 0.0), (0.4, 0.0)),
+    "scene": _scene, "camera": Camera, "effects": Effects,
+    "samples": lambda: DispersionSamples(np.array([1.0, 2.0]), np.array([3.1, 4.4]), np.array([1.0, 1.0]), 0.1),
+    "check": lambda: Check("x", 1.0, 1.0, 0.1), "tex": lambda: EncodedHeight(
+        np.zeros((N, N), np.uint16), 16, 0.0, 1.0, 2.0),
+    "key": lambda: jax.random.PRNGKey(0), "pressure": lambda: (lambda x, y, t: 10.0 * jnp.exp(-(x * x + y * y))),
+    "pose": lambda: (lambda t: (0.0, 0.0, 0.0)),
+    # numbers
+    "dt": lambda: 0.05, "dx": lambda: 0.125, "spacing": lambda: 0.125, "length": lambda: 2.0, "n": lambda: N,
+    "depth": lambda: 1.0, "radius": lambda: 0.25, "speed": lambda: 1.0, "half": lambda: 4, "t": lambda: 0.0,
+    "s": lambda: 0.5, "x": lambda: 0.1, "y": lambda: -0.2, "factor": lambda: 2, "margin": lambda: 2,
+    "size": lambda: 3, "steps": lambda: 3, "count": lambda: 2, "frames": lambda: 16, "ratio": lambda: 0.5,
+    "steepness": lambda: 0.1, "omega_dt": lambda: 1.0, "courant": lambda: 0.5, "wind_speed": lambda: 5.0,
+    "fetch": lambda: 1e4, "amplitude": lambda: 0.002, "wavenumber": lambda: 3.0, "near": lambda: 0.2,
+    "far": lambda: 0.9, "epsilon": lambda: 1e-3, "n1": lambda: 1.000293, "n2": lambda: 1.333,
+    "n_air": lambda: 1.000293, "n_water": lambda: 1.333, "n_ratio": lambda: 1.333, "bits": lambda: 16,
+    "width": lambda: 16, "height": lambda: 12, "angle_deg": lambda: 30.0, "target_speed": lambda: np.array([0.5, 1.0]),
+    "measured": lambda: 1.0, "expected": lambda: 1.0, "limit": lambda: 2.0, "quantity": lambda: "speed",
+    "name": lambda: "pool", "xlabel": lambda: "x", "ylabel": lambda: "y", "mode": lambda: 0, "refine": lambda: 4,
+    "shape": lambda: (N, N), "items": lambda: [Water(), Water(depth=2.0)],
+    # arrays
+    "eta": _field, "eta_prev": _field, "eta0": _field, "eta1": _field, "eta_dot": _field, "eta_dot0": _field,
+    "eta_dot1": _field, "field": _field, "values": lambda: np.ones(5), "u": lambda: np.linspace(0.0, 14.0, 5),
+    "v": lambda: np.linspace(0.0, 14.0, 5), "psi": lambda: (_field() + 1j * _field()).astype(np.complex64),
+    "k": lambda: np.linspace(0.1, 10.0, 8), "omega": lambda: np.linspace(0.1, 10.0, 8),
+    "kx": lambda: np.linspace(-5.0, 5.0, 8)[None, :], "ky": lambda: np.linspace(-5.0, 5.0, 8)[:, None],
+    "alpha": lambda: np.linspace(-1.0, 1.0, 9), "cos_theta": lambda: np.linspace(0.0, 1.0, 5),
+    "n_dot_h": lambda: np.linspace(-1.0, 1.0, 5), "wavelength_nm": lambda: np.array([450.0, 550.0, 650.0]),
+    "distance": lambda: np.array([0.5, 2.0]), "coefficient": lambda: np.array([0.3, 0.05, 0.001]),
+    "coefficients": lambda: np.array([0.3, 0.05, 0.001]), "absorption": lambda: np.array([0.3, 0.05, 0.001]),
+    "ground": lambda: np.ones(3), "diffuse": lambda: np.ones(3) * 0.2,
+    "d": lambda: np.array([0.1, 0.2, -1.0]), "light": lambda: np.array([0.2, 0.0, 1.0]),
+    "view": lambda: np.array([0.0, 0.3, 1.0]), "sun": lambda: np.array([0.3, -0.4, 0.866]),
+    "eye": lambda: (0.0, -5.0, 3.0), "target": lambda: (0.0, 0.0, 0.0), "center": lambda: (0.0, 0.0),
+    "start": lambda: (0.0, 0.0), "velocity": lambda: (0.5, 0.0), "image": lambda: RNG.random((N, N, 3)),
+    "reference": lambda: RNG.random((N, N, 3)), "images": lambda: [RNG.random((8, 8, 3))],
+    "stencil": lambda: np.array([[0.0, -1.0, 0.0], [-1.0, 4.0, -1.0], [0.0, -1.0, 0.0]]),
+    "phi_hat": lambda: np.ones((4, 3), np.complex64), "chi_hat": lambda: np.ones((4, 3), np.complex64),
+    "cos_wt": lambda: np.ones((4, 3)), "sin_wt": lambda: np.zeros((4, 3)),
+    "q": _field, "lam_eta": _field, "lam_q": _field, "f0_hat": lambda: np.ones((8, 8), np.complex64),
+    "f1_hat": lambda: np.ones((8, 8), np.complex64), "spectrum": lambda: np.ones((N, N)) * 1e-8,
+    "curves": lambda: {"a": ([1.0, 2.0], [1.0, 0.5])},
+    "rows": lambda: [dict(method="a", seconds=1e-3, error=0.1), dict(method="a", seconds=2e-3, error=0.05)],
+    "fields": lambda: np.zeros((2, N, N), np.float32), "time": lambda: np.float32(0.0), "angle": lambda: 19.5, "fn": lambda: (lambda x: x), "damping": lambda: 0.05,
+}
+
+def _npz():
+    from optics.rendering.textures import save_npz
+
+    return save_npz(TMP / "valid.npz", a=np.ones(3))
+
+
+def _dispersion_record():
+    from wavephys import Simulation
+
+    sim = Simulation(Grid(8, 8.0), Water(sigma=0.0), dt=0.4)
+    _, surf = sim.run(sim.add_height(sim.initial_state(), RNG.standard_normal((8, 8)) * 1e-3), 64)
+    return np.asarray(surf.eta)
+
+
+OVERRIDES = {
+    "wavephys.simulation.driver.Simulation.add_wind": {"wind_speed": lambda: 5.0},
+    "wavephys.physics.wind.wind_spectrum": {"wind_speed": lambda: 5.0},
+    "wavephys.harness.checks.compare": {"rtol": lambda: 0.1},
+    "wavephys.harness.pytest_plugin.Checker.close": {"rtol": lambda: 0.1},
+    "wavephys.physics.ship_waves.max_patch_dt": {"half": lambda: 8, "grid": lambda: Grid(64, 8.0)},
+    "optics.checks.plain_numpy_water_srgb": {"distance": lambda: 1.0},
+    "optics.checks.flat_pool_colour": {"scene": lambda: __import__("optics.checks").checks.flat_pool()},
+    "optics.light.attenuation.transmittance": {"distance": lambda: np.array([0.5, 2.0])[:, None]},
+    "optics.light.attenuation.underwater_radiance": {"distance": lambda: 2.0, "depth": lambda: 1.0},
+    "optics.light.fresnel.approximation_errors": {"method": lambda: "schlick", "samples": lambda: 64},
+    "optics.rendering.scene.Scene": {"ground": lambda: np.full((N, N), -1.0), "water": _field, "length": lambda: 4.0},
+    "optics.rendering.renderer.save_png": {"path": lambda: TMP / "frame.png"},
+    "optics.rendering.textures.save_height_png": {"path": lambda: TMP / "height.png"},
+    "optics.rendering.textures.save_npz": {"path": lambda: TMP / "textures.npz", "a": lambda: np.ones(3)},
+    "optics.rendering.textures.load_npz": {"path": _npz},
+    "optics.rendering.textures.export_scene": {"out_dir": lambda: TMP / "export"},
+    "wavephys.app.registry.run": {"names": lambda: ["dispersion-minima"]},
+    "wavephys.physics.heights.second_order_breakdown": {"steepness": lambda: (0.26, 0.30)},
+    "wavephys.app.scenes.default_scene": {"n": lambda: 128, "steps": lambda: 2},
+    "wavephys.app.scenes.builtin_scene": {"n": lambda: 64},
+    "wavephys.app.scenes.scene_water": {"n": lambda: 64},
+    "wavephys.app.scenes.scene_frames": {"n": lambda: 64},
+    "wavephys.app.scenes.scene_grid": {"n": lambda: 64},
+    "wavephys.harness.dispersion.measure_dispersion": {"eta": lambda: RNG.standard_normal((16, 8, 8))},
+    "wavephys.harness.pytest_plugin.Checker.dispersion": {
+        "eta": _dispersion_record, "dx": lambda: 1.0, "dt": lambda: 0.4, "water": lambda: Water(sigma=0.0)},
+    "wavephys.harness.pytest_plugin.Checker.energy_conserved": {"eta": lambda: np.stack([np.ones((N, N))] * 2),
+                                                                "eta_dot": lambda: np.stack([np.ones((N, N))] * 2)},
+    "optics.light.directions.reflect": {"n": lambda: np.array([0.0, 0.0, 1.0])},
+    "optics.light.directions.refract": {"n": lambda: np.array([0.0, 0.0, 1.0])},
+    "optics.light.directions.normalize": {"v": lambda: np.array([1.0, 2.0, 2.0])},
+    "wavephys.core.grid.Grid.deposit": {"x": lambda: np.zeros(5), "y": lambda: np.zeros(5)},
+    "wavephys.core.grid.Grid.sample": {"x": lambda: np.zeros(5), "y": lambda: np.zeros(5)},
+    "wavephys.harness.wake.wake_angle": {"near": lambda: 0.2, "far": lambda: 0.9},
+    "wavephys.harness.wake.track_wavelength": {"eta": lambda: np.cos(np.arange(N) * 3.0)[None, :] * np.ones((N, 1))},
+    "wavephys.physics.ship_waves.hull_spectrum": {"center": lambda: (0.0, 0.0), "pose": lambda: (0.0, 0.0, 0.0)},
+    "wavephys.physics.ship_waves.Hull.evaluate": {"u": lambda: np.zeros(3), "v": lambda: np.zeros(3)},
+    "wavephys.simulation.driver.Simulation.drop": {"stones": lambda: Stones(0.1, -0.2, 0.25, 1e-3)},
+    "optics.rendering.reference.march": {"o": lambda: np.array([[0.0, -5.0, 3.0]]),
+                                         "d": lambda: np.array([[0.0, 0.8, -0.6]])},
+    "optics.rendering.reference.environment": {"d": lambda: np.array([[0.0, 0.0, 1.0]])},
+    "optics.rendering.reference.shade_ground": {"p": lambda: np.array([[0.0, 0.0, -1.0]])},
+    "optics.rendering.reference.sample": {"field": _field, "xy": lambda: np.zeros((3, 2))},
+    "optics.rendering.scene.texture_sample": {"field": _field},
+    "optics.caustics.common.bilateral_filter": {"image": _field},
+    "optics.caustics.common.blur_121": {"image": _field},
+    "optics.rendering.renderer.to_srgb8": {"image": lambda: RNG.random((4, 4, 3))},
+    "optics.rendering.renderer.Renderer.texture": {"name": lambda: "extra", "array": _field},
+    "wavephys.simulation.stepping.add_source": {"source": lambda: Stones(0.1, -0.2, 0.25, 1e-3)},
+    "wavephys.physics.wake.steady_wake": {"speed": lambda: 1.0},
+    "optics.rendering.textures.height_precision": {"eta": lambda: _field() + np.float32(0.01)},
+    "wavephys.physics.wake.HullSource": {"hull": lambda: Hull("gaussian", 0.3, 0.15)},
+    "optics.rendering.renderer.render_sequence": {"renderer": lambda: instance(_renderer_class()),
+                                                  "scenes": lambda: [_scene()], "out_dir": lambda: TMP / "frames",
+                                                  "progress": lambda: False},
+    "optics.rendering.renderer.Renderer.frame_seconds": {"repeats": lambda: 1},
+    "wavephys.models.finite_difference.fd_angular_frequency": {"kx": lambda: np.linspace(0.0, 1.0, 4),
+                                                               "ky": lambda: np.zeros(4), "dx": lambda: 1.0},
+    "wavephys.physics.wake.cusp_line": {"samples": lambda: 101},
+    "wavephys.core.spectral.fourier_refine": {"field": _field},
+    "wavephys.simulation.state.State": {}, "wavephys.simulation.state.Surface": {},
+    "optics.rendering.textures.EncodedHeight": {"data": lambda: np.zeros((N, N), np.uint16), "offset": lambda: 0.0,
+                                                "amplitude": lambda: 1.0},
+}
+
+SKIP = {
+    # result records, made by the library and returned (their fields are what was measured)
+    "wavephys.harness.wake.WakeAngle", "wavephys.physics.wake.CuspLine", "wavephys.harness.energy.Energy",
+    "wavephys.harness.dispersion.DispersionSamples", "wavephys.physics.stokes.StokesWave",
+    "wavephys.simulation.model.Operators", "wavephys.simulation.sources.Source",
+    # a matplotlib Figure: its methods are matplotlib's
+    "wavephys.plot.WaveFigure",
+    # the validation groups and the registry run whole scenes and take no data
+    "wavephys.app.registry.check_builtin_scenes",
+}
+# the source protocol's hooks are called by the step with the model's own operators
+for cls in ("wavephys.physics.disturbances.Stones", "wavephys.physics.wind.WindSea",
+            "wavephys.physics.forcing.Forcing", "wavephys.physics.ship_waves.Ship"):
+    SKIP |= {f"{cls}.impulse", f"{cls}.rate", f"{cls}.add"}
+
+NONE_OK = {"resolution", "ship_patch", "damping", "camera", "progress", "limit", "environment", "albedo",
+           "caustics", "count", "video", "speed", "columns", "mask", "iterations"}
+CHOICES = {"method", "kind", "mode", "cutoff", "spectrum", "illuminant", "gamut", "norm", "normals", "relation",
+           "name", "ship_method", "dtype"}
+POSITIVE = {"dt", "dx", "spacing", "length", "n", "radius", "half", "factor", "size", "steps", "count", "frames",
+            "ratio", "steepness", "wind_speed", "fetch", "amplitude", "wavenumber", "near", "far", "epsilon", "n1",
+            "n2", "n_air", "n_water", "n_ratio", "width", "height", "bits", "fps", "resolution", "samples",
+            "oversample", "photons_per_texel", "exponent", "tolerance", "max_depth", "repeats", "refine_steps",
+            "g", "rho", "sigma_space", "sigma_range", "bandwidth", "threshold", "lo", "hi", "growth", "strength_abs",
+            "leak_tolerance", "max_distance", "ship_patch", "fov"}
+NON_NEGATIVE = {"depth_m", "margin", "s", "omega_dt", "k", "omega", "distance", "coefficient", "coefficients",
+                "absorption", "sigma", "blur", "exclude", "filter_radius", "seed", "cos_theta", "alpha_abs",
+                "refine", "mode"}
+SHAPED = {"eta", "eta_prev", "eta0", "eta1", "eta_dot", "eta_dot0", "eta_dot1", "field", "psi", "fields", "image",
+          "reference", "sun", "d", "eye", "target", "center", "start", "velocity", "light", "view", "stencil",
+          "spectrum", "q", "lam_eta", "lam_q", "phi_hat", "chi_hat", "f0_hat", "f1_hat", "xy", "o", "p", "data",
+          "mask", "albedo", "environment", "caustics", "ground", "water", "images"}
+SHAPE_FREE = {("optics.rendering.renderer.to_srgb8", "image"),  # elementwise: any shape("optics.caustics.common.bilateral_filter", "image"), ("optics.caustics.common.blur_121", "image"),
+              ("optics.light.attenuation.underwater_radiance", "ground"),
+              ("optics.light.attenuation.underwater_radiance", "diffuse"),
+              ("optics.rendering.textures.EncodedHeight", "data"),("optics.rendering.scene.Scene", "ground"), ("optics.rendering.scene.Scene", "water"),
+              ("optics.rendering.scene.texture_sample", "field"),("wavephys.models.finite_difference.laplacian", "eta"),
+              ("wavephys.models.truncated_kernel.convolve_periodic", "eta"),("wavephys.core.grid.Grid.sample", "field"), ("optics.light.directions.normalize", "v"),
+              # rectangular grids and RGBA images are valid
+              ("wavephys.harness.dispersion.measure_dispersion", "eta"),
+              ("wavephys.harness.pytest_plugin.Checker.dispersion", "eta"),
+              ("wavephys.plot.plot_surface", "eta"), ("wavephys.plot.plot_wake", "eta"),
+              ("wavephys.plot.plot_images", "images")}
+RANGE_FREE = {("wavephys.physics.wake.GaussianPressure", "amplitude"),  # signed by nature
+              ("wavephys.harness.checks.Check", "tolerance")}  # 0 for bound rows
+INF_OK = {"depth", "limit", "expected", "measured"}
+NAN_OK = {"measured"}
+FREE_TEXT = {("optics.rendering.renderer.Renderer.texture", "name")}  # any slot name is valid
+# results that hold NaN by design, for huge but valid inputs (documented in the function)
+NAN_RESULT_OK = {"wavephys.models.finite_difference.fd_angular_frequency"}  # no real ω where unstable  # a Check row whose measurement gave NaN is a failed row, by design
+
+
+def _renderer_class():
+    from optics.rendering import Renderer
+
+    return Renderer
+
+
+_INSTANCES = {}
+
+
+def instance(cls):
+    """A valid instance of a public class, to call its methods on (cached per class)."""
+    from optics.rendering import Renderer
+
+    if cls not in _INSTANCES:
+        makers = {Grid: _grid, Water: Water, Model: _model, Simulation: lambda: Simulation(_grid(), Water(), dt=0.05),
+                  Stones: lambda: Stones(0.1, -0.2, 0.25, 1e-3), Hull: lambda: Hull("gaussian", 0.3, 0.15),
+                  Path: lambda: straight_path((0.0, 0.0), (0.4, 0.0)), Ship: _ship, Scene: _scene, Effects: Effects,
+                  Camera: Camera, Renderer: lambda: Renderer(16, 12), GaussianPressure: lambda: GaussianPressure(),
+                  WindSea: lambda: WindSea(jax.random.PRNGKey(0), "phillips", dict(wind_speed=5.0)),
+                  Forcing: lambda: Forcing(EXAMPLES["pressure"]()),
+                  HullSource: lambda: HullSource(Hull("gaussian", 0.3, 0.15)),
+                  DispersionSamples: EXAMPLES["samples"], Check: EXAMPLES["check"]}
+        for base, make in makers.items():
+            if issubclass(cls, base):
+                _INSTANCES[cls] = make()
+                break
+        else:
+            _INSTANCES[cls] = cls()
+    return _INSTANCES[cls]

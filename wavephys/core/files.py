@@ -1,0 +1,75 @@
+"""Writing files so that an interruption loses nothing and leaves nothing half-written.
+
+Every file the library writes goes through :func:`atomic_path`: the content is written to
+a temporary file in the same folder and renamed over the target only when complete
+(``os.replace`` is atomic on one file system), so a reader sees the old file or the new
+one, never a truncated one that looks valid. :func:`output_file` and
+:func:`output_folder` check a destination before any long work starts.
+"""
+
+from __future__ import annotations
+
+import contextlib
+import os
+import tempfile
+from pathlib import Path
+
+from wavephys.core.inputs import describe
+
+__internal__ = True  # tooling for the library's own modules (users call the Grid's methods)
+__all__ = ["atomic_path", "output_file", "output_folder"]
+
+
+def _as_path(name: str, path) -> Path:
+    if not isinstance(path, (str, os.PathLike)) or (isinstance(path, str) and not path.strip()):
+        raise TypeError(f"{name} must be a file system path (str or pathlib.Path), got {describe(path)}")
+    return Path(path)
+
+
+def output_file(path, name: str = "path", suffixes: tuple[str, ...] = ()) -> Path:
+    """Check that a file can be written at ``path``: its folder exists and is writable,
+    the path is not a folder, and its suffix is one of ``suffixes`` (if given)."""
+    p = _as_path(name, path)
+    if suffixes and p.suffix.lower() not in suffixes:
+        raise ValueError(f"{name} must end in {' or '.join(suffixes)}, got {str(p)!r}")
+    if p.is_dir():
+        raise ValueError(f"{name} {str(p)!r} is a folder, not a file")
+    parent = p.parent if str(p.parent) else Path(".")
+    if not parent.is_dir():
+        raise ValueError(f"{name}: the folder {str(parent)!r} does not exist (it is not created for you)")
+    if not os.access(parent, os.W_OK):
+        raise ValueError(f"{name}: the folder {str(parent)!r} is not writable")
+    return p
+
+
+def output_folder(path, name: str = "out_dir") -> Path:
+    """Check (and create, one level) an output folder: its parent must exist and be writable."""
+    p = _as_path(name, path)
+    if p.exists() and not p.is_dir():
+        raise ValueError(f"{name} {str(p)!r} exists and is not a folder")
+    parent = p.parent if str(p.parent) else Path(".")
+    if not p.exists():
+        if not parent.is_dir():
+            raise ValueError(f"{name}: the folder {str(parent)!r} does not exist (only {p.name!r} would be created)")
+        if not os.access(parent, os.W_OK):
+            raise ValueError(f"{name}: cannot create {str(p)!r}: {str(parent)!r} is not writable")
+        p.mkdir()
+    elif not os.access(p, os.W_OK):
+        raise ValueError(f"{name}: the folder {str(p)!r} is not writable")
+    return p
+
+
+@contextlib.contextmanager
+def atomic_path(path):
+    """Yield a temporary path beside ``path``; on success it replaces ``path`` atomically,
+    on any error (or interruption) it is removed and ``path`` is left as it was."""
+    target = Path(path)
+    fd, tmp = tempfile.mkstemp(prefix=f".{target.stem}.", suffix=target.suffix + ".part", dir=target.parent or ".")
+    os.close(fd)
+    tmp = Path(tmp)
+    try:
+        yield tmp
+        os.replace(tmp, target)
+    finally:
+        with contextlib.suppress(FileNotFoundError):
+            tmp.unlink()
