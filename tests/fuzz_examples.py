@@ -219,17 +219,22 @@ SHAPED = {"eta", "eta_prev", "eta0", "eta1", "eta_dot", "eta_dot0", "eta_dot1", 
           "reference", "sun", "d", "eye", "target", "center", "start", "velocity", "light", "view", "stencil",
           "spectrum", "q", "lam_eta", "lam_q", "phi_hat", "chi_hat", "f0_hat", "f1_hat", "xy", "o", "p", "data",
           "mask", "albedo", "environment", "caustics", "ground", "water", "images"}
-SHAPE_FREE = {("optics.rendering.renderer.to_srgb8", "image"),  # elementwise: any shape("optics.caustics.common.bilateral_filter", "image"), ("optics.caustics.common.blur_121", "image"),
-              ("optics.light.attenuation.underwater_radiance", "ground"),
-              ("optics.light.attenuation.underwater_radiance", "diffuse"),
-              ("optics.rendering.textures.EncodedHeight", "data"),("optics.rendering.scene.Scene", "ground"), ("optics.rendering.scene.Scene", "water"),
-              ("optics.rendering.scene.texture_sample", "field"),("wavephys.models.finite_difference.laplacian", "eta"),
-              ("wavephys.models.truncated_kernel.convolve_periodic", "eta"),("wavephys.core.grid.Grid.sample", "field"), ("optics.light.directions.normalize", "v"),
-              # rectangular grids and RGBA images are valid
-              ("wavephys.harness.dispersion.measure_dispersion", "eta"),
-              ("wavephys.harness.pytest_plugin.Checker.dispersion", "eta"),
-              ("wavephys.plot.plot_surface", "eta"), ("wavephys.plot.plot_wake", "eta"),
-              ("wavephys.plot.plot_images", "images")}
+# parameters whose shape variants are valid input: rectangular grids, RGBA images, single
+# channels, batches of points, elementwise functions
+SHAPE_FREE = {
+    ("wavephys.core.grid.Grid.sample", "field"), ("optics.light.directions.normalize", "v"),
+    ("wavephys.harness.dispersion.measure_dispersion", "eta"),
+    ("wavephys.harness.pytest_plugin.Checker.dispersion", "eta"),
+    ("wavephys.plot.plot_surface", "eta"), ("wavephys.plot.plot_wake", "eta"), ("wavephys.plot.plot_images", "images"),
+    ("wavephys.models.finite_difference.laplacian", "eta"), ("wavephys.models.truncated_kernel.convolve_periodic", "eta"),
+    ("optics.caustics.common.bilateral_filter", "image"), ("optics.caustics.common.blur_121", "image"),
+    ("optics.light.attenuation.underwater_radiance", "ground"),
+    ("optics.light.attenuation.underwater_radiance", "diffuse"),
+    ("optics.rendering.textures.EncodedHeight", "data"),
+    ("optics.rendering.scene.Scene", "ground"), ("optics.rendering.scene.Scene", "water"),
+    ("optics.rendering.scene.texture_sample", "field"),
+    ("optics.rendering.renderer.to_srgb8", "image"),
+}
 RANGE_FREE = {("wavephys.physics.wake.GaussianPressure", "amplitude"),  # signed by nature
               ("wavephys.harness.checks.Check", "tolerance")}  # 0 for bound rows
 INF_OK = {"depth", "limit", "expected", "measured"}
