@@ -95,3 +95,17 @@ def test_textures_export(tmp_path):
     span = float(np.ptp(scene.water))
     assert np.abs(tex["water"] - scene.water).max() <= span / 65535 + 1e-7  # 16-bit normalized, decoded in m
     assert tex["fresnel"].shape == (256,) and tex["absorption"].shape == (256, 3)
+
+
+def test_validate_table_fits_100_columns_and_shows_margins():
+    """Long quantities wrap; bounds and agreements both show the margin left (negative: failed)."""
+    from wavephys.harness.checks import bound, compare
+
+    rows = [compare("a quantity whose description is much longer than the column it is given, with conditions",
+                    1.0, 1.02, rtol=0.01), bound("a bound", 3.0, 2.0), bound("a lower bound", 5.0, 2.0, relation=">=")]
+    table = cli._table(rows, width=100)
+    assert max(len(line) for line in table.splitlines()) <= 100
+    body = table.splitlines()[2:]
+    assert "FAIL" in body[0] and "-0.0096" in body[0]  # 0.01 - |1/1.02 - 1|
+    assert any(line.startswith("a bound") and "<= 2" in line and "-1" in line and "FAIL" in line for line in body)
+    assert any(line.startswith("a lower bound") and ">= 2" in line and "3" in line and "ok" in line for line in body)

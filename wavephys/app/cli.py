@@ -71,19 +71,33 @@ def _progress(i: int, total: int, name: str, start: float) -> None:
     print(f"[{i + 1}/{total}] {name} ... ({time.perf_counter() - start:.1f} s elapsed)", file=sys.stderr, flush=True)
 
 
-def _table(rows) -> str:
-    head = ("quantity", "expected", "measured", "error", "tolerance", "ok")
-    lines = []
-    for r in rows:
-        tol = (f"+-{r.tolerance:.3g}{' rel' if r.relative else ''}" if r.relation == "~="
-               else f"{r.relation} expected")
-        err = "-" if r.error is None else f"{r.error:.3g}"
-        lines.append((r.quantity + (f" [{r.unit}]" if r.unit else ""), f"{r.expected:.6g}",
-                      f"{r.measured:.6g}", err, tol, "ok" if r.ok else "FAIL"))
-    widths = [max(len(h), *(len(line[i]) for line in lines)) for i, h in enumerate(head)]
-    fmt = "  ".join(f"{{:<{w}}}" for w in widths)
-    out = [fmt.format(*head), fmt.format(*("-" * w for w in widths))]
-    return "\n".join(out + [fmt.format(*line) for line in lines])
+def _rule(r) -> str:
+    """What the row asks, in one cell: "~= 0.2312 +-5e-05" or "<= 0.001"."""
+    if r.relation == "~=":
+        return f"~= {r.expected:.6g} +-{r.tolerance:.2g}{' rel' if r.relative else ''}"
+    return f"{r.relation} {r.expected:.6g}"
+
+
+def _table(rows, width: int | None = None) -> str:
+    """The rows as a table that fits ``width`` columns (default: the terminal, at most 100):
+    quantity (wrapped), the rule it must meet, the measured value, the margin left before it
+    fails (the same meaning for agreements and bounds: negative when failed) and the verdict."""
+    import shutil
+    import textwrap
+
+    width = width or min(shutil.get_terminal_size((100, 24)).columns, 100)
+    head = ("quantity", "rule", "measured", "margin", "ok")
+    cells = [(r.quantity + (f" [{r.unit}]" if r.unit else ""), _rule(r), f"{r.measured:.6g}", f"{r.margin:.2g}",
+              "ok" if r.ok else "FAIL") for r in rows]
+    fixed = [max(len(h), *(len(c[i]) for c in cells)) for i, h in enumerate(head)]
+    fixed[0] = max(20, width - sum(fixed[1:]) - 2 * (len(head) - 1))
+    fmt = "  ".join(f"{{:<{w}}}" for w in fixed)
+    out = [fmt.format(*head).rstrip(), fmt.format(*("-" * w for w in fixed)).rstrip()]
+    for c in cells:
+        lines = textwrap.wrap(c[0], fixed[0]) or [""]
+        out.append(fmt.format(lines[0], *c[1:]).rstrip())
+        out += [lines[k] for k in range(1, len(lines))]
+    return "\n".join(out)
 
 
 def cmd_validate(args, parser) -> int:
