@@ -104,7 +104,7 @@ EXAMPLES = {
     "f1_hat": lambda: np.ones((8, 8), np.complex64), "spectrum": lambda: np.ones((N, N)) * 1e-8,
     "curves": lambda: {"a": ([1.0, 2.0], [1.0, 0.5])},
     "rows": lambda: [dict(method="a", seconds=1e-3, error=0.1), dict(method="a", seconds=2e-3, error=0.05)],
-    "fields": lambda: np.zeros((2, N, N), np.float32), "time": lambda: np.float32(0.0), "angle": lambda: 19.5, "fn": lambda: (lambda x: x), "damping": lambda: 0.05,
+    "fields": lambda: np.zeros((2, N, N), np.float32), "time": lambda: np.float32(0.0), "angle": lambda: 19.5, "time_error": lambda: 0.0, "fn": lambda: (lambda x: x), "damping": lambda: 0.05,
 }
 
 def _npz():

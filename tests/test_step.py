@@ -228,3 +228,40 @@ def test_heights_in_the_wrong_units_get_a_hint():
     model = Model(GRID, Water(), dt=0.05)
     with pytest.raises(ValueError, match="mm or cm"):
         add_height(model, initial_state(model), np.full((64, 64), 5.0))  # 5 "m" on a 4 m domain: millimetres?
+
+
+@pytest.mark.slow
+def test_an_hour_of_60_hz_steps_in_float32_keeps_time_and_matches_float64():
+    """The clock is a compensated sum: 216,000 float32 steps of 1/60 s end at 3600 s to float32
+    rounding (a plain float32 sum drifts by 2.8 s), so a ship's path position agrees with
+    float64 to micrometres, and the surface after an hour agrees with the float64 run."""
+    from wavephys.physics.ship_waves import straight_path
+
+    steps, chunk = 3600 * 60, 21600
+
+    def hour(dtype):
+        model = Model(Grid(32, 4.0), Water(), dt=1 / 60, dtype=dtype)
+        s = add_source(model, initial_state(model), Stones(0.0, 0.0, 0.4, 1e-3))
+        for _ in range(steps // chunk):
+            s, _ = run(model, s, chunk)
+        return s, surface(model, s)
+
+    s32, surf32 = hour("float32")
+    naive = np.float32(0.0)
+    for _ in range(steps):
+        naive = np.float32(naive + np.float32(1 / 60))
+    assert abs(float(naive) - 3600.0) > 1.0  # what the old clock did
+    assert abs(s32.exact_time - 3600.0) < 1e-5
+    with jax.enable_x64(True):
+        s64, surf64 = hour("float64")
+        assert abs(s64.exact_time - 3600.0) < 1e-9
+        path = straight_path((-1.0, 0.0), (5.0, 0.0))  # 5 m/s: a drift of 2.8 s would be 14 m
+        x32, x64 = np.asarray(path(s32.exact_time)), np.asarray(path(s64.exact_time))
+        assert np.max(np.abs(x32 - x64)) < 1e-4
+        eta32, eta64 = np.asarray(surf32.eta, np.float64), np.asarray(surf64.eta)
+    # float32 loses amplitude by rounding, within the a-priori bound steps·eps·log2(n) on energy
+    # (docs/physics.md §1.8): compare the shape (phase) and the amplitude apart
+    a = float(np.sum(eta32 * eta64) / np.sum(eta64 * eta64))
+    shape_error = np.max(np.abs(eta32 - a * eta64)) / np.max(np.abs(eta64))
+    assert abs(1 - a) < 0.5 * steps * np.finfo(np.float32).eps * np.log2(32)  # measured 0.0164 < 0.0644
+    assert shape_error < 1e-2  # measured 4.6e-3: float32 rounding of 216,000 steps, not the clock

@@ -34,7 +34,7 @@ from wavephys.physics.interpolation import hermite_frame
 from wavephys.physics.ring_waves import rotate_pair
 from wavephys.simulation.model import Model, Operators, operators
 from wavephys.simulation.sources import sort_sources
-from wavephys.simulation.state import State, Surface, unchecked
+from wavephys.simulation.state import State, Surface, advance_clock, split_time, unchecked
 
 __all__ = ["step", "run", "surface", "energy", "frame", "initial_state", "state_from_psi", "add_height",
            "add_source", "checked"]
@@ -104,7 +104,7 @@ def _surface_fields(model: Model, surf):
 
 
 @jax.jit
-def _inverse(model: Model, ops: Operators, state_spec, surf_spec, time):
+def _inverse(model: Model, ops: Operators, state_spec, surf_spec, time, time_error, dt_error):
     """Steps 5–6: the two batched irfft2 (next state, surface), both first, then the cutoff.
 
     Two transforms into two buffers: one transform of all four planes would need a copy to
@@ -116,12 +116,22 @@ def _inverse(model: Model, ops: Operators, state_spec, surf_spec, time):
         new = new * ops.mask
     surf = _surface_fields(model, surf)
     dtype = model.real_dtype
-    return (unchecked(State, new.astype(dtype), time + jnp.asarray(model.dt, dtype)),
+    later, error = advance_clock(time, time_error + dt_error, jnp.asarray(model.dt, dtype))
+    return (unchecked(State, new.astype(dtype), later, error),
             unchecked(Surface, surf.astype(dtype), time))
 
 
-def _pure_step(model, ops, state, impulses=(), rates=()):
-    return _inverse(model, ops, *_forward(model, ops, state.fields, state.time, impulses, rates), state.time)
+def _dt_error(model):
+    """Δt − Δt rounded to the model's dtype, s (0 for traced models): added to the clock's error
+    term each step, so that even a Δt float32 cannot hold (1/60 s) does not bias long runs."""
+    if is_traced(model.dt):
+        return jnp.zeros((), model.real_dtype)
+    return jnp.asarray(float(model.dt) - float(np.asarray(model.dt, model.real_dtype)), model.real_dtype)
+
+
+def _pure_step(model, ops, state, impulses=(), rates=(), dt_error=0.0):
+    return _inverse(model, ops, *_forward(model, ops, state.fields, state.time, impulses, rates), state.time,
+                    state.time_error, dt_error)
 
 
 # -- checks -------------------------------------------------------------------------------
@@ -169,21 +179,21 @@ def step(model: Model, state: State, sources=()):
     _check_model(model)
     _check_state(model, state)
     impulses, rates, adders = sort_sources(model, sources)
-    new, surf = _pure_step(model, operators(model), state, impulses, rates)
+    new, surf = _pure_step(model, operators(model), state, impulses, rates, _dt_error(model))
     if adders:
         if is_traced(state) or is_traced(model):
             raise TypeError("ships (host-side sources) cannot be stepped under jit/vmap/grad: call step "
                             "outside JAX transformations, or leave them out")
-        fields, t = new.fields, float(state.time)
+        fields, t = new.fields, state.exact_time
         for source in adders:
             fields = source.add(model, fields, t)
-        new = unchecked(State, fields, new.time)
+        new = unchecked(State, fields, new.time, new.time_error)
     return new, surf
 
 
 @partial(jax.jit, static_argnames=("steps",))
-def _run(model, ops, state, rates, steps):
-    return jax.lax.scan(lambda s, _: _pure_step(model, ops, s, (), rates), state, None, length=steps)
+def _run(model, ops, state, rates, steps, dt_error):
+    return jax.lax.scan(lambda s, _: _pure_step(model, ops, s, (), rates, dt_error), state, None, length=steps)
 
 
 def run(model: Model, state: State, steps: int, sources=()):
@@ -200,7 +210,7 @@ def run(model: Model, state: State, steps: int, sources=()):
     if impulses or adders:
         raise ValueError("run takes continuous sources (forcing functions) only: apply impulses (stones, "
                          "wind) with add_source before the loop, and step ships with step()")
-    return _run(model, operators(model), state, rates, steps)
+    return _run(model, operators(model), state, rates, steps, _dt_error(model))
 
 
 @jax.jit
@@ -243,7 +253,7 @@ def initial_state(model: Model, time: float = 0.0) -> State:
     _check_model(model)
     check_scalar("time", time)
     n = model.grid.n
-    return unchecked(State, jnp.zeros((2, n, n), model.dtype), jnp.asarray(time, model.dtype))
+    return unchecked(State, jnp.zeros((2, n, n), model.dtype), *split_time(time, model.real_dtype))
 
 
 def state_from_psi(model: Model, psi, time: float = 0.0) -> State:
@@ -254,7 +264,7 @@ def state_from_psi(model: Model, psi, time: float = 0.0) -> State:
     check_scalar("time", time)
     psi = jnp.asarray(psi)
     return unchecked(State, jnp.stack([jnp.real(psi), jnp.imag(psi)]).astype(model.dtype),
-                     jnp.asarray(time, model.dtype))
+                     *split_time(time, model.real_dtype))
 
 
 def _check_height_units(eta, grid):
@@ -274,7 +284,8 @@ def add_height(model: Model, state: State, eta) -> State:
     check_array("eta", eta, ndim=2, shape_tail=(n, n))
     _check_height_units(eta, model.grid)
     psi = potential_from_height(jnp.asarray(eta, model.dtype), model.grid, model.water)
-    return unchecked(State, state.fields + jnp.stack([psi.real, psi.imag]).astype(model.dtype), state.time)
+    return unchecked(State, state.fields + jnp.stack([psi.real, psi.imag]).astype(model.dtype), state.time,
+                     state.time_error)
 
 
 @jax.jit
@@ -291,7 +302,8 @@ def add_source(model: Model, state: State, source) -> State:
     if not impulses:
         raise TypeError(f"source must be an impulse source (Stones, WindSea), got {type(source).__name__}: "
                         f"continuous sources and ships act during step()")
-    return unchecked(State, _apply(model, operators(model), state.fields, state.time, impulses), state.time)
+    return unchecked(State, _apply(model, operators(model), state.fields, state.time, impulses), state.time,
+                     state.time_error)
 
 
 def checked(fn):
