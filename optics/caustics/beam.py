@@ -15,7 +15,7 @@ from functools import partial
 import jax
 import jax.numpy as jnp
 
-from optics.caustics.common import blur_121, land, prepare
+from optics.caustics.common import blur_121, land, prepare, shadow_steps, sunlit
 from optics.light.fresnel import N_WATER
 from wavephys.core.grid import Grid
 from wavephys.core.inputs import check_bool, check_choice, check_int
@@ -61,8 +61,8 @@ def _sub_beams(grid, xv, yv, eta, X, Y, T, d, samples, vertical):
     return px, py, jnp.broadcast_to(area * t_cell / (samples * samples), px.shape)
 
 
-@partial(jax.jit, static_argnames=("m", "samples", "blur", "fresnel", "ground", "vertical"))
-def _beam(slope_spectra, eta, length, d, floor, n_water, m, samples, blur, fresnel, ground, vertical):
+@partial(jax.jit, static_argnames=("m", "samples", "blur", "fresnel", "ground", "vertical", "shadow"))
+def _beam(slope_spectra, eta, length, d, floor, n_water, m, samples, blur, fresnel, ground, vertical, shadow):
     n = eta.shape[-1]
     grid, floor_map = Grid(n, length), Grid(m, length)
     h = grid.dx
@@ -73,6 +73,7 @@ def _beam(slope_spectra, eta, length, d, floor, n_water, m, samples, blur, fresn
     xv, yv = grid.mesh()
     floor_fn = (lambda x, y: grid.sample(floor, x, y)) if ground else floor
     X, Y, T = land(xv, yv, eta, gx, gy, d, floor_fn, n_water, fresnel)
+    T = T * sunlit(eta, grid, d, shadow)  # shadowed samples send nothing (0 steps: high sun, no work)
     finite = jnp.isfinite(eta).all()  # checked here, raised by the caller: no extra pass
     if samples == 1:
         # one ray per sample carrying the flux of its dual cell: E0·T·(x0-area), with the
@@ -109,8 +110,9 @@ def floor_irradiance_beam(eta, grid: Grid, depth, sun=(0.0, 0.0, 1.0), *, resolu
     vertical = bool(d[0] == 0 and d[1] == 0)
     length = float(grid.length)
     spectra = None if normals == "central" else _slope_spectra(light.eta, length)
+    shadow = shadow_steps(light.eta, grid, d)
     out, finite = _beam(spectra, light.eta, length, jnp.asarray(d, jnp.float32), light.floor, light.n_water,
-                        light.resolution, samples, blur, fresnel, light.ground, vertical)
+                        light.resolution, samples, blur, fresnel, light.ground, vertical, shadow)
     if not bool(finite):
         raise ValueError("eta must be finite everywhere; it contains NaN or inf")
     return out

@@ -8,6 +8,7 @@ from __future__ import annotations
 import math
 from typing import NamedTuple
 
+import jax
 import jax.numpy as jnp
 import numpy as np
 
@@ -71,6 +72,48 @@ def surface_fields(eta, grid: Grid, oversample: int = 1):
     fine = Grid(grid.n * oversample, grid.length)
     eta = grid.refine(eta, oversample)
     return (eta, *fine.gradient(eta))
+
+
+@jax.jit
+def _slope_and_relief(eta, dx):
+    """(steepest central-difference slope, max η − min η) in one pass on the device."""
+    gx = (jnp.roll(eta, -1, 1) - jnp.roll(eta, 1, 1)) / (2 * dx)
+    gy = (jnp.roll(eta, -1, 0) - jnp.roll(eta, 1, 0)) / (2 * dx)
+    return jnp.max(jnp.hypot(gx, gy)), jnp.max(eta) - jnp.min(eta)
+
+
+def shadow_steps(eta, grid: Grid, d) -> int:
+    """How many half-cell steps toward the sun :func:`sunlit` must look (0: nothing can be in
+    shadow, because the sun stands higher than the steepest slope). Host-side, concrete ``eta``."""
+    horizontal = math.hypot(float(d[0]), float(d[1]))
+    if horizontal == 0.0:
+        return 0
+    tan_elevation = -float(d[2]) / horizontal
+    steepest, relief = (float(v) for v in _slope_and_relief(jnp.asarray(eta, jnp.float32), grid.dx))
+    if steepest < tan_elevation:
+        return 0
+    return min(int(math.ceil(relief / tan_elevation / (0.5 * float(grid.dx)))) + 1, 4 * grid.n)
+
+
+def sunlit(eta, grid: Grid, d, steps: int):
+    """1 where the sun reaches the surface sample, 0 in shadow (a facet facing away from the
+    sun, or one hidden behind a crest): the ray from each sample toward the sun, marched
+    ``steps`` half cells (:func:`shadow_steps`), must stay above the periodic surface."""
+    if steps == 0:
+        return jnp.ones_like(eta)
+    horizontal = jnp.hypot(d[0], d[1])
+    ux, uy = -d[0] / horizontal, -d[1] / horizontal  # toward the sun
+    rise = -d[2] / horizontal * 0.5 * grid.dx         # ray height gained per half cell
+    x, y = grid.mesh()
+    step = 0.5 * grid.dx
+
+    def body(j, hidden):
+        s = j * step
+        above = grid.sample(eta, x + s * ux, y + s * uy) - (eta + j * rise)
+        return hidden | (above > 1e-6 * (1.0 + jnp.abs(eta)))
+
+    hidden = jax.lax.fori_loop(1, steps + 1, body, jnp.zeros(eta.shape, bool))
+    return jnp.where(hidden, 0.0, 1.0).astype(eta.dtype)
 
 
 def land(xs, ys, eta, gx, gy, d, floor, n_water, fresnel, iterations: int = 5):
