@@ -3,7 +3,8 @@
 Users call these from their own test suites on height fields produced by whatever code
 they want to check (ours, a shader, a finite-difference toy):
 
-* :func:`measure_dispersion`, :func:`dispersion_error` — the ω–k ridge against theory;
+* :func:`measure_dispersion`, :func:`dispersion_error`, :func:`dispersion_check` — the ω–k
+  ridge against theory (the check names the band, the worst k and the likely cause);
 * :func:`measure_energy` — potential, capillary and kinetic energy per unit area;
 * :func:`wake_angle` (``"max"``, ``"cusp"``), :func:`track_wavelength` — wake geometry;
 * :class:`Check`, :func:`compare`, :func:`bound`, :func:`assert_check` — result rows that
@@ -18,6 +19,7 @@ import importlib
 
 _EXPORTS = {
     "DispersionSamples": "dispersion", "measure_dispersion": "dispersion", "dispersion_error": "dispersion",
+    "dispersion_check": "dispersion",
     "Energy": "energy", "measure_energy": "energy",
     "WakeAngle": "wake", "wake_angle": "wake", "wake_angle_max": "wake", "wake_angle_cusp": "wake",
     "WAKE_ANGLE_METHODS": "wake", "track_wavelength": "wake",
