@@ -83,7 +83,26 @@ def test_lookup_textures():
     f = fresnel_texture(64)
     assert f.shape == (64,) and f[0] == pytest.approx(1.0) and f[-1] == pytest.approx(0.02033, abs=1e-4)
     a = absorption_texture(20.0, 32)
-    assert a.shape == (32, 3) and np.allclose(a[0], 1.0) and a[-1, 0] == 0.0
+    assert a.shape == (32, 3) and np.all(a[0] == 1.0) and a[-1, 0] == 0.0
+    assert a.max() <= 1.0 and np.all(np.diff(a, axis=0) <= 0)  # a transmittance: never above 1, falling
+
+
+def test_exported_files_describe_themselves(tmp_path):
+    """Units, axes and conventions travel with every exported file."""
+    from optics.checks import flat_pool
+    from optics.rendering.textures import CAUSTICS_UNITS, GRID_CONVENTION, NORMAL_CONVENTION, export_scene
+    from dataclasses import replace
+
+    scene = flat_pool()
+    scene = replace(scene, caustics=np.full(np.shape(scene.water) if np.ndim(scene.water) == 2 else (2, 2), 1.0))
+    paths = export_scene(scene, tmp_path / "out")
+    sidecar = lambda name: json.loads((tmp_path / "out" / name).read_text())
+    assert sidecar("water_height.json")["units"] == "m" and sidecar("water_height.json")["grid"] == GRID_CONVENTION
+    assert sidecar("caustics.json")["units"] == CAUSTICS_UNITS
+    assert sidecar("water_normals.json")["convention"] == NORMAL_CONVENTION and "green" in NORMAL_CONVENTION
+    assert "cos(theta)" in sidecar("fresnel.json")["axes"][0]
+    assert len(sidecar("absorption.json")["axes"]) == 2
+    assert np.load(paths["absorption"]).max() <= 1.0
 
 
 @pytest.mark.parametrize("bits", [4, 12])

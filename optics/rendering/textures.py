@@ -26,14 +26,21 @@ __all__ = ["EncodedHeight", "encode_height", "decode_height", "normal_map", "hei
            "fresnel_texture", "absorption_texture", "save_height_png", "save_npz", "load_npz", "export_scene"]
 
 BITS = (8, 16, 32)
+GRID_CONVENTION = ("cell-centred: texel (row i, column j) of an n x n texture over a square of side L is "
+                   "centred at x = -L/2 + (j + 1/2) L/n, y = -L/2 + (i + 1/2) L/n; array row 0 is the lowest y, "
+                   "so the top row of a PNG (rows flipped on writing) is the highest y")
+NORMAL_CONVENTION = ("OpenGL (y up, green = +y): rgb = 0.5 + 0.5 n for the unit normal n = (nx, ny, nz), "
+                     "z up out of the water; DirectX engines flip green (g' = 1 - g)")
+CAUSTICS_UNITS = "relative irradiance E/E0 (1 = the light on flat water)"
 
 
 @dataclass(frozen=True)
 class EncodedHeight:
     """A height texture: ``data`` (uint8, uint16 or float32) and how to decode it.
 
-    height (m) = offset + amplitude · data / (2^bits − 1) for integers; data itself for 32.
-    ``length`` is the side length of the square it covers, m.
+    value = offset + amplitude · data / (2^bits − 1) for integers; data itself for 32.
+    ``length`` is the side length of the square it covers, m; ``units`` those of the
+    decoded value ("m" for heights; caustics maps hold irradiance relative to E0).
     """
 
     data: np.ndarray
@@ -41,6 +48,7 @@ class EncodedHeight:
     offset: float
     amplitude: float
     length: float
+    units: str = "m"
 
     def __post_init__(self):
         check_choice("bits", self.bits, BITS)
@@ -51,25 +59,30 @@ class EncodedHeight:
         check_scalar("offset", self.offset)
         check_scalar("amplitude", self.amplitude, lo=0.0, lo_open=True)
         check_scalar("length", self.length, lo=0.0, lo_open=True)
+        if not isinstance(self.units, str) or not self.units.strip():
+            raise TypeError(f"units must be a non-empty string, got {self.units!r}")
 
     def metadata(self) -> dict:
+        """How to decode the texture and where it lies: JSON-ready."""
         return dict(bits=self.bits, offset=self.offset, amplitude=self.amplitude, length=self.length,
-                    units="m", decode="offset + amplitude * data / (2**bits - 1)" if self.bits != 32 else "data")
+                    units=self.units, decode="offset + amplitude * data / (2**bits - 1)" if self.bits != 32 else "data",
+                    grid=GRID_CONVENTION)
 
 
-def encode_height(eta, grid: Grid, bits: int = 16) -> EncodedHeight:
-    """Encode a height field (m, ``(n, n)``) as float32 (``bits=32``) or normalized integers."""
+def encode_height(eta, grid: Grid, bits: int = 16, units: str = "m") -> EncodedHeight:
+    """Encode a height field (m, ``(n, n)``) as float32 (``bits=32``) or normalized integers
+    (any other field with its ``units``, e.g. a caustics map)."""
     check_choice("bits", bits, BITS)
     check_instance("grid", grid, Grid, "wavephys.Grid")
     check_array("eta", eta, ndim=2, shape_tail=(grid.n, grid.n))
     eta = np.asarray(eta, np.float64)
     if bits == 32:
-        return EncodedHeight(eta.astype(np.float32), 32, 0.0, 1.0, float(grid.length))
+        return EncodedHeight(eta.astype(np.float32), 32, 0.0, 1.0, float(grid.length), units)
     lo, hi = float(eta.min()), float(eta.max())
     amp = hi - lo if hi > lo else 1.0
     levels = 2**bits - 1
     q = np.rint((eta - lo) / amp * levels)
-    return EncodedHeight(q.astype(np.uint8 if bits == 8 else np.uint16), bits, lo, amp, float(grid.length))
+    return EncodedHeight(q.astype(np.uint8 if bits == 8 else np.uint16), bits, lo, amp, float(grid.length), units)
 
 
 def decode_height(tex: EncodedHeight) -> np.ndarray:
@@ -133,7 +146,10 @@ def absorption_texture(max_distance: float = 20.0, size: int = 256) -> np.ndarra
     shape (size, 3) float32 (spectral, colour-science; clipped gamut)."""
     check_scalar("max_distance", max_distance, lo=0.0, lo_open=True)
     size = check_int("size", size, lo=2)
-    return water_srgb(np.linspace(0.0, max_distance, size)).astype(np.float32)
+    t = water_srgb(np.linspace(0.0, max_distance, size))
+    # transmittance relative to the light that enters: exactly 1 at d = 0 (the illuminant's white
+    # point lands at 1.001 in sRGB through the colour matrices' rounding)
+    return np.clip(t / t[0], 0.0, 1.0).astype(np.float32)
 
 
 def write_png(array, path) -> Path:
@@ -224,7 +240,9 @@ def export_scene(scene, out_dir) -> dict:
     RGB, 0.5 + 0.5·n), ``caustics.png`` (16-bit, relative irradiance scaled by its JSON
     ``amplitude``) when the scene has a caustics map, ``fresnel.npy`` (exact R at 256
     values of cos θ in [0, 1]), ``absorption.npy`` (RGB transmittance at 256 distances in
-    0–20 m), and ``textures.npz`` with all of them in float32 and the metadata.
+    0–20 m), each with a JSON sidecar naming its axes, units and conventions (grid, normal
+    map), and ``textures.npz`` with all of them (heights and caustics as stored, 16-bit
+    integers with their decoding metadata; normals and lookup tables float32).
     Returns {name: path}.
     """
     from optics.rendering.scene import Scene
@@ -244,14 +262,22 @@ def export_scene(scene, out_dir) -> dict:
     w = np.asarray(scene.water, np.float64)
     normals = normal_map(w, Grid(w.shape[0], float(scene.length)))
     paths["water_normals"] = write_png(_normals_rgb8(normals), out / "water_normals.png")
+    _write_text(json.dumps(dict(encoding="8-bit RGB", convention=NORMAL_CONVENTION, length=float(scene.length),
+                                grid=GRID_CONVENTION), indent=2), out / "water_normals.json")
     arrays = dict(water=heights["water"], ground=heights["ground"], water_normals=normals,
                   fresnel=fresnel_texture(256, scene.n_air, scene.n_water), absorption=absorption_texture())
     if scene.caustics is not None:
         c = np.asarray(scene.caustics, np.float64)
-        tex = encode_height(c, Grid(c.shape[0], float(scene.length)), 16)
+        tex = encode_height(c, Grid(c.shape[0], float(scene.length)), 16, units=CAUSTICS_UNITS)
         paths["caustics"] = save_height_png(tex, out / "caustics.png")
         arrays["caustics"] = tex
     paths["fresnel"] = _write_npy(arrays["fresnel"], out / "fresnel.npy")
+    _write_text(json.dumps(dict(values="exact Fresnel reflectance R (unpolarized), 0..1",
+                                axes=["cos(theta) of the incidence angle, 256 samples from 0 to 1"],
+                                n1=float(scene.n_air), n2=float(scene.n_water)), indent=2), out / "fresnel.json")
     paths["absorption"] = _write_npy(arrays["absorption"], out / "absorption.npy")
+    _write_text(json.dumps(dict(values="transmittance of pure water, linear sRGB, 0..1 (1 at d = 0)",
+                                axes=["path length d through water, m, 256 samples from 0 to 20",
+                                      "channel: R, G, B"]), indent=2), out / "absorption.json")
     paths["npz"] = save_npz(out / "textures.npz", **arrays)
     return paths
