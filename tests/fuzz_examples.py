@@ -113,6 +113,12 @@ def _npz():
     return save_npz(TMP / "valid.npz", a=np.ones(3))
 
 
+def _exr():
+    from optics.rendering.textures import save_exr
+
+    return save_exr(TMP / "valid.exr", {"Y": np.ones((4, 4))})
+
+
 def _dispersion_record():
     from wavephys import Simulation
 
@@ -137,6 +143,8 @@ OVERRIDES = {
     "optics.rendering.textures.save_height_png": {"path": lambda: TMP / "height.png"},
     "optics.rendering.textures.save_npz": {"path": lambda: TMP / "textures.npz", "a": lambda: np.ones(3)},
     "optics.rendering.textures.load_npz": {"path": _npz},
+    "optics.rendering.textures.save_exr": {"path": lambda: TMP / "t.exr", "channels": lambda: {"Y": np.ones((4, 4))}},
+    "optics.rendering.textures.load_exr": {"path": _exr},
     "optics.rendering.textures.export_scene": {"out_dir": lambda: TMP / "export"},
     "wavephys.app.registry.run": {"names": lambda: ["dispersion-minima"]},
     "wavephys.physics.heights.second_order_breakdown": {"steepness": lambda: (0.26, 0.30)},

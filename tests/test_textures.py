@@ -118,3 +118,71 @@ def test_bad_height():
         encode_height(bad, GRID)
     with pytest.raises(ValueError, match="eta"):
         encode_height(np.zeros((8, 8)), GRID)
+
+
+class TestOpenEXR:
+    """Float textures for pipelines: OpenEXR, read back by our loader and by OpenImageIO's oiiotool
+    (an independent reader; .ci/run installs it), units and conventions in the header."""
+
+    @pytest.fixture(scope="class")
+    def exported(self, tmp_path_factory):
+        from wavephys.app.scenes import builtin_scene
+        from optics.rendering.textures import export_scene
+
+        scene = builtin_scene("pool", n=64)
+        out = tmp_path_factory.mktemp("exr")
+        return scene, export_scene(scene, out / "full"), export_scene(scene, out / "half", half=True)
+
+    def test_round_trip_full_and_half_float(self, exported):
+        from optics.rendering.textures import load_exr
+
+        scene, full, half = exported
+        channels, attrs = load_exr(full["water_height_exr"])
+        np.testing.assert_array_equal(channels["Y"], np.asarray(scene.water, np.float32))  # float32: exact
+        assert attrs["units"] == "m" and attrs["length"] == float(scene.length)
+        channels, _ = load_exr(half["water_height_exr"])
+        water = np.asarray(scene.water, np.float64)
+        assert channels["Y"].dtype == np.float16
+        np.testing.assert_allclose(channels["Y"], water, rtol=2.0**-11, atol=2.0**-24)
+        normals, attrs = load_exr(full["water_normals_exr"])
+        assert "green" in attrs["convention"]
+        n = np.stack([normals[c] for c in "RGB"], -1)
+        np.testing.assert_allclose(np.linalg.norm(n, axis=-1), 1.0, atol=1e-6)
+        table, attrs = load_exr(full["absorption_exr"])
+        assert table["R"].shape == (1, 256) and "path length" in attrs["axis_x"] and table["G"].max() <= 1.0
+
+    def test_independent_reader_sees_the_same_pixels_and_header(self, exported):
+        import shutil
+        import subprocess
+
+        if shutil.which("oiiotool") is None:
+            pytest.skip("oiiotool (Debian openimageio-tools) is not installed; .ci/run installs it")
+        scene, full, _ = exported
+        info = subprocess.run(["oiiotool", "--info", "-v", str(full["caustics_exr"])], capture_output=True,
+                              text=True, check=True).stdout
+        assert "relative irradiance" in info and "length: 8" in info and "64 x   64" in info
+        dump = subprocess.run(["oiiotool", "--dumpdata", str(full["water_height_exr"])], capture_output=True,
+                              text=True, check=True).stdout
+        values = {}
+        for line in dump.splitlines():
+            if line.strip().startswith("Pixel ("):
+                xy, value = line.split(":")
+                x, y = (int(v) for v in xy.strip()[7:-1].split(","))
+                values[(x, y)] = float(value)
+        assert len(values) == 64 * 64
+        image = np.array([[values[(x, y)] for x in range(64)] for y in range(64)])
+        # image row 0 is the top (highest y): the grid's last row
+        np.testing.assert_allclose(np.flipud(image), np.asarray(scene.water, np.float32), rtol=1e-7, atol=1e-9)
+
+    def test_bad_exr_input_is_named(self, tmp_path):
+        from optics.rendering.textures import save_exr
+
+        with pytest.raises(ValueError, match="path"):
+            save_exr(tmp_path / "x.png", {"Y": np.zeros((4, 4))})
+        with pytest.raises(ValueError, match="one shape"):
+            save_exr(tmp_path / "x.exr", {"R": np.zeros((4, 4)), "G": np.zeros((4, 5))})
+        with pytest.raises(ValueError, match="channels"):
+            save_exr(tmp_path / "x.exr", {"Y": np.full((4, 4), np.nan)})
+        with pytest.raises(TypeError, match="attributes"):
+            save_exr(tmp_path / "x.exr", {"Y": np.zeros((4, 4))}, attributes={"units": None})
+        assert not list(tmp_path.iterdir())  # nothing half-written

@@ -19,16 +19,16 @@ from optics.light.attenuation import water_srgb
 from optics.light.fresnel import N_AIR, N_WATER, fresnel_lut
 from wavephys.core.files import atomic_path, output_file, output_folder
 from wavephys.core.grid import Grid
-from wavephys.core.inputs import check_array, check_choice, check_instance, check_int, check_scalar
+from wavephys.core.inputs import check_array, check_bool, check_choice, check_instance, check_int, check_scalar
 from wavephys.core.spectral import central_gradient, spectral_gradient
 
-__all__ = ["EncodedHeight", "encode_height", "decode_height", "normal_map", "height_precision",
+__all__ = ["save_exr", "load_exr", "EncodedHeight", "encode_height", "decode_height", "normal_map", "height_precision",
            "fresnel_texture", "absorption_texture", "save_height_png", "save_npz", "load_npz", "export_scene"]
 
 BITS = (8, 16, 32)
 GRID_CONVENTION = ("cell-centred: texel (row i, column j) of an n x n texture over a square of side L is "
                    "centred at x = -L/2 + (j + 1/2) L/n, y = -L/2 + (i + 1/2) L/n; array row 0 is the lowest y, "
-                   "so the top row of a PNG (rows flipped on writing) is the highest y")
+                   "so the top row of a PNG or EXR image (rows flipped on writing) is the highest y")
 NORMAL_CONVENTION = ("OpenGL (y up, green = +y): rgb = 0.5 + 0.5 n for the unit normal n = (nx, ny, nz), "
                      "z up out of the water; DirectX engines flip green (g' = 1 - g)")
 CAUSTICS_UNITS = "relative irradiance E/E0 (1 = the light on flat water)"
@@ -174,6 +174,60 @@ def _write_npy(array, path) -> Path:
     return Path(path)
 
 
+def save_exr(path, channels: dict, *, half: bool = False, attributes: dict | None = None) -> Path:
+    """Write 2-D float channels as one OpenEXR image (zip compression), atomically.
+
+    ``channels`` maps channel names ("Y"; "R", "G", "B"; ...) to arrays of one shape
+    (ny, nx) on the grid convention (row 0 = lowest y); rows are flipped on writing so
+    that image viewers show +y up, as for PNG. ``half`` stores 16-bit floats (3 decimal
+    digits: 5e-4 m steps on a 1 m swell) instead of 32-bit. ``attributes`` (str, int or
+    float values) go into the header, so units, extent and conventions travel with the
+    file. Read back with :func:`load_exr` or any EXR reader.
+    """
+    import OpenEXR
+
+    path = output_file(path, "path", (".exr",))
+    check_bool("half", half)
+    if not isinstance(channels, dict) or not channels:
+        raise TypeError(f"channels must be a non-empty dict of name -> 2-D array, got {type(channels).__name__}")
+    shapes = set()
+    for name, value in channels.items():
+        if not isinstance(name, str) or not name:
+            raise TypeError(f"channels: names must be non-empty strings, got {name!r}")
+        check_array(f"channels[{name!r}]", value, ndim=2)
+        shapes.add(np.shape(value))
+    if len(shapes) != 1:
+        raise ValueError(f"channels must all have one shape, got {sorted(shapes)}")
+    if attributes is not None and not isinstance(attributes, dict):
+        raise TypeError(f"attributes must be a dict of header entries (or None), got {type(attributes).__name__}")
+    header = {"compression": OpenEXR.ZIP_COMPRESSION, "type": OpenEXR.scanlineimage}
+    for key, value in (attributes or {}).items():
+        if not isinstance(key, str) or key in header or not isinstance(value, (str, int, float)) or isinstance(value, bool):
+            raise TypeError(f"attributes[{key!r}] must be a str, int or float under a new name, got {value!r}")
+        header[key] = value
+    dtype = np.float16 if half else np.float32
+    pixels = {name: np.ascontiguousarray(np.flipud(np.asarray(v, np.float64)).astype(dtype)) for name, v in channels.items()}
+    with atomic_path(path) as tmp, OpenEXR.File(header, pixels) as f:
+        f.write(str(tmp))
+    return path
+
+
+def load_exr(path) -> tuple[dict, dict]:
+    """(channels, attributes) of an OpenEXR file: float arrays in the grid convention (rows
+    flipped back, row 0 = lowest y) and the header's own attributes."""
+    import OpenEXR
+
+    from wavephys.core.files import _as_path
+
+    path = _as_path("path", path)
+    if not path.is_file():
+        raise ValueError(f"path {str(path)!r} is not a file")
+    with OpenEXR.File(str(path), separate_channels=True) as f:
+        channels = {name: np.flipud(np.asarray(c.pixels)) for name, c in f.channels().items()}
+        attributes = {k: v for k, v in f.header().items() if isinstance(v, (str, int, float))}
+    return channels, attributes
+
+
 def save_height_png(tex: EncodedHeight, path) -> Path:
     """Write an 8- or 16-bit height texture as a grayscale PNG and its metadata as JSON beside it."""
     check_instance("tex", tex, EncodedHeight, "optics.rendering.textures.EncodedHeight")
@@ -232,7 +286,7 @@ def _normals_rgb8(normals) -> np.ndarray:
     return np.round((0.5 + 0.5 * np.asarray(normals, np.float64)) * 255).astype(np.uint8)
 
 
-def export_scene(scene, out_dir) -> dict:
+def export_scene(scene, out_dir, *, exr: bool = True, half: bool = False) -> dict:
     """Write every texture a renderer needs for ``scene`` (an :class:`optics.rendering.Scene`) to ``out_dir``.
 
     Files: ``water_height.png`` and ``ground_height.png`` (16-bit normalized, with JSON
@@ -242,12 +296,19 @@ def export_scene(scene, out_dir) -> dict:
     values of cos θ in [0, 1]), ``absorption.npy`` (RGB transmittance at 256 distances in
     0–20 m), each with a JSON sidecar naming its axes, units and conventions (grid, normal
     map), and ``textures.npz`` with all of them (heights and caustics as stored, 16-bit
-    integers with their decoding metadata; normals and lookup tables float32).
+    integers with their decoding metadata; normals and lookup tables float32). With ``exr``
+    (default) every texture is also written as OpenEXR (32-bit float, or 16-bit with
+    ``half``): ``*_height.exr`` (channel Y, m), ``water_normals.exr`` (R, G, B = the unit
+    normal's x, y, z), ``caustics.exr`` (Y, relative irradiance), ``fresnel.exr`` and
+    ``absorption.exr`` (one-row images along their table axis), each with units, extent,
+    axes and conventions in its header (docs/textures.md).
     Returns {name: path}.
     """
     from optics.rendering.scene import Scene
 
     check_instance("scene", scene, Scene, "optics.rendering.Scene")
+    check_bool("exr", exr)
+    check_bool("half", half)
     out = output_folder(out_dir, "out_dir")
     paths = {}
     heights = {}
@@ -280,4 +341,30 @@ def export_scene(scene, out_dir) -> dict:
                                 axes=["path length d through water, m, 256 samples from 0 to 20",
                                       "channel: R, G, B"]), indent=2), out / "absorption.json")
     paths["npz"] = save_npz(out / "textures.npz", **arrays)
+    if exr:
+        paths.update(_export_exr(scene, arrays, normals, out, half))
+    return paths
+
+
+def _export_exr(scene, arrays, normals, out, half) -> dict:
+    """The OpenEXR twins of :func:`export_scene`'s textures."""
+    common = dict(length=float(scene.length), grid=GRID_CONVENTION, precision="half" if half else "float")
+    paths = {}
+    for name in ("water", "ground"):  # the scene's own float heights, not the 16-bit PNG's
+        paths[f"{name}_height_exr"] = save_exr(out / f"{name}_height.exr", {"Y": np.asarray(getattr(scene, name))},
+                                               half=half, attributes=dict(common, units="m", quantity=f"{name} height"))
+    paths["water_normals_exr"] = save_exr(out / "water_normals.exr",
+                                          {c: normals[..., i] for i, c in enumerate("RGB")}, half=half,
+                                          attributes=dict(common, units="1", quantity="unit surface normal (x, y, z)",
+                                                          convention=NORMAL_CONVENTION))
+    if "caustics" in arrays:
+        paths["caustics_exr"] = save_exr(out / "caustics.exr", {"Y": np.asarray(scene.caustics)}, half=half,
+                                         attributes=dict(common, units=CAUSTICS_UNITS, quantity="floor irradiance"))
+    paths["fresnel_exr"] = save_exr(out / "fresnel.exr", {"Y": arrays["fresnel"][None, :]}, half=half, attributes=dict(
+        units="1", quantity="exact Fresnel reflectance R", axis_x="cos(theta), 0 to 1, 256 samples",
+        n1=float(scene.n_air), n2=float(scene.n_water)))
+    a = arrays["absorption"]
+    paths["absorption_exr"] = save_exr(out / "absorption.exr", {c: a[None, :, i] for i, c in enumerate("RGB")},
+                                       half=half, attributes=dict(units="1", quantity="transmittance of pure water, "
+                                                                  "linear sRGB", axis_x="path length, m, 0 to 20, 256 samples"))
     return paths
