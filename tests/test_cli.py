@@ -109,3 +109,23 @@ def test_validate_table_fits_100_columns_and_shows_margins():
     assert "FAIL" in body[0] and "-0.0096" in body[0]  # 0.01 - |1/1.02 - 1|
     assert any(line.startswith("a bound") and "<= 2" in line and "-1" in line and "FAIL" in line for line in body)
     assert any(line.startswith("a lower bound") and ">= 2" in line and "3" in line and "ok" in line for line in body)
+
+
+def test_progress_in_a_log_is_plain_lines(capsys):
+    """Not on a terminal, progress is whole lines (never carriage returns piling up)."""
+    import io
+
+    from wavephys.core.progress import Progress
+
+    log = io.StringIO()
+    with Progress(5, "frames", stream=log, every=0.0) as p:
+        for _ in range(5):
+            p.update()
+    lines = log.getvalue().splitlines()
+    assert "\r" not in log.getvalue() and len(lines) == 5 and lines[-1].startswith("5/5 frames")
+    quiet = io.StringIO()
+    with Progress(5, "frames", stream=quiet) as p:  # every 5 s: the first and the last line in a fast run
+        for _ in range(5):
+            p.update()
+    first, last = quiet.getvalue().splitlines()
+    assert first.startswith("1/5 frames") and last.startswith("5/5 frames")

@@ -32,6 +32,7 @@ import numpy as np
 from optics.light.fresnel import normal_reflectance, reflectance_exact
 from optics.rendering.scene import Scene, sun_in_water, texture_sample
 from wavephys.core.files import atomic_path, output_file, output_folder
+from wavephys.core.progress import Progress
 from wavephys.core.inputs import check_array, check_bool, check_instance, check_int, describe
 
 VIDEO_SUFFIXES = (".mp4", ".gif", ".webm", ".mov", ".mkv", ".avi")
@@ -445,19 +446,10 @@ def save_png(image, path) -> Path:
     return path
 
 
-def _bar(i: int, total: int, start: float, stream) -> None:
-    width = 30
-    done = int(width * i / total)
-    rate = i / max(time.perf_counter() - start, 1e-9)
-    stream.write(f"\r[{'#' * done}{'.' * (width - done)}] {i}/{total} frames, {rate:.2f} frames/s")
-    if i == total:
-        stream.write("\n")
-    stream.flush()
-
-
 def render_sequence(renderer: Renderer, scenes, out_dir, *, count: int | None = None, video: str | None = None,
                     fps: int = 30, progress: bool = True) -> list[Path]:
-    """Render an iterable of scenes to ``out_dir/frame_0000.png`` … with a progress bar on stderr.
+    """Render an iterable of scenes to ``out_dir/frame_0000.png`` … with progress on stderr (a bar on a
+    terminal, plain lines in a log: :mod:`wavephys.core.progress`).
 
     ``video`` (a file name in ``out_dir``, e.g. ``"water.mp4"``) also writes a video when
     imageio with imageio-ffmpeg is installed; otherwise a note says so and frames remain.
@@ -475,7 +467,7 @@ def render_sequence(renderer: Renderer, scenes, out_dir, *, count: int | None = 
         output_file(out / video, "video", VIDEO_SUFFIXES)
     scenes = list(scenes) if count is None else scenes
     total = len(scenes) if count is None else check_int("count", count, lo=1)
-    paths, start = [], time.perf_counter()
+    paths = []
     writer = None
     if video:
         try:
@@ -486,15 +478,15 @@ def render_sequence(renderer: Renderer, scenes, out_dir, *, count: int | None = 
             print(f"\nno video ({type(exc).__name__}: {exc}); install imageio imageio-ffmpeg. Frames are written.",
                   file=sys.stderr)
     try:
-        for i, scene in enumerate(scenes):
-            if i >= total:
-                break
-            img = renderer.render(scene)
-            paths.append(save_png(img, out / f"frame_{i:04d}.png"))
-            if writer is not None:
-                writer.append_data(to_srgb8(img))
-            if progress:
-                _bar(i + 1, total, start, sys.stderr)
+        with Progress(total, "frames", enabled=progress) as bar:
+            for i, scene in enumerate(scenes):
+                if i >= total:
+                    break
+                img = renderer.render(scene)
+                paths.append(save_png(img, out / f"frame_{i:04d}.png"))
+                if writer is not None:
+                    writer.append_data(to_srgb8(img))
+                bar.update()
     finally:
         if writer is not None:
             writer.close()
