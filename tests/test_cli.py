@@ -129,3 +129,26 @@ def test_progress_in_a_log_is_plain_lines(capsys):
             p.update()
     first, last = quiet.getvalue().splitlines()
     assert first.startswith("1/5 frames") and last.startswith("5/5 frames")
+
+
+@pytest.mark.parametrize("argv", [
+    ["validate", "--json", "{tmp}/missing/table.json"],   # the folder is not created for you
+    ["validate", "--json", "{tmp}/table.txt"],            # not a .json file
+    ["render", "--out", "{tmp}/missing/frame.png"],
+    ["render", "--out", "{tmp}/frame.jpg"],
+    ["render", "--frames", "3", "--out", "{tmp}/missing/deeper/frames"],
+    ["textures", "--out", "{tmp}/missing/deeper"],
+    ["run", "--out", "{tmp}/missing/deeper"],
+    ["render", "--width", "0"], ["render", "--fps", "nan"], ["run", "--steps", "0"], ["run", "--n", "10"],
+])
+def test_bad_paths_and_options_fail_fast_with_one_line(argv, tmp_path, capsys, monkeypatch):
+    """Usage errors (exit 2, one line) before any work starts, and nothing is written."""
+    import time
+
+    monkeypatch.chdir(tmp_path)
+    argv = [a.format(tmp=tmp_path) for a in argv]
+    start = time.perf_counter()
+    message = _usage_error(argv, capsys)
+    assert time.perf_counter() - start < 2.0, "the check came after the work"
+    assert message.startswith("wavephys")
+    assert list(tmp_path.iterdir()) == []
