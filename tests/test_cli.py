@@ -152,3 +152,18 @@ def test_bad_paths_and_options_fail_fast_with_one_line(argv, tmp_path, capsys, m
     assert time.perf_counter() - start < 2.0, "the check came after the work"
     assert message.startswith("wavephys")
     assert list(tmp_path.iterdir()) == []
+
+
+def test_written_files_have_the_usual_mode(tmp_path):
+    """Atomic writes go through a private temporary file; the result gets the mode any new file
+    gets (0666 less the umask), not 0600."""
+    import os
+
+    from wavephys.core.files import atomic_path
+
+    with atomic_path(tmp_path / "a.txt") as tmp:
+        tmp.write_text("x")
+    plain = tmp_path / "b.txt"
+    plain.write_text("x")
+    assert (tmp_path / "a.txt").stat().st_mode & 0o777 == plain.stat().st_mode & 0o777
+    assert not [p for p in os.listdir(tmp_path) if p.endswith(".part")]

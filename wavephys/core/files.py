@@ -20,6 +20,16 @@ __internal__ = True  # tooling for the library's own modules (users call the Gri
 __all__ = ["atomic_path", "output_file", "output_folder"]
 
 
+def _new_file_mode() -> int:
+    """The mode ``open(path, "w")`` would give a new file here: 0666 less the umask."""
+    mask = os.umask(0)
+    os.umask(mask)
+    return 0o666 & ~mask
+
+
+_NEW_FILE_MODE = _new_file_mode()
+
+
 def _as_path(name: str, path) -> Path:
     if not isinstance(path, (str, os.PathLike)) or (isinstance(path, str) and not path.strip()):
         raise TypeError(f"{name} must be a file system path (str or pathlib.Path), got {describe(path)}")
@@ -69,6 +79,7 @@ def atomic_path(path):
     tmp = Path(tmp)
     try:
         yield tmp
+        os.chmod(tmp, _NEW_FILE_MODE)  # mkstemp makes it private (0600); a written file gets the usual mode
         os.replace(tmp, target)
     finally:
         with contextlib.suppress(FileNotFoundError):
