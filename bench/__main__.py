@@ -1,4 +1,4 @@
-"""``python -m bench {propagation,boundaries,optics,ship,render} [--json PATH] [--quick]``.
+"""``python -m bench {propagation,boundaries,optics,ship,render,surfaces} [--json PATH] [--quick]``.
 
 Each writes its rows as JSON and its charts as PNG next to it (default
 ``bench/results/``) and prints a table.
@@ -117,6 +117,35 @@ def run_render(args) -> None:
     _write(rows, render.figures(rows), Path(args.json or "bench/results/render.json"))
 
 
+def run_surfaces(args) -> None:
+    from bench import surfaces
+
+    rows = surfaces.accuracy_rows(_say) + surfaces.cost_rows((128,) if args.quick else (256, 512), _say)
+    if not args.quick:
+        rows += surfaces.detail_rows(_say)
+    acc = {r["method"]: r for r in rows if r["family"] == "surface physics"}
+    for r in rows:
+        if r["family"] == "surface physics":
+            print(f"{r['method']:<22} dispersion error max {r['error']:.4f}  rms {r['rms_error']:.4f}  "
+                  f"({r['shells']} shells; {r['label']})")
+        elif r["family"] == "surface cost":
+            print(f"{r['method']:<22} N={r['n']:<5} {r['seconds'] * 1e3:8.2f} ms/frame  x{r['ratio']:.2f} of the "
+                  f"spectral step ({r['baseline_seconds'] * 1e3:.2f} ms)")
+        elif r["family"] == "noise normals":
+            print(f"noise normals {r['method']:<8} seed {r['seed']}: max error {100 * r['error']:.2f} % at ds = "
+                  f"{r['step']} m, order {r['order']:.2f}")
+        elif r["family"] == "gerstner crest":
+            print(f"Gerstner vs Stokes kA={r['steepness']:.2f}: crest {100 * r['crest_error']:+.3f} %, trough "
+                  f"{100 * r['trough_error']:+.3f} %")
+        elif r["family"] == "gerstner crest parting":
+            print(f"crests part by 1 % at kA = {r['steepness']:.3f}")
+        elif r["family"] == "choppy resampling" and r["refine"] in (1, 2):
+            print(f"choppy resampling seed {r['seed']} lambda {r['fraction_of_fold']:.2f} of fold, refine {r['refine']}: "
+                  f"max {100 * r['max_error']:.3f} %, rms {100 * r['rms_error']:.4f} % of the height range")
+    del acc
+    _write(rows, surfaces.figures(rows), Path(args.json or "bench/results/surfaces.json"))
+
+
 def main(argv=None) -> int:
     p = argparse.ArgumentParser(prog="python -m bench", description=__doc__.split("\n\n")[0])
     sub = p.add_subparsers(dest="which", required=True)
@@ -124,7 +153,8 @@ def main(argv=None) -> int:
                             ("boundaries", run_boundaries, "measured failure boundaries"),
                             ("optics", run_optics, "Fresnel, absorption and caustics: error vs cost"),
                             ("ship", run_ship, "moving hulls: kernels vs stones, FD wake, speed"),
-                            ("render", run_render, "renderer: frame times, texture cost, GPU vs reference")):
+                            ("render", run_render, "renderer: frame times, texture cost, GPU vs reference"),
+                            ("surfaces", run_surfaces, "noise, Gerstner, choppy: cost per frame vs physics error")):
         s = sub.add_parser(name, help=help_)
         s.add_argument("--json", metavar="PATH")
         s.add_argument("--quick", action="store_true", help="smaller sizes (for CI smoke runs)")

@@ -26,6 +26,7 @@ from wavephys.physics.ship_waves import Hull, Path, Ship, straight_path
 from wavephys.physics.wake import GaussianPressure, HullSource
 from wavephys.physics.wind import WindSea
 from wavephys.simulation import Model, Simulation, Surface, initial_state, operators
+from wavephys.surfaces.gerstner import GerstnerWaves
 
 N = 16
 RNG = np.random.default_rng(7)
@@ -104,6 +105,13 @@ EXAMPLES = {
     "f1_hat": lambda: np.ones((8, 8), np.complex64), "spectrum": lambda: np.ones((N, N)) * 1e-8,
     "curves": lambda: {"a": ([1.0, 2.0], [1.0, 0.5])},
     "rows": lambda: [dict(method="a", seconds=1e-3, error=0.1), dict(method="a", seconds=2e-3, error=0.05)],
+    "wavevectors": lambda: np.array([[3.0, 0.0], [0.0, 6.0]]), "amplitudes": lambda: np.array([0.02, 0.01]),
+    "phases": lambda: np.array([0.0, 1.0]), "control": lambda: RNG.standard_normal((8, 8)) * 0.01,
+    "displacement": lambda: np.stack([_field(), _field()]), "heights": _field, "previous": lambda: np.zeros((N, N)),
+    "coverage": lambda: np.full((N, N), 0.5), "jacobian": lambda: np.full((N, N), 0.5), "threshold": lambda: 0.3,
+    "softness": lambda: 0.1, "decay_time": lambda: 2.0, "choppiness": lambda: 0.5, "order": lambda: 1,
+    "sea": lambda: (_field() + 1j * _field()).astype(np.complex64), "hurst": lambda: 1.0, "octaves": lambda: 2,
+    "frequency": lambda: 1.0, "z": lambda: 0.3, "tile": lambda: 2.0, "step": lambda: 0.01, "period": lambda: 4, "evolution": lambda: 1.0, "time_exponent": lambda: 1.0, 
     "fields": lambda: np.zeros((2, N, N), np.float32), "time": lambda: np.float32(0.0), "angle": lambda: 19.5, "time_error": lambda: 0.0, "fn": lambda: (lambda x: x), "damping": lambda: 0.05,
 }
 
@@ -191,6 +199,15 @@ OVERRIDES = {
     "wavephys.physics.wake.cusp_line": {"samples": lambda: 101},
     "wavephys.core.spectral.fourier_refine": {"field": _field},
     "wavephys.simulation.state.State": {}, "wavephys.simulation.state.Surface": {},
+    "wavephys.surfaces.noise.NoiseSea": {"length": lambda: 2.0, "frequency": lambda: 1.0},
+    "wavephys.surfaces.noise.NoiseSea.heights": {"grid": lambda: Grid(N, 16.0)},
+    "wavephys.surfaces.noise.NoiseSea.gradient": {"grid": lambda: Grid(N, 16.0)},
+    "wavephys.surfaces.noise.fbm": {"x": lambda: np.linspace(-1.0, 1.0, 5), "y": lambda: np.zeros(5)},
+    "wavephys.surfaces.noise.noise_gradient": {"x": lambda: np.linspace(-1.0, 1.0, 5), "y": lambda: np.zeros(5)},
+    "wavephys.surfaces.gerstner.GerstnerWaves.heights": {"grid": lambda: Grid(N, 2 * math.pi)},
+    "wavephys.surfaces.gerstner.GerstnerWaves.fold_fraction": {"grid": lambda: Grid(N, 2 * math.pi)},
+    **{f"wavephys.surfaces.choppy.{f}": {"height": _field} for f in (
+        "displacement", "jacobian", "jacobian_std", "fold_choppiness", "foam_fraction_estimate")},
     "optics.rendering.textures.EncodedHeight": {"data": lambda: np.zeros((N, N), np.uint16), "offset": lambda: 0.0,
                                                 "amplitude": lambda: 1.0},
 }
@@ -226,7 +243,8 @@ NON_NEGATIVE = {"depth_m", "margin", "s", "omega_dt", "k", "omega", "distance", 
 SHAPED = {"eta", "eta_prev", "eta0", "eta1", "eta_dot", "eta_dot0", "eta_dot1", "field", "psi", "fields", "image",
           "reference", "sun", "d", "eye", "target", "center", "start", "velocity", "light", "view", "stencil",
           "spectrum", "q", "lam_eta", "lam_q", "phi_hat", "chi_hat", "f0_hat", "f1_hat", "xy", "o", "p", "data",
-          "mask", "albedo", "environment", "caustics", "ground", "water", "images"}
+          "mask", "albedo", "environment", "caustics", "ground", "water", "images", "wavevectors", "amplitudes",
+          "phases", "control", "displacement", "heights", "previous", "coverage", "sea"}
 # parameters whose shape variants are valid input: rectangular grids, RGBA images, single
 # channels, batches of points, elementwise functions
 SHAPE_FREE = {
@@ -244,6 +262,9 @@ SHAPE_FREE = {
     ("optics.rendering.renderer.to_srgb8", "image"),
 }
 RANGE_FREE = {("wavephys.physics.wake.GaussianPressure", "amplitude"),  # signed by nature
+              ("wavephys.surfaces.choppy.foam", "threshold"),  # a Jacobian level: 0 (folds only) is valid
+              ("wavephys.surfaces.choppy.foam_fraction_estimate", "threshold"),
+              ("wavephys.surfaces.gerstner.GerstnerWaves", "steepness"),  # Q = 0: a plain sum of cosines
               ("wavephys.harness.checks.Check", "tolerance")}  # 0 for bound rows
 INF_OK = {"depth", "limit", "expected", "measured"}
 NAN_OK = {"measured"}
@@ -273,7 +294,8 @@ def instance(cls):
                   WindSea: lambda: WindSea(jax.random.PRNGKey(0), "phillips", dict(wind_speed=5.0)),
                   Forcing: lambda: Forcing(EXAMPLES["pressure"]()),
                   HullSource: lambda: HullSource(Hull("gaussian", 0.3, 0.15)),
-                  DispersionSamples: EXAMPLES["samples"], Check: EXAMPLES["check"]}
+                  DispersionSamples: EXAMPLES["samples"], Check: EXAMPLES["check"],
+                  GerstnerWaves: lambda: GerstnerWaves(EXAMPLES["wavevectors"](), EXAMPLES["amplitudes"]())}
         for base, make in makers.items():
             if issubclass(cls, base):
                 _INSTANCES[cls] = make()

@@ -10,6 +10,9 @@ Layers, bottom to top (``docs/architecture.md``):
   :class:`Simulation` convenience wrapper;
 * :mod:`wavephys.models` — the peer methods we compare against (finite differences,
   truncated kernels);
+* :mod:`wavephys.surfaces` — the cheap surface models engines ship (gradient-noise fBm,
+  Gerstner sums, choppy displacement and foam; ``wavephys.noise``, ``wavephys.gerstner``,
+  ``wavephys.choppy``) and the resampling of displaced surfaces onto a grid;
 * :mod:`wavephys.harness` — measurement of *any* simulator's output (dispersion,
   energy, wake angles), check rows and the pytest plugin;
 * :mod:`wavephys.checks` — the built-in validations of the wave physics;
@@ -54,6 +57,9 @@ _legacy_getattr = _install(__name__, {
     "validate": "wavephys.harness",
     "pytest_plugin": "wavephys.harness.pytest_plugin",
     "cli": "wavephys.app.cli",
+    "noise": "wavephys.surfaces.noise",
+    "gerstner": "wavephys.surfaces.gerstner",
+    "choppy": "wavephys.surfaces.choppy",
     "scenes": "wavephys.app.scenes",
 })
 

@@ -12,6 +12,7 @@ from wavephys.checks.boundaries import check_cutoff, check_fd_stability, check_s
 from wavephys.checks.dispersion import (check_dispersion_limits, check_dispersion_minima, check_fd_dispersion,
                                         check_inverse_dispersion, check_measured_dispersion, dispersion_scene)
 from wavephys.checks.moving_sources import check_capillary_wake, check_ship_kernels, check_steady_wakes
+from wavephys.checks.surfaces import check_choppy, check_gerstner, check_noise_surfaces
 from wavephys.checks.propagation import (check_energy_conservation, check_energy_measure, check_hermite,
                                          check_step_composition)
 from wavephys.physics.boundary import cutoff_boundary, cutoff_reflection
@@ -34,6 +35,9 @@ CHECKS = {
     "ship-kernels": check_ship_kernels,
     "steady-wakes": check_steady_wakes,
     "capillary-wake": check_capillary_wake,
+    "noise-surfaces": check_noise_surfaces,
+    "gerstner-waves": check_gerstner,
+    "choppy-waves": check_choppy,
 }
 """The wave validations by name, in the order ``wavephys validate`` runs them."""
 

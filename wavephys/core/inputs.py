@@ -159,7 +159,8 @@ def _summary(x):
 def _check_device_array(name, value, lo, hi, lo_open, hi_open, allow_inf, complex_ok):
     """Value checks of a large JAX array without copying it to the host."""
     _check_dtype(name, np.dtype(value.dtype), complex_ok)
-    finite, has_nan, vmin, vmax = (v.item() for v in jax.device_get(_summary(value)))
+    with jax.ensure_compile_time_eval():  # a concrete array closed over by a user's jit stays concrete
+        finite, has_nan, vmin, vmax = (v.item() for v in jax.device_get(_summary(value)))
     if not finite and (has_nan or not allow_inf):
         raise ValueError(f"{name} must be finite everywhere; it contains NaN or inf")
     if lo is not None or hi is not None:
