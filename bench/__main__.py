@@ -139,6 +139,9 @@ def run_surfaces(args) -> None:
                   f"{100 * r['trough_error']:+.3f} %")
         elif r["family"] == "gerstner crest parting":
             print(f"crests part by 1 % at kA = {r['steepness']:.3f}")
+        elif r["family"] == "choppy fold":
+            print(f"choppy fold U={r['wind_speed']:g} m/s seed {r['seed']}: lambda_f {r['fold_choppiness']:.2f}, "
+                  f"sigma1 {r['sigma1']:.4f}, lambda_f*sigma1 {r['product']:.3f}, first-order {r['first_order']:.2f}")
         elif r["family"] == "choppy resampling" and r["refine"] in (1, 2):
             print(f"choppy resampling seed {r['seed']} lambda {r['fraction_of_fold']:.2f} of fold, refine {r['refine']}: "
                   f"max {100 * r['max_error']:.3f} %, rms {100 * r['rms_error']:.4f} % of the height range")

@@ -105,11 +105,13 @@ def figures(rows) -> dict:
     for side in ("above", "below"):
         fr = [dict(method=r["method"], seconds=r["seconds"], error=max(r["error"], 1e-7), label="")
               for r in rows if r.get("family") == "fresnel" and r["side"] == side]
-        figs[f"fresnel_{side}"] = plot_error_vs_time(fr, f"Fresnel approximations, light from {side}: worst error vs time (1M)")
+        figs[f"fresnel_{side}"] = plot_error_vs_time(fr, f"Fresnel approximations, light from {side}: worst error vs time (1M)",
+                                                   ylabel="worst |R - R_exact| over the angles")
     ab = [r for r in rows if r.get("family") == "absorption"]
     figs["absorption"] = plot_curves({"RGB fitted on (0, 5] m": ([r["distance"] for r in ab], [r["error"] for r in ab])},
                                      "path length in pure water (m)", "max |RGB − spectral| (linear sRGB)",
                                      "RGB Beer–Lambert against the spectral reference", logx=True)
     ca = [r for r in rows if r.get("family") == "caustics"]
-    figs["caustics"] = plot_error_vs_time(ca, "caustics on a 128² surface: error vs time (reference: 16× rays)")
+    figs["caustics"] = plot_error_vs_time(ca, "caustics on a 128² surface: error vs time (reference: 16× rays)",
+                                          ylabel="relative L2 error of the irradiance")
     return figs

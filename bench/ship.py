@@ -102,4 +102,5 @@ def figures(rows) -> dict:
     from wavephys.plot import plot_error_vs_time
 
     wr = [r for r in rows if r["family"] == "ship wake"]
-    return {"wake": plot_error_vs_time(wr, "moving hull, 20 s: wake error (within 2 m) vs time")}
+    return {"wake": plot_error_vs_time(wr, "moving hull, 20 s: wake error (within 2 m) vs time",
+                                        ylabel="relative L2 error of η against the steady wake")}

@@ -114,7 +114,13 @@ def cost_rows(sizes=(256, 512), progress=print) -> list[dict]:
         sim = Simulation(grid, WATER, dt=dt)
         state = sim.add_wind(sim.initial_state(), jax.random.PRNGKey(0), "phillips", **WIND)
         models = _models(grid, dt)
-        fns = {"spectral simulation": lambda: sim.surface(sim.step(state)[0]).eta}
+        from wavephys.models.finite_difference import fd_step
+
+        h0 = sim.surface(state).eta
+        courant = float(phase_speed(2 * np.pi / 10.0, WATER)) * dt / float(grid.dx)
+        fd = jax.jit(lambda a, b: fd_step(a, b, min(courant, 0.7)))
+        fns = {"spectral simulation": lambda: sim.surface(sim.step(state)[0]).eta,
+               "finite differences": lambda: fd(h0, h0)}
         for name, (make, *_) in models.items():
             fns[name] = lambda make=make: make(0.5)
         mesh = models["gerstner 32 waves"][2]
@@ -161,6 +167,15 @@ def detail_rows(progress=print) -> list[dict]:
                 rows.append(dict(family="choppy resampling", seed=seed, fraction_of_fold=frac, refine=r,
                                  max_error=float(jnp.max(jnp.abs(diff))) / span,
                                  rms_error=float(jnp.sqrt(jnp.mean(diff**2))) / span))
+    progress("surfaces: choppy fold boundary")
+    for wind in (4.0, 6.0, 8.0):
+        for seed in range(3):
+            sea, grid = random_sea(n=128, length=64.0, seed=seed, wind_speed=wind)
+            fold = choppy.fold_choppiness(sea, grid)
+            m = jnp.fft.irfft2(grid.wavenumber_magnitude(True) * jnp.fft.rfft2(sea), s=(grid.n, grid.n))
+            sigma = choppy.jacobian_std(sea, grid)
+            rows.append(dict(family="choppy fold", wind_speed=wind, seed=seed, fold_choppiness=fold, sigma1=sigma,
+                             product=fold * sigma, first_order=1.0 / float(jnp.max(m))))
     return rows
 
 
@@ -174,8 +189,10 @@ def figures(rows) -> dict:
         n = max(r["n"] for r in cost)
         pts = [dict(method=r["method"], seconds=r["seconds"], error=max(acc[r["method"]]["error"], 1e-5),
                     label=f"{r['ratio']:.2g}x step") for r in cost if r["n"] == n and r["method"] in acc]
-        figs["cost_vs_error"] = plot_error_vs_time(pts, f"surface models, N={n}: max |omega/omega_water - 1| "
-                                                        "against seconds per frame")
+        floor = acc["spectral simulation"]["error"] if "spectral simulation" in acc else None
+        figs["cost_vs_error"] = plot_error_vs_time(
+            pts, f"surface models on {n}x{n}: dispersion error against cost per frame",
+            ylabel="max |omega_measured / omega_water - 1| (harness)", floor=floor)
     crest = [r for r in rows if r["family"] == "gerstner crest"]
     if crest:
         figs["crest"] = plot_curves({"crest": ([r["steepness"] for r in crest], [abs(r["crest_error"]) for r in crest]),
@@ -183,4 +200,16 @@ def figures(rows) -> dict:
                                                 [abs(r["trough_error"]) for r in crest])},
                                     "steepness kA", "relative elevation difference",
                                     "Gerstner vs exact Stokes, same height", logx=True)
+    fold = [r for r in rows if r["family"] == "choppy fold"]
+    if fold:
+        curves = {}
+        for wind in sorted({r["wind_speed"] for r in fold}):
+            pts = sorted((r["sigma1"], r["fold_choppiness"]) for r in fold if r["wind_speed"] == wind)
+            curves[f"U = {wind:g} m/s"] = ([p[0] for p in pts], [p[1] for p in pts])
+        s = np.array([r["sigma1"] for r in fold])
+        mean = float(np.mean([r["product"] for r in fold]))
+        grid_s = np.geomspace(s.min() * 0.8, s.max() * 1.25, 20)
+        curves[f"lambda = {mean:.2f} / sigma1 (mean)"] = (grid_s, mean / grid_s)
+        figs["fold"] = plot_curves(curves, "sigma1 = rms of F^-1[|k| h] (steepness)", "fold choppiness lambda_f",
+                                   "choppy waves fold where lambda > lambda_f: the boundary", logx=True)
     return figs

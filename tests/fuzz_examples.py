@@ -111,7 +111,7 @@ EXAMPLES = {
     "coverage": lambda: np.full((N, N), 0.5), "jacobian": lambda: np.full((N, N), 0.5), "threshold": lambda: 0.3,
     "softness": lambda: 0.1, "decay_time": lambda: 2.0, "choppiness": lambda: 0.5, "order": lambda: 1,
     "sea": lambda: (_field() + 1j * _field()).astype(np.complex64), "hurst": lambda: 1.0, "octaves": lambda: 2,
-    "frequency": lambda: 1.0, "z": lambda: 0.3, "tile": lambda: 2.0, "step": lambda: 0.01, "period": lambda: 4, "evolution": lambda: 1.0, "time_exponent": lambda: 1.0, 
+    "frequency": lambda: 1.0, "floor": lambda: 1e-3, "z": lambda: 0.3, "tile": lambda: 2.0, "step": lambda: 0.01, "period": lambda: 4, "evolution": lambda: 1.0, "time_exponent": lambda: 1.0, 
     "fields": lambda: np.zeros((2, N, N), np.float32), "time": lambda: np.float32(0.0), "angle": lambda: 19.5, "time_error": lambda: 0.0, "fn": lambda: (lambda x: x), "damping": lambda: 0.05,
 }
 
@@ -154,6 +154,8 @@ OVERRIDES = {
     "optics.rendering.textures.save_exr": {"path": lambda: TMP / "t.exr", "channels": lambda: {"Y": np.ones((4, 4))}},
     "optics.rendering.textures.load_exr": {"path": _exr},
     "optics.rendering.textures.export_scene": {"out_dir": lambda: TMP / "export"},
+    "optics.rendering.textures.save_vector_displacement": {"path": lambda: TMP / "d.exr",
+                                                           "displacement": lambda: np.stack([_field()] * 3)},
     "wavephys.app.registry.run": {"names": lambda: ["dispersion-minima"]},
     "wavephys.physics.heights.second_order_breakdown": {"steepness": lambda: (0.26, 0.30)},
     "wavephys.app.scenes.default_scene": {"n": lambda: 128, "steps": lambda: 2},
@@ -200,8 +202,8 @@ OVERRIDES = {
     "wavephys.core.spectral.fourier_refine": {"field": _field},
     "wavephys.simulation.state.State": {}, "wavephys.simulation.state.Surface": {},
     "wavephys.surfaces.noise.NoiseSea": {"length": lambda: 2.0, "frequency": lambda: 1.0},
-    "wavephys.surfaces.noise.NoiseSea.heights": {"grid": lambda: Grid(N, 16.0)},
-    "wavephys.surfaces.noise.NoiseSea.gradient": {"grid": lambda: Grid(N, 16.0)},
+    "wavephys.surfaces.noise.NoiseSea.heights": {"grid": lambda: Grid(2 * N, 16.0)},
+    "wavephys.surfaces.noise.NoiseSea.gradient": {"grid": lambda: Grid(2 * N, 16.0)},
     "wavephys.surfaces.noise.fbm": {"x": lambda: np.linspace(-1.0, 1.0, 5), "y": lambda: np.zeros(5)},
     "wavephys.surfaces.noise.noise_gradient": {"x": lambda: np.linspace(-1.0, 1.0, 5), "y": lambda: np.zeros(5)},
     "wavephys.surfaces.gerstner.GerstnerWaves.heights": {"grid": lambda: Grid(N, 2 * math.pi)},

@@ -32,3 +32,15 @@ def test_guide_worked_example_explains_the_failure(capsys):
     assert printed.strip() == row.report()
     measured = float(re.search(r"measured ([0-9.]+), error", printed).group(1))
     assert f"measured {measured:g}" in guide.replace("\n", " ")  # the guide shows what it prints
+
+
+def test_readme_surfaces_example_runs_as_written(capsys):
+    readme = (ROOT / "README.md").read_text()
+    section = readme.split("## Cheap surface models, measured", 1)[1].split("\n## ", 1)[0]
+    (block,) = _python_blocks(section)
+    namespace = {}
+    exec(compile(block, "README.md", "exec"), namespace)
+    printed = capsys.readouterr().out
+    assert "fold at lambda = " in printed
+    assert 0.01 < float(namespace["foam"].mean()) < 0.1  # some foam, on the steepest crests
+    assert namespace["eta"].shape == (128, 128)

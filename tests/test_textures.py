@@ -174,6 +174,33 @@ class TestOpenEXR:
         # image row 0 is the top (highest y): the grid's last row
         np.testing.assert_allclose(np.flipud(image), np.asarray(scene.water, np.float32), rtol=1e-7, atol=1e-9)
 
+    def test_vector_displacement_round_trip_rebuilds_the_storm(self, tmp_path):
+        """The storm's choppy surface as engines load it (R, G, B = dx, dy, dz in m): read back by
+        our loader and by oiiotool, resampled onto the grid it gives the scene's own heights."""
+        import shutil
+        import subprocess
+
+        from optics.rendering.textures import load_exr, save_vector_displacement
+        from wavephys.app.scenes import builtin_scene, scene_displacement, scene_grid
+        from wavephys.surfaces import resample_heights
+
+        d = scene_displacement("storm", n=64, time=2.0)
+        grid = scene_grid("storm", 64)
+        path = save_vector_displacement(tmp_path / "d.exr", d, grid)
+        channels, attrs = load_exr(path)
+        back = np.stack([channels[c] for c in "RGB"])
+        np.testing.assert_array_equal(back, d)
+        assert attrs["units"] == "m" and "R = dx" in attrs["convention"]
+        heights = resample_heights(back[:2], back[2], grid, refine=2)
+        np.testing.assert_allclose(heights, builtin_scene("storm", n=64, time=2.0, caustics=False).water, atol=1e-5)
+        assert scene_displacement("pool", n=64) is None
+        with pytest.raises(ValueError, match="displacement"):
+            save_vector_displacement(tmp_path / "e.exr", d[:2], grid)
+        if shutil.which("oiiotool") is not None:
+            info = subprocess.run(["oiiotool", "--info", "-v", str(path)], capture_output=True, text=True,
+                                  check=True).stdout
+            assert "3 channel" in info and "vector displacement" in info
+
     def test_bad_exr_input_is_named(self, tmp_path):
         from optics.rendering.textures import save_exr
 

@@ -107,10 +107,12 @@ class _Row(Spec):
         return value
 
 
-@validate(rows=Items(_Row(), min_len=1), title=_TEXT)
-def plot_error_vs_time(rows, title: str = "error against cost"):
+@validate(rows=Items(_Row(), min_len=1), title=_TEXT, ylabel=_TEXT, floor=Maybe(Real(lo=0.0, lo_open=True)))
+def plot_error_vs_time(rows, title: str = "error against cost", ylabel: str = "relative L2 error of η",
+                       floor=None):
     """Log-log error against seconds, one line per method; ``rows`` are dicts with
-    ``method``, ``seconds``, ``error`` and optionally ``label``."""
+    ``method``, ``seconds``, ``error`` and optionally ``label``. ``floor``: a dashed line
+    at the measurement's own resolution."""
     fig = _figure(figsize=(6, 4.5))
     ax = fig.add_subplot()
     methods = sorted({r["method"] for r in rows})
@@ -121,9 +123,13 @@ def plot_error_vs_time(rows, title: str = "error against cost"):
         for x, y, lab in pts:
             if lab:
                 ax.annotate(lab, (x, y), fontsize=7, xytext=(3, 3), textcoords="offset points")
+    if floor is not None:
+        ax.axhline(floor, ls="--", lw=0.8, color="gray")
+        ax.annotate("measurement resolution", (ax.get_xlim()[0], floor), fontsize=7, xytext=(2, 2),
+                    textcoords="offset points")
     ax.set_xlabel("seconds (median)")
-    ax.set_ylabel("relative L2 error of η")
-    ax.set_title(title)
+    ax.set_ylabel(ylabel)
+    ax.set_title(title, fontsize=9)
     ax.grid(True, which="both", alpha=0.3)
     ax.legend()
     fig.tight_layout()

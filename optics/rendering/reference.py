@@ -22,6 +22,13 @@ code with it — can be checked pixel by pixel (PSNR). Per pixel (docs/physics.m
 
 Height fields are sampled bilinearly with texel centres at −L/2 + (i + ½)·L/n and
 clamped edges; normals are central differences of that bilinear surface one texel apart.
+
+With ``scene.surroundings`` "extend" or "tile" the march runs over the slab between the
+lowest and highest surface, out to ``FAR_TILES`` scene sides from the eye, with steps
+growing quadratically from the eye; tiled water wraps and fades to its mean level between
+``NEAR_TILES`` and ``FAR_TILES`` sides (distance filtering); a primary ray that reaches the
+far distance going down meets flat water and ground planes at the levels found there
+(:func:`far_field`).
 """
 
 from __future__ import annotations
@@ -32,7 +39,8 @@ import numpy as np
 
 from optics.light.directions import reflect, refract
 from optics.light.fresnel import normal_reflectance, reflectance_exact
-from optics.rendering.scene import Camera, Scene, sun_in_water, texture_sample
+from optics.light.sky import preetham_sky
+from optics.rendering.scene import FAR_TILES, NEAR_TILES, Camera, Scene, sun_in_water, texture_sample
 from wavephys.core.inputs import check_array, check_instance, check_int, check_scalar
 from wavephys.core.sampling import bilinear
 
@@ -46,6 +54,47 @@ MAX_PIXELS = 16384
 def sample(field, length: float, xy):
     """Bilinear sample of a (ny, nx[, c]) texture over [−L/2, L/2]² at points xy (..., 2), clamped edges."""
     return texture_sample(np.asarray(field), length, xy[..., 0], xy[..., 1])
+
+
+def water_level(scene: Scene, xy):
+    """Water height (m) at points xy (..., 2): clamped, or tiled and faded with distance from the eye."""
+    return _surface_sample(scene, scene.water, xy)
+
+
+def _surface_sample(scene: Scene, field, xy):
+    """A field on the water surface (heights, foam) at xy: clamped, or tiled; beyond the
+    square (surroundings) it fades to its mean with distance from the eye."""
+    if scene.surroundings == "none":
+        return sample(field, scene.length, xy)
+    w = np.asarray(field, np.float64)
+    if scene.surroundings == "extend":
+        h = sample(w, scene.length, xy)
+    else:
+        ny, nx = w.shape
+        u = np.mod((xy[..., 0] / scene.length + 0.5) * nx - 0.5, nx)
+        v = np.mod((xy[..., 1] / scene.length + 0.5) * ny - 0.5, ny)
+        wrapped = np.concatenate([w, w[:1]], axis=0)
+        wrapped = np.concatenate([wrapped, wrapped[:, :1]], axis=1)  # texel n = texel 0
+        h = bilinear(wrapped, u, v, "clamp")
+    mean = float(w.mean())
+    r = np.hypot(xy[..., 0] - scene.camera.eye[0], xy[..., 1] - scene.camera.eye[1]) / scene.length
+    return mean + (h - mean) * (1 - _smoothstep(NEAR_TILES, FAR_TILES, r))
+
+
+def _smoothstep(e0, e1, x):
+    t = np.clip((x - e0) / (e1 - e0), 0.0, 1.0)
+    return t * t * (3 - 2 * t)
+
+
+def _water_normal(scene: Scene, xy):
+    """Unit normal of the water as drawn (clamped or tiled and faded), central differences one texel apart."""
+    ny, nx = scene.water.shape
+    hx, hy = scene.length / nx, scene.length / ny
+    ex, ey = np.array([hx, 0.0]), np.array([0.0, hy])
+    gx = (water_level(scene, xy + ex) - water_level(scene, xy - ex)) / (2 * hx)
+    gy = (water_level(scene, xy + ey) - water_level(scene, xy - ey)) / (2 * hy)
+    n = np.stack([-gx, -gy, np.ones_like(gx)], axis=-1)
+    return n / np.linalg.norm(n, axis=-1, keepdims=True)
 
 
 def _normal(field, length, xy):
@@ -79,8 +128,11 @@ def environment(scene: Scene, d):
         wrapped = np.concatenate([env, env[:, :1]], axis=1)
         return bilinear(wrapped, np.mod(u, w), v, "clamp")
     z = d[..., 2:3]
-    sky = scene.sky_horizon + (scene.sky_zenith - scene.sky_horizon) * np.sqrt(np.maximum(z, 0.0))
-    sky = np.where(z < 0, 0.5 * scene.sky_horizon, sky)
+    if scene.sky == "preetham":
+        sky = preetham_sky(d, scene.sun, scene.turbidity, scene.sky_brightness)
+    else:
+        sky = scene.sky_horizon + (scene.sky_zenith - scene.sky_horizon) * np.sqrt(np.maximum(z, 0.0))
+        sky = np.where(z < 0, 0.5 * scene.sky_horizon, sky)
     glow = np.exp(64.0 * (np.sum(d * scene.sun, axis=-1, keepdims=True) - 1.0))
     return sky + scene.sun_glow * glow * scene.sun_color
 
@@ -99,34 +151,89 @@ def _box(scene: Scene, o, d):
     return np.maximum(t0, 0.0), t1
 
 
+def _slab(scene: Scene, o, d):
+    """Entry and exit distances of rays through the slab between the lowest and highest surface,
+    out to FAR_TILES scene sides from the eye (horizontally)."""
+    zlo, zhi = scene.bounds()
+    with np.errstate(divide="ignore", invalid="ignore"):
+        dz = np.where(d[:, 2] == 0, 1e-30, d[:, 2])
+        a, b = (zlo - o[:, 2]) / dz, (zhi - o[:, 2]) / dz
+        horizontal = np.hypot(d[:, 0], d[:, 1])
+        far = np.where(horizontal > 0, FAR_TILES * scene.length / np.maximum(horizontal, 1e-30), np.inf)
+    t0 = np.maximum(np.minimum(a, b), 0.0)
+    t1 = np.minimum(np.maximum(a, b), far)
+    return t0, t1
+
+
+def far_field(scene: Scene, o, d):
+    """Colour of primary rays (o, d) (n, 3) that left the marched region: beyond FAR_TILES sides
+    the world is flat water and ground planes at the levels under the ray's last marched point
+    (land where the ground is above the water); rays going up, or not reaching it, see the sky."""
+    out = environment(scene, d)
+    _, t1 = _slab(scene, o, d)
+    zlo, zhi = scene.bounds()
+    horizontal = np.hypot(d[:, 0], d[:, 1])
+    with np.errstate(divide="ignore", invalid="ignore"):
+        t_far = FAR_TILES * scene.length / np.maximum(horizontal, 1e-30)
+    p1 = o + t_far[:, None] * d
+    go = np.nonzero((d[:, 2] < 0) & (horizontal > 0) & (p1[:, 2] >= zlo))[0]
+    if go.size == 0:
+        return out
+    q = p1[go]
+    dd = d[go]
+    level_w = water_level(scene, q[:, :2])
+    level_g = sample(scene.ground, scene.length, q[:, :2])
+    albedo = scene.albedo if scene.albedo is not None else scene.default_albedo
+    alb = sample(albedo, scene.length, q[:, :2])
+    up = np.array([0.0, 0.0, 1.0])
+    land = level_g >= level_w
+    dry = alb * (scene.ambient + scene.sun_color * max(float(scene.sun[2]), 0.0))
+    cos_i = np.clip(-dd[:, 2], 0.0, 1.0)
+    r = _reflectance(scene, cos_i, scene.n_air, scene.n_water)[:, None]
+    refl = environment(scene, reflect(dd, np.broadcast_to(up, dd.shape)))
+    tdir = refract(dd, np.broadcast_to(up, dd.shape), scene.n_air, scene.n_water)[0] if scene.effects.refraction else dd
+    depth = np.maximum(level_w - level_g, 0.0)
+    lw = sun_in_water(scene.sun, scene.n_air, scene.n_water)
+    sun_t = 1.0 - float(_reflectance(scene, np.array(scene.sun[2]), scene.n_air, scene.n_water))
+    wet = alb * (scene.ambient * _transmittance(scene, depth)
+                 + scene.sun_color * (sun_t * max(float(lw[2]), 0.0)) * _transmittance(scene, depth / lw[2]))
+    trans = wet * _transmittance(scene, depth / np.maximum(-tdir[:, 2], 1e-6))
+    out[go] = np.where(land[:, None], dry, r * refl + (1 - r) * trans)
+    return out
+
+
 def _gap(scene: Scene, p, mode):
     """> 0 while the ray is in its medium: mode 0 air (ground, water from above), 1 water
     (ground, surface from below), 2 ground only. Returns (gap, ground term, water term)."""
     g = p[..., 2] - sample(scene.ground, scene.length, p[..., :2])
     if mode == 2:
         return g, g, np.full_like(g, np.inf)
-    w = sample(scene.water, scene.length, p[..., :2]) - p[..., 2]
+    w = water_level(scene, p[..., :2]) - p[..., 2]
     wt = -w if mode == 0 else w
     return np.minimum(g, wt), g, wt
 
 
 def march(scene: Scene, o, d, mode: int, steps: int, refine: int):
     """First hit of rays (o, d) (n, 3): returns (t, hit mask, which surface: 0 ground, 1 water)."""
-    t0, t1 = _box(scene, o, d)
+    wide = scene.surroundings != "none"
+    t0, t1 = _slab(scene, o, d) if wide else _box(scene, o, d)
     n = o.shape[0]
     t_hit = np.full(n, np.inf)
     which = np.zeros(n, np.int64)
     live = np.nonzero(t1 > t0)[0]
-    dt = (t1 - t0) / steps
+    span = t1 - t0
     lo = np.zeros(n)
     for i in range(1, steps + 1):
         if live.size == 0:
             break
-        t = t0[live] + i * dt[live]
+        u, u0 = i / steps, (i - 1) / steps
+        if wide:  # quadratic schedule: fine near the eye, coarse far away
+            u, u0 = u * u, u0 * u0
+        t = t0[live] + u * span[live]
         gap, _, _ = _gap(scene, o[live] + t[:, None] * d[live], mode)
         crossed = gap < 0
         idx = live[crossed]
-        lo[idx] = t[crossed] - dt[idx]
+        lo[idx] = t0[idx] + u0 * span[idx]
         t_hit[idx] = t[crossed]
         live = live[~crossed]
     hit = np.isfinite(t_hit)
@@ -155,7 +262,7 @@ def shade_ground(scene: Scene, p):
     albedo = scene.albedo if scene.albedo is not None else scene.default_albedo
     alb = sample(albedo, scene.length, p[:, :2])
     ng = _normal(scene.ground, scene.length, p[:, :2])
-    depth = sample(scene.water, scene.length, p[:, :2]) - p[:, 2]
+    depth = water_level(scene, p[:, :2]) - p[:, 2]
     under = depth > 0
     dry = scene.ambient + scene.sun_color * np.maximum(ng @ scene.sun, 0.0)[:, None]
     lw = sun_in_water(scene.sun, scene.n_air, scene.n_water)
@@ -216,10 +323,17 @@ def trace(scene: Scene, width: int = 160, height: int = 120, *, steps: int = 256
     o = np.broadcast_to(eye, d.shape).copy()
     half = scene.length / 2
     inside = abs(eye[0]) <= half and abs(eye[1]) <= half
-    under = inside and eye[2] < float(sample(scene.water, scene.length, eye[None, :2])[0])
+    under = (inside or scene.surroundings == "tile") and eye[2] < float(water_level(scene, eye[None, :2])[0])
     t, hit, which = march(scene, o, d, 1 if under else 0, steps, refine)
     out = np.empty(d.shape)
-    out[:] = scene.deep_color if under else environment(scene, d)
+    if under:
+        out[:] = scene.deep_color
+    elif scene.surroundings != "none":
+        miss = np.nonzero(~hit)[0]
+        if miss.size:
+            out[miss] = far_field(scene, o[miss], d[miss])
+    else:
+        out[:] = environment(scene, d)
     g = np.nonzero(hit & (which == GROUND))[0]
     if g.size:
         c = shade_ground(scene, o[g] + t[g, None] * d[g])
@@ -227,7 +341,7 @@ def trace(scene: Scene, width: int = 160, height: int = 120, *, steps: int = 256
     s = np.nonzero(hit & (which == WATER))[0]
     if s.size:
         p = o[s] + t[s, None] * d[s]
-        n = _normal(scene.water, scene.length, p[:, :2])
+        n = _water_normal(scene, p[:, :2])
         ds = d[s]
         if not under:
             cos_i = np.maximum(-np.sum(ds * n, axis=-1), 0.0)
@@ -237,6 +351,10 @@ def trace(scene: Scene, width: int = 160, height: int = 120, *, steps: int = 256
             rdir = reflect(ds, n)
             refl = _secondary(scene, p, rdir, "air", steps, refine) if eff.reflection else environment(scene, rdir)
             out[s] = r[:, None] * refl + (1 - r[:, None]) * trans
+            if eff.foam and scene.foam is not None:
+                f = _surface_sample(scene, scene.foam, p[:, :2])[:, None]
+                white = scene.foam_albedo * (scene.ambient + scene.sun_color * np.maximum(n @ scene.sun, 0.0)[:, None])
+                out[s] = out[s] * (1 - f) + white * f
         else:
             cos_i = np.maximum(np.sum(ds * n, axis=-1), 0.0)
             r = _reflectance(scene, cos_i, scene.n_water, scene.n_air)

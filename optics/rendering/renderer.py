@@ -30,7 +30,7 @@ from pathlib import Path
 import numpy as np
 
 from optics.light.fresnel import normal_reflectance, reflectance_exact
-from optics.rendering.scene import Scene, sun_in_water, texture_sample
+from optics.rendering.scene import FAR_TILES, NEAR_TILES, SURROUNDINGS, Scene, sun_in_water, texture_sample
 from wavephys.core.files import atomic_path, output_file, output_folder
 from wavephys.core.progress import Progress
 from wavephys.core.inputs import check_array, check_bool, check_instance, check_int, describe
@@ -41,6 +41,15 @@ __all__ = ["Renderer", "RendererUnavailable", "EGL_PACKAGES", "to_srgb8", "save_
 
 EGL_PACKAGES = "libegl1 libegl-mesa0 libgl1-mesa-dri"
 """Debian/Ubuntu packages that provide headless EGL with Mesa (llvmpipe on CPU-only machines)."""
+
+
+def _sky_uniforms(scene) -> dict:
+    """The Preetham sky's constants for the shader (computed once per frame in float64)."""
+    from optics.light.sky import preetham_constants
+
+    c = preetham_constants(scene.sun, scene.turbidity, scene.sky_brightness)
+    return dict(perez_Y=tuple(c["coefficients"][0]), perez_x=tuple(c["coefficients"][1]),
+                perez_y=tuple(c["coefficients"][2]), sky_scale=tuple(c["scale"]))
 
 
 class RendererUnavailable(RuntimeError):
@@ -59,17 +68,23 @@ uniform sampler2D ground_tex;  uniform ivec2 ground_size;
 uniform sampler2D water_tex;   uniform ivec2 water_size;
 uniform sampler2D albedo_tex;  uniform ivec2 albedo_size;
 uniform sampler2D caustic_tex; uniform ivec2 caustic_size;
+uniform sampler2D foam_tex;    uniform ivec2 foam_size;
 uniform sampler2D env_tex;     uniform ivec2 env_size;
-uniform bool use_env, use_caustics;
+uniform bool use_env, use_caustics, use_foam;
 uniform float extent, zlo, zhi;
 uniform vec3 eye, cam_f, cam_r, cam_u;
 uniform float tan_half;
 uniform vec2 resolution;
-uniform vec3 sun, sun_w, sun_color, ambient, sky_zenith, sky_horizon, absorption, deep_color;
+uniform vec3 sun, sun_w, sun_color, ambient, sky_zenith, sky_horizon, absorption, deep_color, foam_albedo;
 uniform float sun_glow, n_air, n_water, sun_t;
 uniform int steps, refine;
-uniform bool e_refraction, e_reflection, e_fresnel, e_absorption, e_caustics;
+uniform bool e_refraction, e_reflection, e_fresnel, e_absorption, e_caustics, e_foam;
 uniform bool under;
+uniform int surroundings;  // 0 none, 1 extend, 2 tile
+uniform bool sky_preetham;
+uniform float water_mean, foam_mean, near_tiles, far_tiles;
+uniform float perez_Y[5], perez_x[5], perez_y[5];  // Perez coefficients (host, float64: optics.light.sky)
+uniform vec3 sky_scale;
 out vec4 frag;
 
 float eps;
@@ -87,8 +102,41 @@ vec4 bilerp(sampler2D t, ivec2 size, vec2 xy) {
     vec4 d = texelFetch(t, ivec2(i1.x, i1.y), 0);
     return (a * (1.0 - w.x) + b * w.x) * (1.0 - w.y) + (c * (1.0 - w.x) + d * w.x) * w.y;
 }
+vec4 bilerp_wrap(sampler2D t, ivec2 size, vec2 xy) {
+    vec2 u = (xy / extent + 0.5) * vec2(size) - 0.5;
+    u = u - vec2(size) * floor(u / vec2(size));
+    vec2 f = floor(u);
+    vec2 w = u - f;
+    ivec2 i0 = ivec2(f) % size;
+    ivec2 i1 = (i0 + 1) % size;
+    vec4 a = texelFetch(t, ivec2(i0.x, i0.y), 0);
+    vec4 b = texelFetch(t, ivec2(i1.x, i0.y), 0);
+    vec4 c = texelFetch(t, ivec2(i0.x, i1.y), 0);
+    vec4 d = texelFetch(t, ivec2(i1.x, i1.y), 0);
+    return (a * (1.0 - w.x) + b * w.x) * (1.0 - w.y) + (c * (1.0 - w.x) + d * w.x) * w.y;
+}
+float fade(vec2 xy) {  // distance filtering of tiled fields
+    float r = length(xy - eye.xy) / extent;
+    float t = clamp((r - near_tiles) / (far_tiles - near_tiles), 0.0, 1.0);
+    return 1.0 - t * t * (3.0 - 2.0 * t);
+}
 float ground_h(vec2 xy) { return bilerp(ground_tex, ground_size, xy).r; }
-float water_h(vec2 xy) { return bilerp(water_tex, water_size, xy).r; }
+float water_h(vec2 xy) {
+    if (surroundings == 0) return bilerp(water_tex, water_size, xy).r;
+    float h = surroundings == 2 ? bilerp_wrap(water_tex, water_size, xy).r : bilerp(water_tex, water_size, xy).r;
+    return water_mean + (h - water_mean) * fade(xy);
+}
+float foam_at(vec2 xy) {
+    if (surroundings == 0) return bilerp(foam_tex, foam_size, xy).r;
+    float f = surroundings == 2 ? bilerp_wrap(foam_tex, foam_size, xy).r : bilerp(foam_tex, foam_size, xy).r;
+    return foam_mean + (f - foam_mean) * fade(xy);
+}
+vec3 water_normal(vec2 xy) {
+    float hx = extent / float(water_size.x), hy = extent / float(water_size.y);
+    float gx = (water_h(xy + vec2(hx, 0.0)) - water_h(xy - vec2(hx, 0.0))) / (2.0 * hx);
+    float gy = (water_h(xy + vec2(0.0, hy)) - water_h(xy - vec2(0.0, hy))) / (2.0 * hy);
+    return normalize(vec3(-gx, -gy, 1.0));
+}
 
 vec3 normal_of(sampler2D t, ivec2 size, vec2 xy) {
     float hx = extent / float(size.x), hy = extent / float(size.y);
@@ -120,6 +168,25 @@ vec3 refract_dir(vec3 d, vec3 n, float eta) {  // n faces against d
 }
 vec3 transmittance(float len) { return e_absorption ? exp(-len * absorption) : vec3(1.0); }
 
+// Preetham, Shirley & Smits (1999) daylight; the CPU reference's copy is optics/light/sky.py
+float perez(float cos_t, float g, float cos_g, float A, float B, float C, float D, float E) {
+    return (1.0 + A * exp(B / cos_t)) * (1.0 + C * exp(D * g) + E * cos_g * cos_g);
+}
+vec3 preetham(vec3 d) {
+    vec3 up = normalize(vec3(d.xy, max(d.z, 1e-3)));
+    float cos_t = max(up.z, 1e-3);
+    float cos_g = clamp(dot(up, sun), -1.0, 1.0);
+    float g = atan(length(cross(up, sun)), dot(up, sun));
+    float Y = sky_scale.x * perez(cos_t, g, cos_g, perez_Y[0], perez_Y[1], perez_Y[2], perez_Y[3], perez_Y[4]);
+    float x = sky_scale.y * perez(cos_t, g, cos_g, perez_x[0], perez_x[1], perez_x[2], perez_x[3], perez_x[4]);
+    float y = sky_scale.z * perez(cos_t, g, cos_g, perez_y[0], perez_y[1], perez_y[2], perez_y[3], perez_y[4]);
+    vec3 XYZ = vec3(x / y * Y, Y, (1.0 - x - y) / y * Y);
+    vec3 rgb = max(vec3(3.2406 * XYZ.x - 1.5372 * XYZ.y - 0.4986 * XYZ.z,
+                        -0.9689 * XYZ.x + 1.8758 * XYZ.y + 0.0415 * XYZ.z,
+                        0.0557 * XYZ.x - 0.2040 * XYZ.y + 1.0570 * XYZ.z), 0.0);
+    return d.z < 0.0 ? 0.5 * rgb : rgb;
+}
+
 vec3 environment(vec3 d) {
     if (use_env) {
         const float PI = 3.14159265358979;
@@ -135,7 +202,8 @@ vec3 environment(vec3 d) {
         vec3 c = texelFetch(env_tex, ivec2(i0, j1), 0).rgb, e = texelFetch(env_tex, ivec2(i1, j1), 0).rgb;
         return (a * (1.0 - wu) + b * wu) * (1.0 - wv) + (c * (1.0 - wu) + e * wu) * wv;
     }
-    vec3 sky = d.z < 0.0 ? 0.5 * sky_horizon : sky_horizon + (sky_zenith - sky_horizon) * sqrt(max(d.z, 0.0));
+    vec3 sky = sky_preetham ? preetham(d)
+             : (d.z < 0.0 ? 0.5 * sky_horizon : sky_horizon + (sky_zenith - sky_horizon) * sqrt(max(d.z, 0.0)));
     return sky + sun_glow * exp(64.0 * (dot(d, sun) - 1.0)) * sun_color;
 }
 
@@ -145,6 +213,16 @@ vec2 box(vec3 o, vec3 d) {
     vec3 a = (lo - o) * inv, b = (hi - o) * inv;
     vec3 mn = min(a, b), mx = max(a, b);
     return vec2(max(max(max(mn.x, mn.y), mn.z), 0.0), min(min(mx.x, mx.y), mx.z));
+}
+
+float far_distance(vec3 d) {
+    float h = length(d.xy);
+    return h > 0.0 ? far_tiles * extent / h : 1e30;
+}
+vec2 slab(vec3 o, vec3 d) {  // the layer of both surfaces, out to far_tiles sides from the eye
+    float dz = d.z == 0.0 ? 1e-30 : d.z;
+    float a = (zlo - o.z) / dz, b = (zhi - o.z) / dz;
+    return vec2(max(min(a, b), 0.0), min(max(a, b), far_distance(d)));
 }
 
 // > 0 while in the ray's medium; mode 0 air, 1 water, 2 ground only. terms = (ground, water)
@@ -160,14 +238,17 @@ float gap(vec3 p, int mode, out vec2 terms) {
 // first hit: returns t (< 0: none); which = 0 ground, 1 water
 float march(vec3 o, vec3 d, int mode, out int which) {
     which = 0;
-    vec2 span = box(o, d);
+    bool wide = surroundings != 0;
+    vec2 span = wide ? slab(o, d) : box(o, d);
     if (span.y <= span.x) return -1.0;
-    float dt = (span.y - span.x) / float(steps);
+    float len = span.y - span.x;
     vec2 terms;
     float a = -1.0, b = -1.0;
     for (int i = 1; i <= steps; ++i) {
-        float t = span.x + float(i) * dt;
-        if (gap(o + t * d, mode, terms) < 0.0) { a = t - dt; b = t; break; }
+        float u = float(i) / float(steps), u0 = float(i - 1) / float(steps);
+        if (wide) { u = u * u; u0 = u0 * u0; }  // fine near the eye, coarse far away
+        float t = span.x + u * len;
+        if (gap(o + t * d, mode, terms) < 0.0) { a = span.x + u0 * len; b = t; break; }
     }
     if (b < 0.0) return -1.0;
     for (int k = 0; k < refine; ++k) {
@@ -199,6 +280,25 @@ vec3 secondary(vec3 p, vec3 d, bool in_water) {
     return in_water ? c * transmittance(t + eps) : c;
 }
 
+vec3 far_field(vec3 o, vec3 d) {  // primary rays past the marched region: flat planes to the horizon
+    float h = length(d.xy);
+    if (d.z >= 0.0 || h == 0.0) return environment(d);
+    vec3 q = o + far_distance(d) * d;
+    if (q.z < zlo) return environment(d);
+    float lw = water_h(q.xy), lg = ground_h(q.xy);
+    vec3 alb = bilerp(albedo_tex, albedo_size, q.xy).rgb;
+    if (lg >= lw) return alb * (ambient + sun_color * max(sun.z, 0.0));
+    vec3 up = vec3(0.0, 0.0, 1.0);
+    float r = reflectance(clamp(-d.z, 0.0, 1.0), n_air, n_water);
+    vec3 refl = environment(reflect(d, up));
+    vec3 tdir = e_refraction ? refract_dir(d, up, n_air / n_water) : d;
+    float depth = max(lw - lg, 0.0);
+    vec3 wet = alb * (ambient * transmittance(depth)
+                      + sun_color * (sun_t * max(sun_w.z, 0.0)) * transmittance(depth / sun_w.z));
+    vec3 trans = wet * transmittance(depth / max(-tdir.z, 1e-6));
+    return r * refl + (1.0 - r) * trans;
+}
+
 void main() {
     eps = 1e-4 * extent;
     vec2 ndc = 2.0 * gl_FragCoord.xy / resolution - 1.0;
@@ -207,13 +307,13 @@ void main() {
     float t = march(eye, d, under ? 1 : 0, which);
     vec3 c;
     if (t < 0.0) {
-        c = under ? deep_color : environment(d);
+        c = under ? deep_color : (surroundings != 0 ? far_field(eye, d) : environment(d));
     } else if (which == 0) {
         c = shade_ground(eye + t * d);
         if (under) c *= transmittance(t);
     } else {
         vec3 p = eye + t * d;
-        vec3 n = normal_of(water_tex, water_size, p.xy);
+        vec3 n = water_normal(p.xy);
         if (!under) {
             float r = reflectance(max(-dot(d, n), 0.0), n_air, n_water);
             vec3 tdir = e_refraction ? refract_dir(d, n, n_air / n_water) : d;
@@ -221,6 +321,10 @@ void main() {
             vec3 rdir = reflect(d, n);
             vec3 refl = e_reflection ? secondary(p, rdir, false) : environment(rdir);
             c = r * refl + (1.0 - r) * trans;
+            if (e_foam && use_foam) {
+                float f = foam_at(p.xy);
+                c = mix(c, foam_albedo * (ambient + sun_color * max(dot(n, sun), 0.0)), f);
+            }
         } else {
             float r = reflectance(max(dot(d, n), 0.0), n_water, n_air);
             vec3 rdir = reflect(d, n);
@@ -348,9 +452,10 @@ class Renderer:
     def _bind(self, scene: Scene):
         albedo = scene.albedo if scene.albedo is not None else scene.default_albedo
         caustics = scene.caustics if scene.caustics is not None else np.ones((2, 2), np.float32)
+        foam = scene.foam if scene.foam is not None else np.zeros((2, 2), np.float32)
         env = scene.environment if scene.environment is not None else np.zeros((2, 2, 3), np.float32)
         for unit, (name, arr) in enumerate((("ground", scene.ground), ("water", scene.water), ("albedo", albedo),
-                                            ("caustic", caustics), ("env", env))):
+                                            ("caustic", caustics), ("env", env), ("foam", foam))):
             tex = self._upload(name, arr)
             tex.use(unit)
             self.program[f"{name}_tex"] = unit
@@ -364,11 +469,20 @@ class Renderer:
         half = scene.length / 2
         under = bool(abs(eye[0]) <= half and abs(eye[1]) <= half
                      and eye[2] < float(texture_sample(scene.water, scene.length, eye[0], eye[1])))
+        if scene.surroundings == "tile":  # the water is everywhere: wrap the eye into the square
+            wx, wy = ((eye[:2] + half) % scene.length) - half
+            under = bool(eye[2] < float(texture_sample(scene.water, scene.length, wx, wy)))
         if eff.fresnel:
             sun_t = 1.0 - float(reflectance_exact(np.float64(scene.sun[2]), scene.n_air, scene.n_water))
         else:
             sun_t = 1.0 - normal_reflectance(scene.n_air, scene.n_water)
         values = dict(use_env=scene.environment is not None, use_caustics=scene.caustics is not None,
+                      use_foam=scene.foam is not None, foam_albedo=scene.foam_albedo, e_foam=eff.foam,
+                      surroundings=SURROUNDINGS.index(scene.surroundings), sky_preetham=scene.sky == "preetham",
+                      **_sky_uniforms(scene),
+                      water_mean=float(np.mean(scene.water, dtype=np.float64)),
+                      foam_mean=float(np.mean(scene.foam, dtype=np.float64)) if scene.foam is not None else 0.0,
+                      near_tiles=NEAR_TILES, far_tiles=FAR_TILES,
                       extent=scene.length, zlo=zlo, zhi=zhi, eye=eye, cam_f=f, cam_r=r, cam_u=u,
                       tan_half=math.tan(math.radians(cam.fov) / 2), resolution=(self.width, self.height),
                       sun=scene.sun, sun_w=sun_in_water(scene.sun, scene.n_air, scene.n_water),

@@ -18,10 +18,11 @@ from dataclasses import dataclass, field, replace
 import numpy as np
 
 from optics.light.fresnel import N_AIR, N_WATER
-from wavephys.core.inputs import _real_kind, check_array, check_bool, check_instance, check_scalar
+from wavephys.core.inputs import _real_kind, check_array, check_bool, check_choice, check_instance, check_scalar
 from wavephys.core.sampling import bilinear, texel_coordinates
 
-__all__ = ["Camera", "Effects", "Scene", "look_at", "DEFAULT_ABSORPTION", "texture_sample", "sun_in_water"]
+__all__ = ["Camera", "Effects", "Scene", "look_at", "DEFAULT_ABSORPTION", "texture_sample", "sun_in_water", "SKIES",
+           "SURROUNDINGS", "NEAR_TILES", "FAR_TILES"]
 
 DEFAULT_ABSORPTION = (0.3353, 0.05035, 0.000547)
 """Effective RGB absorption of pure water, 1/m: ``optics.light.attenuation.fit_rgb_coefficients()``
@@ -49,6 +50,13 @@ def texture_sample(field, length: float, x, y):
     ny, nx = np.shape(field)[:2]
     return bilinear(f, texel_coordinates(x, length, nx), texel_coordinates(y, length, ny), "clamp")
 
+
+SKIES = ("gradient", "preetham")
+SURROUNDINGS = ("none", "extend", "tile")
+NEAR_TILES, FAR_TILES = 1.5, 4.0
+"""Distance filtering with surroundings: the water's waves fade to their mean level between
+these many scene sides from the eye (horizontally); beyond the far one the world is flat
+planes."""
 
 MAX_LENGTH = 1e7
 """Largest scene side accepted, m (float32 positions lose the texel beyond)."""
@@ -128,6 +136,7 @@ class Effects:
     fresnel : exact Fresnel weights (off: the normal-incidence value everywhere, and 1 under TIR).
     absorption : Beer–Lambert along every underwater path (off: clear water).
     caustics : light the underwater ground with the caustics map (off: flat-surface light).
+    foam : whiten the water surface by the scene's foam coverage (off: no foam drawn).
     """
 
     refraction: bool = True
@@ -135,6 +144,7 @@ class Effects:
     fresnel: bool = True
     absorption: bool = True
     caustics: bool = True
+    foam: bool = True
 
     def __post_init__(self):
         for name in self.__dataclass_fields__:
@@ -182,6 +192,21 @@ class Scene:
         Sky radiance overhead and at the horizon (used without ``environment``).
     sun_glow : float
         Strength of a smooth glow around the sun in the sky, 0 to switch off.
+    sky : {"gradient", "preetham"}
+        The background and reflected sky without ``environment``: a zenith-to-horizon
+        gradient, or Preetham et al.'s analytic daylight with the sun
+        (:func:`optics.light.sky.preetham_sky`, zenith luminance ``sky_brightness``).
+    turbidity, sky_brightness : float
+        Preetham's turbidity T (1.7–10) and the zenith luminance in scene units.
+    surroundings : {"none", "extend", "tile"}
+        What lies beyond the square: nothing (the sky or backdrop, as drawn inside a
+        studio), the ground and water extended from their border texels (a pool deck, a
+        beach), or the water field repeated periodically to the horizon with the ground
+        extended (an open sea). With either, the march follows the ray over a distance of
+        ``FAR_TILES`` sides from the eye; the waves fade to their mean level between
+        ``NEAR_TILES`` and ``FAR_TILES`` sides from the eye (distance filtering: far waves
+        smaller than a pixel do not alias), and past that the ray meets flat water and
+        ground planes at the levels under its last point, to the horizon.
     environment : array_like (h, w, 3), optional
         Equirectangular environment map (row 0 = zenith, column 0 = azimuth −π), linear RGB.
     albedo : array_like (ny, nx, 3), optional
@@ -189,6 +214,13 @@ class Scene:
     caustics : array_like (ny, nx), optional
         Irradiance on the underwater ground relative to a flat surface (1 = flat); see
         :func:`optics.caustics.floor_irradiance`. ``None`` = 1 everywhere.
+    foam : array_like (ny, nx), optional
+        Foam coverage of the water surface in [0, 1] over the same square (e.g.
+        :func:`wavephys.choppy.foam`): seen from above, the surface colour becomes
+        (1 − f)·water + f·foam_albedo·(ambient + sun_color·max(n·sun, 0)), a Lambertian
+        white layer. ``None``: no foam.
+    foam_albedo : RGB
+        Reflectance of foam (whitecaps ≈ 0.8, slightly blue-white).
     absorption : RGB
         Beer–Lambert coefficients, 1/m.
     deep_color : RGB
@@ -208,9 +240,15 @@ class Scene:
     sky_zenith: tuple = (0.25, 0.45, 0.85)
     sky_horizon: tuple = (0.75, 0.82, 0.92)
     sun_glow: float = 0.5
+    sky: str = "gradient"
+    turbidity: float = 3.0
+    sky_brightness: float = 0.45
+    surroundings: str = "none"
     environment: object = None
     albedo: object = None
     caustics: object = None
+    foam: object = None
+    foam_albedo: tuple = (0.8, 0.82, 0.84)
     absorption: tuple = DEFAULT_ABSORPTION
     deep_color: tuple = (0.0, 0.02, 0.04)
     n_air: float = N_AIR
@@ -232,9 +270,13 @@ class Scene:
         if sun[2] <= 0:
             raise ValueError(f"sun must point up (z > 0), got {sun.tolist()}")
         set_("sun", sun / np.linalg.norm(sun))
-        for name in ("sun_color", "ambient", "sky_zenith", "sky_horizon", "absorption", "deep_color"):
+        for name in ("sun_color", "ambient", "sky_zenith", "sky_horizon", "absorption", "deep_color", "foam_albedo"):
             set_(name, _colour(name, getattr(self, name)))
         check_scalar("sun_glow", self.sun_glow, lo=0.0)
+        check_choice("sky", self.sky, SKIES)
+        check_scalar("turbidity", self.turbidity, lo=1.7, hi=10.0)
+        check_scalar("sky_brightness", self.sky_brightness, lo=0.0, hi=1e6)
+        check_choice("surroundings", self.surroundings, SURROUNDINGS)
         check_indices(self.n_air, self.n_water)
         if self.albedo is not None:
             check_array("albedo", self.albedo, ndim=3)
@@ -250,6 +292,11 @@ class Scene:
             if (c < 0).any():
                 raise ValueError("caustics must be ≥ 0 (irradiance relative to a flat surface)")
             set_("caustics", c)
+        if self.foam is not None:
+            f = _height("foam", self.foam)
+            if (f < 0).any() or (f > 1).any():
+                raise ValueError(f"foam must be a coverage in [0, 1], got values in [{f.min():.3g}, {f.max():.3g}]")
+            set_("foam", f)
         if self.environment is not None:
             check_array("environment", self.environment, ndim=3)
             e = np.asarray(self.environment, np.float32)

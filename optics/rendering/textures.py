@@ -22,7 +22,7 @@ from wavephys.core.grid import Grid
 from wavephys.core.inputs import check_array, check_bool, check_choice, check_instance, check_int, check_scalar
 from wavephys.core.spectral import central_gradient, spectral_gradient
 
-__all__ = ["save_exr", "load_exr", "EncodedHeight", "encode_height", "decode_height", "normal_map", "height_precision",
+__all__ = ["save_exr", "load_exr", "save_vector_displacement", "EncodedHeight", "encode_height", "decode_height", "normal_map", "height_precision",
            "fresnel_texture", "absorption_texture", "save_height_png", "save_npz", "load_npz", "export_scene"]
 
 BITS = (8, 16, 32)
@@ -32,6 +32,10 @@ GRID_CONVENTION = ("cell-centred: texel (row i, column j) of an n x n texture ov
 NORMAL_CONVENTION = ("OpenGL (y up, green = +y): rgb = 0.5 + 0.5 n for the unit normal n = (nx, ny, nz), "
                      "z up out of the water; DirectX engines flip green (g' = 1 - g)")
 CAUSTICS_UNITS = "relative irradiance E/E0 (1 = the light on flat water)"
+DISPLACEMENT_CONVENTION = ("vector displacement, m, world axes (z up): R = dx along +x, G = dy along +y, B = dz up; "
+                           "texel (i, j) moves the surface point resting at that texel's centre (grid convention) "
+                           "to (x + dx, y + dy, dz); y-up engines swap G and B")
+FOAM_UNITS = "foam coverage 0..1 of the water surface, in the grid convention (over the resampled heights)"
 
 
 @dataclass(frozen=True)
@@ -212,6 +216,24 @@ def save_exr(path, channels: dict, *, half: bool = False, attributes: dict | Non
     return path
 
 
+def save_vector_displacement(path, displacement, grid: Grid, *, half: bool = False) -> Path:
+    """Write a displaced surface as an OpenEXR vector-displacement texture (the form engines load).
+
+    ``displacement`` (3, n, n), m: (Δx, Δy, z) of the surface point resting at each texel
+    of ``grid`` — e.g. ``np.stack([*wavephys.choppy.displacement(h, grid), h])`` or
+    ``GerstnerWaves.displacement(*grid.mesh(), t)``. Channels R, G, B = Δx, Δy, z
+    (:data:`DISPLACEMENT_CONVENTION` in the header, with the units, extent and the grid
+    convention); 32-bit float, or 16-bit with ``half``. Atomic.
+    """
+    check_instance("grid", grid, Grid, "wavephys.Grid")
+    check_array("displacement", displacement, ndim=3, shape_tail=(3, grid.n, grid.n))
+    check_bool("half", half)
+    d = np.asarray(displacement, np.float64)
+    return save_exr(path, {c: d[i] for i, c in enumerate("RGB")}, half=half, attributes=dict(
+        units="m", quantity="vector displacement of the water surface", convention=DISPLACEMENT_CONVENTION,
+        length=float(grid.length), grid=GRID_CONVENTION, precision="half" if half else "float"))
+
+
 def load_exr(path) -> tuple[dict, dict]:
     """(channels, attributes) of an OpenEXR file: float arrays in the grid convention (rows
     flipped back, row 0 = lowest y) and the header's own attributes."""
@@ -294,12 +316,13 @@ def export_scene(scene, out_dir, *, exr: bool = True, half: bool = False) -> dic
     RGB, 0.5 + 0.5·n), ``caustics.png`` (16-bit, relative irradiance scaled by its JSON
     ``amplitude``) when the scene has a caustics map, ``fresnel.npy`` (exact R at 256
     values of cos θ in [0, 1]), ``absorption.npy`` (RGB transmittance at 256 distances in
-    0–20 m), each with a JSON sidecar naming its axes, units and conventions (grid, normal
-    map), and ``textures.npz`` with all of them (heights and caustics as stored, 16-bit
+    0–20 m), ``foam.png`` (16-bit coverage) when the scene has foam, each with a JSON
+    sidecar naming its axes, units and conventions (grid, normal map), and ``textures.npz``
+    with all of them (heights and caustics as stored, 16-bit
     integers with their decoding metadata; normals and lookup tables float32). With ``exr``
     (default) every texture is also written as OpenEXR (32-bit float, or 16-bit with
     ``half``): ``*_height.exr`` (channel Y, m), ``water_normals.exr`` (R, G, B = the unit
-    normal's x, y, z), ``caustics.exr`` (Y, relative irradiance), ``fresnel.exr`` and
+    normal's x, y, z), ``caustics.exr`` (Y, relative irradiance), ``foam.exr``, ``fresnel.exr`` and
     ``absorption.exr`` (one-row images along their table axis), each with units, extent,
     axes and conventions in its header (docs/textures.md).
     Returns {name: path}.
@@ -332,6 +355,11 @@ def export_scene(scene, out_dir, *, exr: bool = True, half: bool = False) -> dic
         tex = encode_height(c, Grid(c.shape[0], float(scene.length)), 16, units=CAUSTICS_UNITS)
         paths["caustics"] = save_height_png(tex, out / "caustics.png")
         arrays["caustics"] = tex
+    if scene.foam is not None:
+        f = np.asarray(scene.foam, np.float64)
+        tex = encode_height(f, Grid(f.shape[0], float(scene.length)), 16, units=FOAM_UNITS)
+        paths["foam"] = save_height_png(tex, out / "foam.png")
+        arrays["foam"] = tex
     paths["fresnel"] = _write_npy(arrays["fresnel"], out / "fresnel.npy")
     _write_text(json.dumps(dict(values="exact Fresnel reflectance R (unpolarized), 0..1",
                                 axes=["cos(theta) of the incidence angle, 256 samples from 0 to 1"],
@@ -357,6 +385,9 @@ def _export_exr(scene, arrays, normals, out, half) -> dict:
                                           {c: normals[..., i] for i, c in enumerate("RGB")}, half=half,
                                           attributes=dict(common, units="1", quantity="unit surface normal (x, y, z)",
                                                           convention=NORMAL_CONVENTION))
+    if "foam" in arrays:
+        paths["foam_exr"] = save_exr(out / "foam.exr", {"Y": np.asarray(scene.foam)}, half=half,
+                                     attributes=dict(common, units="1", quantity=FOAM_UNITS))
     if "caustics" in arrays:
         paths["caustics_exr"] = save_exr(out / "caustics.exr", {"Y": np.asarray(scene.caustics)}, half=half,
                                          attributes=dict(common, units=CAUSTICS_UNITS, quantity="floor irradiance"))

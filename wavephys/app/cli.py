@@ -199,6 +199,15 @@ def cmd_textures(args, parser) -> int:
     from wavephys.app.scenes import builtin_scene
 
     paths = export_scene(builtin_scene(args.scene, n=args.n, time=args.time), out)
+    from wavephys.app.scenes import scene_displacement
+
+    displacement = scene_displacement(args.scene, n=args.n, time=args.time)
+    if displacement is not None:  # a displaced surface: also the form engines draw it in
+        from optics.rendering.textures import save_vector_displacement
+        from wavephys.app.scenes import scene_grid
+
+        paths["water_displacement_exr"] = save_vector_displacement(out / "water_displacement.exr", displacement,
+                                                                   scene_grid(args.scene, args.n))
     for name, p in paths.items():
         print(f"{name:15s} {p}")
     return 0

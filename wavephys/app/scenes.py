@@ -7,10 +7,18 @@
           (deep-water dispersion), caustics on the sloping ground;
 ``ship``  a 40 m patch of 8 m deep water with the steady Kelvin wake of a hull at 2 m/s;
           ``ship=False`` gives the same frame without the ship (for comparisons).
+``storm`` a 64 m patch of open sea under a 9 m/s wind: a Phillips sea with choppy
+          displacement (λ = 1, crests sharpened; resampled onto the grid) and foam where
+          the surface is compressed below 35 % of its rest area, built up over the last
+          1.5 s and fading with a 1 s time constant, broken into streaks by a fixed
+          gradient-noise texture;
+``calm``  a 16 m pond in the style of Schneider & Westermann: a B-spline base surface from
+          an 8 × 8 control grid plus two octaves of animated gradient-noise fBm.
 
 Every field is made on a :class:`wavephys.Grid` of the scene's side and resolution, so the
 simulated water, the ground, the caustics and the textures share one convention and
-land texel for texel (docs/physics.md §0).
+land texel for texel (docs/physics.md §0). Every scene is lit by Preetham's analytic sky
+and continues beyond its square to the horizon (:data:`SURROUNDINGS`).
 """
 
 from __future__ import annotations
@@ -26,7 +34,8 @@ from wavephys.core.inputs import check_bool, check_choice, check_instance, check
 from wavephys.core.water import Water
 from wavephys.physics.disturbances import Stones
 
-__all__ = ["default_scene", "SCENES", "builtin_scene", "scene_frames", "scene_water", "scene_grid"]
+__all__ = ["default_scene", "SCENES", "builtin_scene", "scene_frames", "scene_water", "scene_grid",
+           "scene_displacement"]
 
 SUN = (0.35, -0.45, 0.82)
 MAX_TIME = 3600.0
@@ -37,7 +46,11 @@ POOL_LENGTH, POOL_DEPTH = 8.0, 1.5
 SHORE_LENGTH = 16.0
 SWELL = ((4, 0, 0.05, 0.0), (5, 1, 0.03, 1.3), (3, -1, 0.035, 2.1))  # (m_x, m_y, amplitude m, phase)
 SHIP_LENGTH, SHIP_SPEED, SHIP_DEPTH = 40.0, 2.0, 8.0
-LENGTHS = {"pool": POOL_LENGTH, "shore": SHORE_LENGTH, "ship": SHIP_LENGTH}
+STORM_LENGTH, STORM_WIND, STORM_CHOPPINESS, STORM_DEPTH = 64.0, 9.0, 1.0, 20.0
+STORM_FOAM = dict(threshold=0.35, softness=0.12, decay_time=1.0, history=1.5, fps=15.0)
+CALM_LENGTH = 16.0
+LENGTHS = {"pool": POOL_LENGTH, "shore": SHORE_LENGTH, "ship": SHIP_LENGTH, "storm": STORM_LENGTH,
+           "calm": CALM_LENGTH}
 
 
 def default_scene(n: int = 256, steps: int = 120, progress: Optional[Callable[[str], None]] = None):
@@ -138,20 +151,132 @@ def _ship_wake(n, t):
     grid = scene_grid("ship", n)
     size = max(0.6, SHIP_LENGTH / n)  # resolved on coarse grids too
     eta = steady_wake(grid, Water(sigma=0.0), SHIP_SPEED, GaussianPressure(800.0, size), damping=0.08)  # fades over 25 m
-    return np.asarray(grid.shift(eta, -5.0 + SHIP_SPEED * t), np.float32)
+    eta = np.asarray(grid.shift(eta, -5.0 + SHIP_SPEED * t), np.float64)
+    X, Y = _mesh("ship", n)
+    edge = SHIP_LENGTH / 2
+    window = _smoothstep(edge, 0.8 * edge, np.abs(X)) * _smoothstep(edge, 0.8 * edge, np.abs(Y))
+    return (eta * window).astype(np.float32)  # calm at the border, so the sea beyond is calm too
+
+
+def _border_window(name, n, inner=0.75):
+    """1 inside ``inner`` of the half-side, 0 at the border: relief that fades out there, so the
+    ground extended beyond the square (surroundings) shows no stripes."""
+    X, Y = _mesh(name, n)
+    edge = LENGTHS[name] / 2
+    return _smoothstep(edge, inner * edge, np.abs(X)) * _smoothstep(edge, inner * edge, np.abs(Y))
 
 
 def _ship_ground(n):
     X, Y = _mesh("ship", n)
-    ground = -SHIP_DEPTH + 0.3 * np.sin(0.4 * X) * np.cos(0.3 * Y)
-    albedo = np.array([0.55, 0.6, 0.5]) * (1 + 0.15 * np.sin(1.1 * X + 0.8 * Y))[..., None]
+    w = _border_window("ship", n)
+    ground = -SHIP_DEPTH + 0.3 * np.sin(0.4 * X) * np.cos(0.3 * Y) * w
+    albedo = np.array([0.55, 0.6, 0.5]) * (1 + 0.15 * w * np.sin(1.1 * X + 0.8 * Y))[..., None]
+    return ground.astype(np.float32), albedo.astype(np.float32)
+
+
+def _storm_sea(n):
+    """The storm's complex travelling sea (seeded) on its grid."""
+    import jax
+
+    from wavephys.physics.wind import synthesize_height, wind_spectrum
+
+    grid = scene_grid("storm", n)
+    ky, kx = grid.wavenumbers()
+    spectrum = wind_spectrum(kx, ky, Water(sigma=0.0), "phillips", wind_speed=STORM_WIND, amplitude=2.2e-2,
+                             direction=0.4, small_wave_length=max(0.3, 2 * STORM_LENGTH / n))
+    return synthesize_height(spectrum, grid, jax.random.PRNGKey(11)), grid
+
+
+def _storm_fields(sea, grid, t):
+    """(heights, Jacobian) over the grid points at time t: the choppy sea resampled."""
+    from wavephys.surfaces import choppy
+    from wavephys.surfaces.resample import resample_heights
+
+    h = choppy.sea_height(sea, grid, Water(sigma=0.0), t)
+    d = choppy.displacement(h, grid, STORM_CHOPPINESS)
+    jac = choppy.jacobian(h, grid, STORM_CHOPPINESS)
+    both = resample_heights(d, h, grid, refine=2), resample_heights(d, jac, grid, refine=2)
+    return np.asarray(both[0], np.float32), np.asarray(both[1], np.float32)
+
+
+def scene_displacement(name: str, n: int = 256, time: float = 0.0):
+    """The vector displacement (3, n, n) (Δx, Δy, z), m, of a built-in scene whose surface is
+    displaced (``"storm"``: the choppy sea in its rest coordinates), else None."""
+    check_choice("name", name, SCENES)
+    n = check_int("n", n, lo=64, hi=MAX_N, even=True)
+    check_scalar("time", time, lo=0.0, hi=MAX_TIME)
+    if name != "storm":
+        return None
+    from wavephys.surfaces import choppy
+
+    sea, grid = _storm_sea(n)
+    h = choppy.sea_height(sea, grid, Water(sigma=0.0), float(time))
+    d = choppy.displacement(h, grid, STORM_CHOPPINESS)
+    return np.concatenate([np.asarray(d, np.float32), np.asarray(h, np.float32)[None]])
+
+
+def _storm_frames(n, times):
+    """(heights, foam) at each of the increasing ``times``: foam built up frame by frame."""
+    from wavephys.surfaces import choppy
+
+    sea, grid = _storm_sea(n)
+    cfg = STORM_FOAM
+    start = max(0.0, times[0] - cfg["history"])
+    warm = list(np.arange(start, times[0], 1.0 / cfg["fps"]))
+    foam, last, out = None, None, []
+    for t in warm + list(times):
+        h, jac = _storm_fields(sea, grid, t)
+        cover = np.asarray(choppy.foam(jac, cfg["threshold"], cfg["softness"]), np.float32)
+        foam = cover if foam is None else np.asarray(
+            choppy.accumulate_foam(foam, cover, t - last, cfg["decay_time"]), np.float32)
+        last = t
+        if t in times:
+            out.append((h, np.clip(foam * _foam_texture(n), 0.0, 1.0)))
+    return out
+
+
+def _foam_texture(n):
+    """A fixed streaky modulation in [0, 1.6] (gradient-noise fBm, 4 octaves, stretched along the wind)."""
+    from wavephys.surfaces.noise import fbm
+
+    X, Y = _mesh("storm", n)
+    u, v = X * np.cos(0.4) + Y * np.sin(0.4), -X * np.sin(0.4) + Y * np.cos(0.4)
+    tex = np.asarray(fbm(u * 0.35, v, None, octaves=4, frequency=1.0, seed=5), np.float64)
+    return np.clip(0.8 + 2.0 * tex, 0.0, 1.6).astype(np.float32)
+
+
+def _storm_ground(n):
+    X, Y = _mesh("storm", n)
+    ground = -STORM_DEPTH + 1.5 * np.sin(0.11 * X + 0.3) * np.cos(0.09 * Y)
+    albedo = np.array([0.3, 0.34, 0.3]) * (1 + 0.2 * np.sin(0.5 * X + 0.7 * Y))[..., None]
+    return ground.astype(np.float32), albedo.astype(np.float32)
+
+
+def _calm_sea():
+    from wavephys.surfaces.noise import NoiseSea
+
+    return NoiseSea(length=CALM_LENGTH, amplitude=0.01, frequency=1.5, octaves=2, hurst=1.0, seed=3,
+                    evolution=0.35, time_exponent=0.5, base_amplitude=0.03)
+
+
+def _calm_ground(n):
+    X, Y = _mesh("calm", n)
+    r = np.hypot(X / 7.2, Y / 7.2)
+    w = _border_window("calm", n)
+    ground = -1.6 + 1.9 * _smoothstep(0.75, 1.05, r) + 0.05 * np.sin(1.7 * X) * np.sin(1.3 * Y) * w
+    pebbles = 1 + 0.12 * w * np.sin(5.0 * X + 1.5 * np.sin(2.1 * Y)) * np.sin(4.3 * Y)
+    albedo = np.array([0.62, 0.58, 0.45]) * pebbles[..., None]
+    grass = _smoothstep(-0.05, 0.2, ground)[..., None]
+    albedo = albedo * (1 - grass) + np.array([0.25, 0.4, 0.18]) * grass
     return ground.astype(np.float32), albedo.astype(np.float32)
 
 
 def _cameras():
     return dict(pool=look_at((0.0, -6.5, 3.5), (0.0, 0.0, -1.0), 55.0),
                 shore=look_at((-9.0, -7.0, 2.5), (1.0, 0.0, -0.5), 55.0),
-                ship=look_at((8.0, -12.0, 9.0), (-6.0, 0.0, 0.0), 60.0))
+                ship=look_at((8.0, -12.0, 9.0), (-6.0, 0.0, 0.0), 60.0),
+                storm=look_at((-4.0, -30.0, 11.0), (4.0, 4.0, -2.0), 60.0),
+                calm=look_at((0.0, -9.5, 2.6), (0.0, 0.5, -0.8), 55.0))
 
 
 def scene_water(name: str, n: int = 256, time: float = 0.0, ship: bool = True) -> np.ndarray:
@@ -168,25 +293,43 @@ def scene_water(name: str, n: int = 256, time: float = 0.0, ship: bool = True) -
         return np.asarray(sim.surface(state).eta, np.float32)
     if name == "shore":
         return _swell(n, time)
+    if name == "storm":
+        return _storm_frames(n, [float(time)])[0][0]
+    if name == "calm":
+        return np.asarray(_calm_sea().heights(scene_grid("calm", n), float(time)), np.float32)
     return _ship_wake(n, time) if ship else np.zeros((n, n), np.float32)
 
 
-def _assemble(name, n, water, caustics=True, camera=None):
-    ground, albedo = {"pool": _pool_ground, "shore": _shore_ground, "ship": _ship_ground}[name](n)
+SEA_WATER = dict(absorption=(0.42, 0.095, 0.075), deep_color=(0.0, 0.015, 0.03))
+"""Coastal sea water for the storm: pure water's absorption plus an effective loss to
+scattering and particles (Jerlov type II-like, 1/m), so the 20 m floor fades out."""
+
+
+def _assemble(name, n, water, caustics=True, camera=None, foam=None):
+    ground, albedo = {"pool": _pool_ground, "shore": _shore_ground, "ship": _ship_ground, "storm": _storm_ground,
+                      "calm": _calm_ground}[name](n)
     c = _caustics(water, scene_grid(name, n), ground) if caustics else None
-    return Scene(ground, water, LENGTHS[name], camera or _cameras()[name], sun=SUN, albedo=albedo, caustics=c)
+    extra = SEA_WATER if name == "storm" else {}
+    return Scene(ground, water, LENGTHS[name], camera or _cameras()[name], sun=SUN, albedo=albedo, caustics=c,
+                 foam=foam, sky="preetham", surroundings=SURROUNDINGS[name], **extra)
+
+
+SURROUNDINGS = {"pool": "extend", "shore": "tile", "ship": "extend", "storm": "tile", "calm": "extend"}
+"""What each built-in scene shows beyond its square: the pool's deck, the lake's meadow and the
+ship's calm sea extended from their borders; the swell and the storm tiled to the horizon."""
 
 
 def builtin_scene(name: str, *, n: int = 256, time: float = 1.0, ship: bool = True, caustics: bool = True,
                   camera: Camera | None = None) -> Scene:
-    """A built-in renderer scene by name (``"pool"``, ``"shore"``, ``"ship"``).
+    """A built-in renderer scene by name (``"pool"``, ``"shore"``, ``"ship"``, ``"storm"``, ``"calm"``).
 
     Parameters
     ----------
     n : int
         Height-field resolution (texels per side), even, ≥ 64.
     time : float
-        Seconds after the start (stones dropped at 0 in the pool; swell phase; ship position), ≥ 0.
+        Seconds after the start (stones dropped at 0 in the pool; swell phase; ship position;
+        the storm's sea and its foam; the calm pond's noise), ≥ 0.
     ship : bool
         ``"ship"`` only: False gives flat water, the same frame without the ship.
     caustics : bool
@@ -197,6 +340,11 @@ def builtin_scene(name: str, *, n: int = 256, time: float = 1.0, ship: bool = Tr
     if camera is not None:
         check_instance("camera", camera, Camera, "optics.rendering.Camera")
     check_bool("caustics", caustics)
+    if name == "storm":
+        check_scalar("time", time, lo=0.0, hi=MAX_TIME)
+        n = check_int("n", n, lo=64, hi=MAX_N, even=True)
+        water, foam = _storm_frames(n, [float(time)])[0]
+        return _assemble(name, n, water, caustics, camera, foam)
     return _assemble(name, n, scene_water(name, n, time, ship), caustics, camera)
 
 
@@ -217,6 +365,10 @@ def scene_frames(name: str, count: int, *, fps: float = 30.0, n: int = 256, star
 
 
 def _frames(name, count, fps, n, start, caustics):
+    if name == "storm":
+        for water, foam in _storm_frames(n, [start + i / fps for i in range(count)]):
+            yield _assemble(name, n, water, caustics, foam=foam)
+        return
     if name != "pool":
         for i in range(count):
             yield _assemble(name, n, scene_water(name, n, start + i / fps), caustics)

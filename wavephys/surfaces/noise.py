@@ -496,6 +496,10 @@ class NoiseSea:
         Instance(Grid, "wavephys.Grid")("grid", grid, {})
         if abs(float(grid.length) - self.length) > 1e-9 * self.length:
             raise ValueError(f"grid: the sea tiles {self.length} m, the grid is {float(grid.length)} m")
+        cell = 1.0 / (self.frequency * 2 ** (self.octaves - 1))
+        if cell < 2 * float(grid.dx):
+            raise ValueError(f"grid: the finest octave's lattice cell ({cell:.3g} m) spans fewer than 2 grid cells "
+                             f"(dx = {float(grid.dx):.3g} m), so it aliases; use a finer grid or fewer octaves")
         return grid.mesh()
 
     @validate(t=Real(lo=0.0, hi=1e6))
