@@ -106,6 +106,10 @@ def run_render(args) -> None:
                   f"{r['mode']:<13} {r['seconds'] * 1e3:8.1f} ms {r['hz']:6.2f} Hz  ×{r['ratio_to_refraction']:.2f} "
                   f"({r['ratio_quartiles'][0]:.2f}–{r['ratio_quartiles'][1]:.2f}) of refraction "
                   f"(paper {r['paper_hz']} Hz, ×{r['paper_ratio']:.2f})")
+        elif r["family"] == "horizon cost":
+            print(f"{r['width']}×{r['height']} {r['scene']} to the horizon ({r['surroundings']}): "
+                  f"{r['seconds'] * 1e3:.1f} ms against {r['baseline_seconds'] * 1e3:.1f} ms in the box alone, "
+                  f"×{r['ratio']:.2f} ({r['ratio_quartiles'][0]:.2f}–{r['ratio_quartiles'][1]:.2f})")
         elif r["family"] == "textures":
             print(f"N={r['n']:<5} {r['work']:<34} {r['seconds'] * 1e3:8.2f} ms  ×{r['ratio_to_step']:.2f} of a step")
         else:

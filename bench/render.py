@@ -51,9 +51,19 @@ def camera_for_coverage(scene, target: float, width: int, height: int):
 
 
 def frame_rows(width: int = 800, height: int = 600, repeats: int = 7, progress=print) -> list[dict]:
-    scene = builtin_scene("ship", n=256)
+    from dataclasses import replace
+
+    full = builtin_scene("ship", n=256)
+    scene = replace(full, surroundings="none")  # a water volume in a box, as in the paper's table
     rows = []
     with Renderer(width, height) as r:
+        progress(f"frames {width}×{height}: to the horizon against the box alone, interleaved …")
+        times = interleaved({"box": lambda: r.draw(scene), "horizon": lambda: r.draw(full)}, repeats=repeats,
+                            warmup=1, block=1)
+        ratio = paired_ratio(times, "horizon", ["box"])
+        rows.append(dict(family="horizon cost", scene="ship", surroundings=full.surroundings,
+                         seconds=float(np.median(times["horizon"])), baseline_seconds=float(np.median(times["box"])),
+                         ratio=ratio[0], ratio_quartiles=ratio[1:], width=width, height=height))
         for pct in (100, 50, 25):
             cam = camera_for_coverage(scene, pct / 100, width, height)
             s = scene.with_camera(cam)
