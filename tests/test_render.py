@@ -14,6 +14,12 @@ from optics.rendering.scene import DEFAULT_ABSORPTION, Camera, Effects, Scene, l
 from wavephys.app.scenes import SCENES, builtin_scene
 
 W, H = 160, 120
+
+
+@__import__("functools").lru_cache(maxsize=None)
+def _scene(name, n=128, caustics=True):
+    """A built-in scene, built once per test session (the storm builds 1.5 s of foam history)."""
+    return builtin_scene(name, n=n, caustics=caustics)
 EFFECTS = ("refraction", "reflection", "fresnel", "absorption", "caustics")
 
 
@@ -23,21 +29,14 @@ def renderer():
         yield r
 
 
-@pytest.fixture(scope="module", params=SCENES)
-def scene(request):
-    return builtin_scene(request.param, n=128)
-
-
-def test_gpu_matches_reference(renderer, scene):
-    gpu, ref = renderer.render(scene), trace(scene, W, H)
-    assert gpu.shape == (H, W, 3) and np.isfinite(gpu).all()
-    assert psnr(gpu, ref) >= 100.0
+# Every built-in scene, all effects on, GPU against the reference (≥ 100 dB at 160×120): the
+# registry's "builtin-scenes" rows, asserted by tests/test_registry.py; each effect off below.
 
 
 @pytest.mark.parametrize("name", ["pool", "storm"])  # a walled pool and an open sea to the horizon
 @pytest.mark.parametrize("off", EFFECTS + ("foam",))
 def test_gpu_matches_reference_with_each_effect_off(renderer, name, off):
-    s = builtin_scene(name, n=64).with_effects(**{off: False})
+    s = _scene(name, 64).with_effects(**{off: False})
     with Renderer(W // 2, H // 2) as small:
         assert psnr(small.render(s), trace(s, W // 2, H // 2)) >= 100.0
 
@@ -55,7 +54,7 @@ def test_foam_is_drawn_alike_and_switches_off(renderer):
     patterns and suns; foam=False gives the frame without it."""
     from dataclasses import replace
 
-    base = builtin_scene("storm", n=128, caustics=False)
+    base = _scene("storm", 128, False)
     rng = np.random.default_rng(4)
     for sun in ((0.35, -0.45, 0.82), (-0.6, 0.2, 0.3)):
         foam = np.clip(rng.uniform(-1.0, 1.5, (32, 32)), 0, 1).astype(np.float32)
@@ -83,7 +82,7 @@ def test_march_to_the_horizon_is_near_converged():
     one pixel on a grazing crest), 76.7 dB (pool); at 80×60: 55.5, 112.2, 112.1 dB. The
     storm's thin grazing crests keep it the least converged (RMS 0.17 % of white)."""
     for name, floor in (("storm", 50.0), ("shore", 60.0), ("pool", 60.0)):
-        s = builtin_scene(name, n=128, caustics=False)
+        s = _scene(name, 128, False)
         assert psnr(trace(s, W // 2, H // 2), trace(s, W // 2, H // 2, steps=2048)) >= floor, name
 
 
@@ -295,7 +294,7 @@ class TestHorizon:
 
         from optics.rendering.reference import environment
 
-        s = builtin_scene("storm", n=128, caustics=False)
+        s = _scene("storm", 128, False)
         assert s.surroundings == "tile" and s.sky == "preetham"
         d = ray_directions(s.camera, W, H)
         backdrop = environment(s, d)  # what a ray that meets nothing shows
@@ -312,7 +311,7 @@ class TestHorizon:
 
         with Renderer(W // 2, H // 2) as small:
             for name, mode in (("shore", "tile"), ("pool", "extend")):
-                s = replace(builtin_scene(name, n=128, caustics=False), sun=sun, surroundings=mode,
+                s = replace(_scene(name, 128, False), sun=sun, surroundings=mode,
                             turbidity=2.0 + 3 * abs(sun[0]))
                 assert psnr(small.render(s), trace(s, W // 2, H // 2)) >= 100.0
 
