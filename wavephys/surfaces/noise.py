@@ -81,28 +81,30 @@ def _tables(seed: int):
     """(permutation doubled to 2·TABLE_SIZE, random angles, random values) from ``seed`` (NumPy)."""
     rng = np.random.default_rng(seed)
     perm = rng.permutation(TABLE_SIZE)
-    return (np.concatenate([perm, perm]).astype(np.int32), rng.uniform(0, 2 * np.pi, TABLE_SIZE),
-            rng.uniform(-1.0, 1.0, TABLE_SIZE), rng.normal(size=(TABLE_SIZE, 3)))
+    angles = rng.uniform(0, 2 * np.pi, TABLE_SIZE)
+    values = rng.uniform(-1.0, 1.0, TABLE_SIZE)
+    gauss = rng.normal(size=(TABLE_SIZE, 3))
+    return (np.concatenate([perm, perm]).astype(np.int32), angles, values,
+            gauss / np.linalg.norm(gauss, axis=1, keepdims=True))
 
 
 def _hash(perm, corner, period):
-    """Table index of the lattice point ``corner`` (tuple of int arrays), wrapped by ``period``."""
+    """Table index of the lattice point ``corner`` (tuple of int arrays), wrapped by ``period``
+    (cells; may be traced)."""
     h = jnp.zeros_like(corner[0])
     for c in corner:
-        c = jnp.mod(c, period) if period is not None else jnp.mod(c, TABLE_SIZE)
-        h = perm[h + c]
+        h = perm[h + jnp.mod(c, period)]
     return h
 
 
-def _gradients(seed, index, dim, dtype):
+def _gradients(tables, index, dim, dtype):
     """Unit lattice gradients (dim, ...) at table ``index``: uniform angles in 2-D, normalized
     Gaussian directions in 3-D (isotropic)."""
-    _, angles, _, gauss = _tables(seed)
+    _, angles, _, gauss = tables
     if dim == 2:
         a = jnp.asarray(angles, dtype)[index]
         return jnp.stack([jnp.cos(a), jnp.sin(a)])
-    g = jnp.asarray(gauss / np.linalg.norm(gauss, axis=1, keepdims=True), dtype)[index]
-    return jnp.moveaxis(g, -1, 0)
+    return jnp.moveaxis(jnp.asarray(gauss, dtype)[index], -1, 0)
 
 
 def _fade(t):
@@ -119,8 +121,9 @@ def _lattice(coords, dtype):
     return [b.astype(jnp.int32) for b in base], [c - b for c, b in zip(p, base)]
 
 
-def _noise(coords, seed, period, kind, derivatives, shift=None):
-    """Noise of ``kind`` ("gradient"/"value") at ``coords`` (tuple of arrays, lattice units).
+def _noise(coords, tables, period, kind, derivatives, shift=None):
+    """Noise of ``kind`` ("gradient"/"value") at ``coords`` (tuple of arrays, lattice units),
+    from ``tables`` (:func:`_tables`; arrays, so one compiled program serves every seed).
 
     ``shift`` (axis, ds): evaluate the cell's own polynomial at f + ds·e_axis with the same
     corners (S&W's shifted weights)."""
@@ -129,8 +132,8 @@ def _noise(coords, seed, period, kind, derivatives, shift=None):
     cell, frac = _lattice(coords, dtype)
     if shift is not None:
         frac = [f + shift[1] if a == shift[0] else f for a, f in enumerate(frac)]
-    perm = jnp.asarray(_tables(seed)[0])
-    values = jnp.asarray(_tables(seed)[2], dtype)
+    perm = jnp.asarray(tables[0])
+    values = jnp.asarray(tables[2], dtype)
     s = [_fade(f) for f in frac]
     ds = [_fade_prime(f) for f in frac]
     total = 0.0
@@ -142,7 +145,7 @@ def _noise(coords, seed, period, kind, derivatives, shift=None):
         dw = [ds[a] if corner[a] else -ds[a] for a in range(dim)]
         weight = math.prod(w) if dim else 1.0
         if kind == "gradient":
-            g = _gradients(seed, idx, dim, dtype)
+            g = _gradients(tables, idx, dim, dtype)
             offs = [frac[a] - corner[a] for a in range(dim)]
             dot = sum(g[a] * offs[a] for a in range(dim))
         else:
@@ -191,7 +194,8 @@ def gradient_noise(x, y, z=None, *, seed: int = 0, period: int | None = None, de
     """
     _check_coords(x, y, z)
     coords = (x, y) if z is None else (x, y, z)
-    return _noise(jnp.broadcast_arrays(*[jnp.asarray(c) for c in coords]), seed, period, "gradient", derivatives)
+    return _noise(jnp.broadcast_arrays(*[jnp.asarray(c) for c in coords]), _tables(seed), period or TABLE_SIZE,
+                  "gradient", derivatives)
 
 
 @validate(x=_POINTS, y=_POINTS, z=Maybe(_POINTS), seed=_SEED, period=_PERIOD, derivatives=Bool())
@@ -200,7 +204,8 @@ def value_noise(x, y, z=None, *, seed: int = 0, period: int | None = None, deriv
     the same arguments and returns as :func:`gradient_noise`."""
     _check_coords(x, y, z)
     coords = (x, y) if z is None else (x, y, z)
-    return _noise(jnp.broadcast_arrays(*[jnp.asarray(c) for c in coords]), seed, period, "value", derivatives)
+    return _noise(jnp.broadcast_arrays(*[jnp.asarray(c) for c in coords]), _tables(seed), period or TABLE_SIZE,
+                  "value", derivatives)
 
 
 _BASES = ("gradient", "value")
@@ -227,27 +232,14 @@ def _lattice_step(t, i, evolution, time_exponent):
     return int(np.floor(float(t) * evolution * 2.0 ** (time_exponent * i)))
 
 
-@functools.partial(jax.jit, static_argnums=tuple(range(3, 14)))
-def _octave_eval(x, y, t, i, frequency, seed, period, basis, animation, evolution, time_exponent, derivatives,
-                 shift=None, step=None):
-    """One octave (unweighted) at world points: n(2^i f₀ x, 2^i f₀ y, τ_i) and its world gradient.
-
-    ``step``: the time lattice index for ``animation="lattices"`` (static)."""
-    scale = frequency * 2.0**i
+@functools.partial(jax.jit, static_argnames=("basis", "derivatives", "shift_axis"))
+def _octave_core(x, y, tau, scale, tables, period, shift, *, basis, derivatives, shift_axis):
+    """One octave's noise n(scale·x, scale·y[, τ]) and its world gradient: one compiled program
+    for every octave, seed, period and time (they are arguments, not constants)."""
     u, v = x * scale, y * scale
-    oseed = (seed + 7919 * i) % 2**31
-    if t is None or animation == "dimension":
-        coords = (u, v) if t is None else (u, v, jnp.broadcast_to(t * evolution * 2.0 ** (time_exponent * i),
-                                                                  jnp.shape(u)).astype(u.dtype))
-        res = _noise(jnp.broadcast_arrays(*coords), oseed, period, basis, derivatives, shift)
-    else:  # two gradient lattices at successive whole time steps, blended (S&W)
-        a = t * evolution * 2.0 ** (time_exponent * i) - step
-        r0 = _noise((u, v), (oseed + 104729 * step) % 2**31, period, basis, derivatives, shift)
-        r1 = _noise((u, v), (oseed + 104729 * (step + 1)) % 2**31, period, basis, derivatives, shift)
-        if derivatives:
-            res = ((1 - a) * r0[0] + a * r1[0], tuple((1 - a) * g0 + a * g1 for g0, g1 in zip(r0[1], r1[1])))
-        else:
-            res = (1 - a) * r0 + a * r1
+    coords = (u, v) if tau is None else (u, v, jnp.broadcast_to(tau, jnp.shape(u)).astype(u.dtype))
+    res = _noise(jnp.broadcast_arrays(*coords), tables, period, basis, derivatives,
+                 None if shift_axis is None else (shift_axis, shift))
     if derivatives:
         value, grad = res
         return value, (grad[0] * scale, grad[1] * scale)
@@ -255,9 +247,25 @@ def _octave_eval(x, y, t, i, frequency, seed, period, basis, animation, evolutio
 
 
 def _octave(x, y, t, i, frequency, seed, period, basis, animation, evolution, time_exponent, derivatives, shift=None):
-    step = (_lattice_step(t, i, evolution, time_exponent) if (t is not None and animation == "lattices") else None)
-    return _octave_eval(x, y, t, i, float(frequency), int(seed), period, basis, animation, float(evolution),
-                        float(time_exponent), derivatives, shift, step)
+    """Octave i (unweighted) at world points and time t: time as a third axis, or two lattices
+    at successive whole time steps blended (S&W)."""
+    scale = float(frequency) * 2.0**i
+    oseed = (int(seed) + 7919 * i) % 2**31
+    period = TABLE_SIZE if period is None else period
+    axis, amount = (None, 0.0) if shift is None else shift
+    core = functools.partial(_octave_core, basis=basis, derivatives=derivatives, shift_axis=axis)
+    if t is None:
+        return core(x, y, None, scale, _tables(oseed), period, amount)
+    rate = float(evolution) * 2.0 ** (float(time_exponent) * i)
+    if animation == "dimension":
+        return core(x, y, t * rate, scale, _tables(oseed), period, amount)
+    step = _lattice_step(t, i, evolution, time_exponent)
+    a = t * rate - step
+    r0 = core(x, y, None, scale, _tables((oseed + 104729 * step) % 2**31), period, amount)
+    r1 = core(x, y, None, scale, _tables((oseed + 104729 * (step + 1)) % 2**31), period, amount)
+    if derivatives:
+        return (1 - a) * r0[0] + a * r1[0], tuple((1 - a) * g0 + a * g1 for g0, g1 in zip(r0[1], r1[1]))
+    return (1 - a) * r0 + a * r1
 
 
 _FBM_SPECS = dict(x=_POINTS, y=_POINTS, t=Maybe(Real()), octaves=Int(lo=1, hi=MAX_OCTAVES), hurst=Real(lo=0.0, hi=4.0),
