@@ -152,10 +152,7 @@ def _ship_wake(n, t):
     size = max(0.6, SHIP_LENGTH / n)  # resolved on coarse grids too
     eta = steady_wake(grid, Water(sigma=0.0), SHIP_SPEED, GaussianPressure(800.0, size), damping=0.08)  # fades over 25 m
     eta = np.asarray(grid.shift(eta, -5.0 + SHIP_SPEED * t), np.float64)
-    X, Y = _mesh("ship", n)
-    edge = SHIP_LENGTH / 2
-    window = _smoothstep(edge, 0.8 * edge, np.abs(X)) * _smoothstep(edge, 0.8 * edge, np.abs(Y))
-    return (eta * window).astype(np.float32)  # calm at the border, so the sea beyond is calm too
+    return (eta * _border_window("ship", n, 0.8)).astype(np.float32)  # calm at the border, and beyond
 
 
 def _border_window(name, n, inner=0.75):
