@@ -1,4 +1,4 @@
-"""``python -m bench {propagation,boundaries,optics,ship,render,surfaces} [--json PATH] [--quick]``.
+"""``python -m bench {propagation,boundaries,optics,ship,render,surfaces,scale} [--json PATH] [--quick]``.
 
 Each writes its rows as JSON and its charts as PNG next to it (default
 ``bench/results/``) and prints a table.
@@ -25,8 +25,17 @@ def _write(rows, figures, path: Path) -> None:
 
 
 def run_propagation(args) -> None:
-    from bench.propagation import accuracy_rows, step_rows
+    from bench.propagation import accuracy_rows, device_step_rows, step_rows
     from wavephys.plot import plot_error_vs_time
+
+    if args.device:
+        rows = device_step_rows(args.device, (1024, 2048) if args.quick else (1024, 2048, 4096, 8192), _say)
+        for r in rows:
+            print(f"{r['device']} N={r['n']:<5} step {r['seconds'] * 1e3:.3f} ms against its FFT floor "
+                  f"{r['baseline_seconds'] * 1e3:.3f} ms: ×{r['ratio']:.2f} ({r['ratio_quartiles'][0]:.2f}–"
+                  f"{r['ratio_quartiles'][1]:.2f})")
+        _write(rows, {}, Path(args.json or f"bench/results/propagation_{args.device}.json"))
+        return
 
     sizes = (256, 512) if args.quick else (256, 512, 1024, 2048)
     steps = step_rows(sizes, progress=_say)
@@ -153,6 +162,36 @@ def run_surfaces(args) -> None:
     _write(rows, surfaces.figures(rows), Path(args.json or "bench/results/surfaces.json"))
 
 
+def run_scale(args) -> None:
+    from bench import scale
+
+    rows = scale.huge_rows(progress=_say) if args.huge else scale.scale_rows(args.quick, _say)
+    for r in rows:
+        if r["family"] == "huge run":
+            extra = (f"; eta equals one device's to {r['max_difference_subsample']:.2e} of its max"
+                     if "max_difference_subsample" in r else "")
+            print(f"N={r['n']} on {r['devices']} device(s): setup and first step {r['setup_seconds']:.1f} s, one step "
+                  f"{r['step_seconds']:.2f} s, peak RSS {r['peak_rss_bytes'] / 2**30:.2f} GiB{extra}")
+            continue
+        if r["family"] == "sharded step memory":
+            sent = r["sent"].get("all-to-all", 0)
+            print(f"N={r['n']:<6} {r['devices']} device(s): {r['bytes_per_device'] / 2**20:10.1f} MiB per device "
+                  f"({r['bytes_per_point']:.1f} B per grid point), sends {sent / 2**20:8.2f} MiB per step "
+                  f"(slab formula {r['expected_sent'] / 2**20:.2f}; other collectives: "
+                  f"{sorted(set(r['sent']) - {'all-to-all'}) or 'none'})")
+        elif r["family"] == "big run":
+            print(f"N={r['n']} allocated and stepped: {r['seconds']:.2f} s per step on {r['devices']} forced host devices, "
+                  f"{r['baseline_seconds']:.2f} s on one (x{r['ratio']:.2f}); max |eta difference| "
+                  f"{r['max_difference']:.2e} of max |eta|")
+        elif r["family"] == "largest grid":
+            print(f"largest N on {r['devices']} device(s) of {r['memory']}: {r['n']} (power of two {r['power_of_two']})")
+        else:
+            print(f"N={r['n']:<5} sharded over {r['devices']} forced host devices: {r['seconds'] * 1e3:.1f} ms against "
+                  f"{r['baseline_seconds'] * 1e3:.1f} ms on one, ×{r['ratio']:.2f} ({r['ratio_quartiles'][0]:.2f}–"
+                  f"{r['ratio_quartiles'][1]:.2f})")
+    _write(rows, {}, Path(args.json or f"bench/results/scale{'_huge' if args.huge else ''}.json"))
+
+
 def main(argv=None) -> int:
     p = argparse.ArgumentParser(prog="python -m bench", description=__doc__.split("\n\n")[0])
     sub = p.add_subparsers(dest="which", required=True)
@@ -161,10 +200,16 @@ def main(argv=None) -> int:
                             ("optics", run_optics, "Fresnel, absorption and caustics: error vs cost"),
                             ("ship", run_ship, "moving hulls: kernels vs stones, FD wake, speed"),
                             ("render", run_render, "renderer: frame times, texture cost, GPU vs reference"),
-                            ("surfaces", run_surfaces, "noise, Gerstner, choppy: cost per frame vs physics error")):
+                            ("surfaces", run_surfaces, "noise, Gerstner, choppy: cost per frame vs physics error"),
+                            ("scale", run_scale, "sharded step: overhead, memory per device, bytes per step")):
         s = sub.add_parser(name, help=help_)
         s.add_argument("--json", metavar="PATH")
         s.add_argument("--quick", action="store_true", help="smaller sizes (for CI smoke runs)")
+        if name == "scale":
+            s.add_argument("--huge", action="store_true", help="a 16384² run on 1 and on 4 devices (20 GiB, minutes)")
+        if name == "propagation":
+            s.add_argument("--device", choices=("cpu", "gpu", "tpu"),
+                           help="time the step on this device against its own FFT floor (N = 1024–8192)")
         s.set_defaults(func=fn)
     args = p.parse_args(argv)
     args.func(args)

@@ -124,3 +124,36 @@ def accuracy_rows(progress=print) -> list[dict]:
     for r in rows:
         r["baseline_seconds"] = None
     return rows
+
+
+# -- on an accelerator -----------------------------------------------------------------------
+def device_step_rows(kind: str, sizes=(1024, 2048, 4096, 8192), progress=print) -> list[dict]:
+    """The step on one device of ``kind`` ("gpu", "tpu" or "cpu") against that device's own FFT
+    floor: the same 2 batched rfft2 + 4 batched irfft2, each in its own compiled program,
+    through ``jnp.fft`` (cuFFT on an NVIDIA GPU). Ratio: median over interleaved rounds."""
+    import jax
+
+    try:
+        device = jax.devices(kind)[0]
+    except RuntimeError as exc:
+        raise SystemExit(f"--device {kind}: no such device here ({exc}); jax.devices() = {jax.devices()}") from None
+    rows = []
+    for n in sizes:
+        progress(f"step on {device.platform} n={n}")
+        with jax.default_device(device):
+            grid = Grid(n, 16.0)
+            sim = Simulation(grid, Water(), dt=1 / 30, margin=n // 8)
+            state = sim.drop(sim.initial_state(), Stones(0.0, 0.0, 0.2, 0.01))
+            x = jax.device_put(jnp.zeros((2, n, n), jnp.float32), device)
+            spec = jax.device_put(jnp.zeros((2, n, n // 2 + 1), jnp.complex64), device)
+            forward = jax.jit(jnp.fft.rfft2)
+            inverse = jax.jit(lambda s: jnp.fft.irfft2(s, s=(n, n)))
+            floor = lambda: (forward(x), inverse(spec), inverse(spec))
+            times = interleaved({"step": lambda: sim.step(state), "fft floor": floor},
+                                repeats=15 if n <= 4096 else 7)
+        ratio, q1, q3 = paired_ratio(times, "step", ["fft floor"])
+        rows.append(dict(method="spectral step", device=str(device), n=n, dtype="float32",
+                         seconds=statistics.median(times["step"]), baseline="jnp.fft on the device",
+                         baseline_seconds=statistics.median(times["fft floor"]), ratio=ratio,
+                         ratio_quartiles=[q1, q3], error=float("nan")))
+    return rows

@@ -112,6 +112,8 @@ EXAMPLES = {
     "softness": lambda: 0.1, "decay_time": lambda: 2.0, "choppiness": lambda: 0.5, "order": lambda: 1,
     "sea": lambda: (_field() + 1j * _field()).astype(np.complex64), "hurst": lambda: 1.0, "octaves": lambda: 2,
     "frequency": lambda: 1.0, "floor": lambda: 1e-3, "z": lambda: 0.3, "tile": lambda: 2.0, "step": lambda: 0.01, "period": lambda: 4, "evolution": lambda: 1.0, "time_exponent": lambda: 1.0, 
+    "devices": lambda: jax.devices()[:1], "mesh": lambda: None, "axis": lambda: "rows", "mesh_axis": lambda: "rows", "per_device": lambda: 1, "shards": lambda: 2,
+    "planes": lambda: 2, "itemsize": lambda: 8, "compiled_text": lambda: "%a = f32[4]{0} all-reduce(%b)",
     "fields": lambda: np.zeros((2, N, N), np.float32), "time": lambda: np.float32(0.0), "angle": lambda: 19.5, "time_error": lambda: 0.0, "fn": lambda: (lambda x: x), "damping": lambda: 0.05,
 }
 
@@ -136,6 +138,9 @@ def _dispersion_record():
 
 
 OVERRIDES = {
+    "wavephys.parallel.fft.rfft2": {"x": _field},
+    "wavephys.parallel.fft.irfft2": {"spectrum": lambda: np.ones((N, N // 2 + 1), np.complex64)},
+    "wavephys.parallel.hosts.gather": {"x": _field},
     "wavephys.simulation.driver.Simulation.add_wind": {"wind_speed": lambda: 5.0},
     "wavephys.physics.wind.wind_spectrum": {"wind_speed": lambda: 5.0},
     "wavephys.harness.checks.compare": {"rtol": lambda: 0.1},
@@ -223,13 +228,16 @@ SKIP = {
     "wavephys.plot.WaveFigure",
     # the validation groups and the registry run whole scenes and take no data
     "wavephys.app.registry.check_builtin_scenes",
+    # jax.distributed: a valid call connects to a coordinator (tested with two real processes
+    # in tests/test_parallel.py), and hosts_mesh needs one
+    "wavephys.parallel.hosts.initialize", "wavephys.parallel.hosts.hosts_mesh",
 }
 # the source protocol's hooks are called by the step with the model's own operators
 for cls in ("wavephys.physics.disturbances.Stones", "wavephys.physics.wind.WindSea",
             "wavephys.physics.forcing.Forcing", "wavephys.physics.ship_waves.Ship"):
     SKIP |= {f"{cls}.impulse", f"{cls}.rate", f"{cls}.add"}
 
-NONE_OK = {"resolution", "ship_patch", "damping", "camera", "progress", "limit", "environment", "albedo",
+NONE_OK = {"mesh", "devices", "resolution", "ship_patch", "damping", "camera", "progress", "limit", "environment", "albedo",
            "caustics", "count", "video", "speed", "columns", "mask", "iterations"}
 CHOICES = {"method", "kind", "mode", "cutoff", "spectrum", "illuminant", "gamut", "norm", "normals", "relation",
            "name", "ship_method", "dtype"}

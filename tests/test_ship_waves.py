@@ -104,6 +104,17 @@ def test_patch_waves_and_leak_grows_with_dt():
     assert patch_leak(ship, grid, DEEP, 0.0, 0.9 * dt_max, 16) <= 1e-3 < patch_leak(ship, grid, DEEP, 0.0, 1.1 * dt_max, 16)
 
 
+def test_patch_leak_on_grids_smaller_than_twice_the_patch():
+    """The leak's reference patch is twice as large, or the whole grid where that does not
+    fit (it used to raise for any grid under 4× the patch half-size, e.g. n = 96 with the
+    default 64-point patch); a patch that is the whole periodic grid misses nothing."""
+    ship = Ship(Hull("gaussian", 0.6, 0.3, blur=0.05), straight_path((0.0, 0.0), (1.0, 0.0)), 0.01)
+    grid = Grid(96, 6.0)
+    leaks = [patch_leak(ship, grid, Water(), 0.0, 0.05, half) for half in (16, 32, 48)]
+    assert 0.0 < leaks[1] < leaks[0] < 1e-3  # 32 → the whole grid (48) as reference, no error
+    assert leaks[2] == 0.0
+
+
 def test_patch_guards():
     ship = Ship(Hull("ellipse", 0.6, 0.3), straight_path((0.0, 0.0), (1.0, 0.0)), 0.01)
     grid = Grid(256, 16.0)

@@ -490,12 +490,16 @@ def _patch_kernel(hull: Hull, half: int, dx: float, water: Water, method: str):
 def patch_leak(ship: Ship, grid: Grid, water: Water, t: float, dt: float, half: int,
                method: str = "kernels") -> float:
     """Fraction of one step's new waves a 2M × 2M patch gets wrong: relative energy of the
-    difference from the same waves computed on a patch twice as large (4M × 4M)."""
+    difference from the same waves computed on a patch twice as large (4M × 4M; the whole
+    grid when 4M > n, and 0 when the patch already is the whole grid)."""
     try:
         small, (r0, c0) = ship_patch_waves(ship, grid, water, t, dt, half, method)
     except ValueError:
         return 1.0  # the hull itself does not fit: everything is missed
-    big, (r1, c1) = ship_patch_waves(ship, grid, water, t, dt, 2 * half, method)
+    big_half = min(2 * half, grid.n // 2)
+    if big_half <= half:
+        return 0.0  # the patch is the whole periodic grid: nothing falls outside it
+    big, (r1, c1) = ship_patch_waves(ship, grid, water, t, dt, big_half, method)
     big_on_small = big[r0 - r1:r0 - r1 + 2 * half, c0 - c1:c0 - c1 + 2 * half]
     total = float(jnp.sum(jnp.abs(big) ** 2))
     inside = float(jnp.sum(jnp.abs(small - big_on_small) ** 2))

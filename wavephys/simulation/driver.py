@@ -18,7 +18,9 @@ class Simulation:
 
     Every method calls the pure functions of :mod:`wavephys.simulation.step` with
     :attr:`model`; ``step(sim.model, state)`` equals ``sim.step(state)``. Parameters are
-    those of :class:`~wavephys.simulation.Model` (``dtype`` as a numpy/JAX dtype or its name).
+    those of :class:`~wavephys.simulation.Model` (``dtype`` as a numpy/JAX dtype or its name),
+    and ``devices``: a sequence of jax devices to shard the grid's rows over (a one-axis
+    mesh named ``mesh_axis``; or give a ``mesh`` directly; :mod:`wavephys.parallel`).
 
     Examples
     --------
@@ -32,9 +34,16 @@ class Simulation:
 
     def __init__(self, grid: Grid, water: Water = Water(), dt: float = 1.0 / 30.0, margin: int = 0,
                  cutoff: str = "quadratic", second_order: bool = False, dtype=jnp.float32,
-                 ship_patch: int | None = None, leak_tolerance: float = 1e-3, ship_method: str = "kernels"):
+                 ship_patch: int | None = None, leak_tolerance: float = 1e-3, ship_method: str = "kernels",
+                 devices=None, mesh=None, mesh_axis: str = "rows"):
+        if devices is not None:
+            if mesh is not None:
+                raise ValueError("give devices or mesh, not both")
+            from wavephys.parallel.layout import row_mesh
+
+            mesh = row_mesh(devices, mesh_axis)
         self.model = Model(grid, water, dt, margin, cutoff, second_order, dtype, ship_patch, leak_tolerance,
-                           ship_method)
+                           ship_method, mesh, mesh_axis)
 
     def __repr__(self) -> str:
         return f"Simulation({self.model})"

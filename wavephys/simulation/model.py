@@ -9,17 +9,19 @@ shapes and compiled programs). ``dataclasses.replace(model, water=...)`` makes v
 from __future__ import annotations
 
 import functools
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from typing import NamedTuple, Optional
 
 import jax
 import jax.numpy as jnp
 import numpy as np
+from jax.sharding import Mesh
 
 from wavephys.core.grid import Grid
 from wavephys.core.inputs import check_bool, check_instance, check_int, check_scalar, is_traced
 from wavephys.core.pytree import register
 from wavephys.core.water import Water
+from wavephys.parallel.layout import AXIS, check_mesh, device_count, field_sharding, place, spectrum_sharding, spectrum_width
 from wavephys.physics.boundary import CUTOFF_METHODS, cutoff_mask
 from wavephys.physics.dispersion import angular_frequency, surface_operator
 from wavephys.physics.heights import height_multiplier
@@ -72,6 +74,11 @@ class Model:
         (:func:`wavephys.physics.ship_waves.patch_leak`); a larger leak is refused.
     ship_method : {"kernels", "impulses"}
         A name in :data:`wavephys.physics.ship_waves.SHIP_METHODS`.
+    mesh : jax.sharding.Mesh or None
+        Shard the state by rows over this mesh's axis ``mesh_axis`` (n divisible by its
+        size); the FFTs become slab transforms (:mod:`wavephys.parallel`). None: one device.
+    mesh_axis : str
+        The mesh axis the rows are split over (default ``"rows"``).
 
     Examples
     --------
@@ -91,6 +98,8 @@ class Model:
     ship_patch: Optional[int] = None
     leak_tolerance: float = 1e-3
     ship_method: str = "kernels"
+    mesh: Optional[Mesh] = None
+    mesh_axis: str = AXIS
 
     def __post_init__(self):
         check_instance("grid", self.grid, Grid, "wavephys.Grid")
@@ -108,15 +117,32 @@ class Model:
         check_scalar("leak_tolerance", self.leak_tolerance, lo=0.0, hi=1.0, lo_open=True)
         set_("leak_tolerance", float(self.leak_tolerance))
         SHIP_METHODS.check(self.ship_method, "ship_method")
+        if self.mesh is not None:
+            check_mesh(self.mesh, self.mesh_axis, self.grid.n)
+        elif not isinstance(self.mesh_axis, str):
+            raise TypeError(f"mesh_axis must be a str, got {type(self.mesh_axis).__name__}")
 
     @property
     def real_dtype(self):
         """The model's floating dtype as a numpy dtype."""
         return np.dtype(self.dtype)
 
+    @property
+    def devices(self) -> int:
+        """Devices the rows are split over (1 without a mesh)."""
+        return device_count(self.mesh, self.mesh_axis)
+
+    @property
+    def spectrum_width(self) -> int:
+        """Columns of the model's half spectra: n//2 + 1, padded to a multiple of the
+        devices when sharded (:func:`wavephys.parallel.layout.spectrum_width`)."""
+        n = self.grid.n
+        return n // 2 + 1 if self.mesh is None else spectrum_width(n, self.devices)
+
 
 register(Model, ("grid", "water", "dt"),
-         ("margin", "cutoff", "second_order", "dtype", "ship_patch", "leak_tolerance", "ship_method"))
+         ("margin", "cutoff", "second_order", "dtype", "ship_patch", "leak_tolerance", "ship_method", "mesh",
+          "mesh_axis"))
 
 
 class Operators(NamedTuple):
@@ -141,8 +167,9 @@ class Operators(NamedTuple):
     mask: Optional[jax.Array]
 
 
-def _build(model: Model, dtype) -> Operators:
-    """The multipliers in ``dtype`` (computed in the precision of the model's leaves)."""
+def _build(model: Model, dtype, out_dtype=None) -> Operators:
+    """The multipliers computed in ``dtype`` and returned in ``out_dtype`` (default ``dtype``),
+    in the model's layout."""
     k = model.grid.wavenumber_magnitude(real=True)
     omega = angular_frequency(k, model.water)
     phase = omega * model.dt
@@ -156,7 +183,29 @@ def _build(model: Model, dtype) -> Operators:
         duhamel_sin=jnp.where(pos, jnp.sin(phase) / w, model.dt),
         duhamel_cos=jnp.where(pos, (1.0 - jnp.cos(phase)) / w, 0.0),
         mask=cutoff_mask(model.grid.n, model.margin, model.cutoff, dtype) if model.margin else None)
-    return Operators(*(None if a is None else jnp.asarray(a, dtype) for a in ops))
+    out_dtype = dtype if out_dtype is None else out_dtype
+    return _lay_out(model, Operators(*(None if a is None else jnp.asarray(jnp.asarray(a, dtype), out_dtype)
+                                       for a in ops)))
+
+
+def _lay_out(model: Model, ops: Operators) -> Operators:
+    """Sharded models: multipliers padded to the spectrum width and split by columns, the
+    cutoff mask split by rows, like the arrays they multiply (:mod:`wavephys.parallel`)."""
+    if model.mesh is None:
+        return ops
+    pad = model.spectrum_width - (model.grid.n // 2 + 1)
+    spread = lambda a: place(jnp.pad(a, [(0, 0)] * (a.ndim - 1) + [(0, pad)]),
+                             spectrum_sharding(model.mesh, model.mesh_axis, a.ndim))
+    mask = None if ops.mask is None else place(ops.mask, field_sharding(model.mesh, model.mesh_axis, 2))
+    return Operators(*(spread(a) for a in ops[:-1]), mask)
+
+
+def natural(model: Model, ops: Operators) -> Operators:
+    """The multipliers on the natural rfft2 half spectrum ``(n, n//2 + 1)`` (what sources use)."""
+    if model.mesh is None:
+        return ops
+    half = model.grid.n // 2 + 1
+    return Operators(*(a[..., :half] for a in ops[:-1]), ops.mask)
 
 
 @functools.lru_cache(maxsize=8)
@@ -165,11 +214,17 @@ def _concrete(model: Model) -> Operators:
 
 
 def _build_float64(model: Model) -> Operators:
-    """Concrete models: multipliers computed in float64 on the host, then cast, so that the
-    phase ωΔt keeps its digits for any Δt (docs/physics.md §1.2)."""
+    """Concrete models: multipliers computed in float64, then cast, so that the phase ωΔt
+    keeps its digits for any Δt (docs/physics.md §1.2). A sharded model's are computed in
+    one program whose outputs are split like the spectra: each device computes its own
+    columns, so no device ever holds the whole float64 spectrum."""
     with jax.enable_x64(True):
-        ops = _build(model, jnp.float64)
-        return Operators(*(None if a is None else jnp.asarray(a, model.dtype) for a in ops))
+        if model.mesh is None:
+            return _build(model, jnp.float64, model.dtype)
+        n, mesh, axis = model.grid.n, model.mesh, model.mesh_axis
+        spread = spectrum_sharding(mesh, axis, 2)
+        shardings = Operators(*([spread] * 9), field_sharding(mesh, axis, 2) if model.margin else None)
+        return jax.jit(lambda m: _build(m, jnp.float64, m.dtype), out_shardings=shardings)(model)
 
 
 def operators(model: Model) -> Operators:

@@ -32,7 +32,9 @@ from wavephys.core.inputs import check_array, check_instance, check_int, check_s
 from wavephys.physics.heights import potential_from_height, second_order_correction
 from wavephys.physics.interpolation import hermite_frame
 from wavephys.physics.ring_waves import rotate_pair
-from wavephys.simulation.model import Model, Operators, operators
+from wavephys.parallel.fft import irfft2, rfft2
+from wavephys.parallel.layout import constrain, field_sharding, place, spectrum_sharding
+from wavephys.simulation.model import Model, Operators, natural, operators
 from wavephys.simulation.sources import sort_sources
 from wavephys.simulation.state import State, Surface, advance_clock, split_time, unchecked
 
@@ -41,12 +43,31 @@ __all__ = ["step", "run", "surface", "energy", "frame", "initial_state", "state_
 
 
 # -- the compiled pieces (pure) ---------------------------------------------------------
+def _rfft2(model: Model, fields):
+    """The model's forward transform: ``rfft2``, or the slab transform of a sharded model."""
+    return rfft2(fields, model.mesh, model.mesh_axis)
+
+
+def _irfft2(model: Model, spectra):
+    return irfft2(spectra, model.grid.n, model.mesh, model.mesh_axis)
+
+
+def _widen(model: Model, spectrum):
+    """A source's natural half spectrum ``(..., n, n//2 + 1)`` in the model's layout (padded
+    with zero columns and split by columns when sharded)."""
+    if spectrum is None or model.mesh is None:
+        return spectrum
+    pad = model.spectrum_width - spectrum.shape[-1]
+    spectrum = jnp.pad(spectrum, [(0, 0)] * (spectrum.ndim - 1) + [(0, pad)])
+    return constrain(spectrum, spectrum_sharding(model.mesh, model.mesh_axis, spectrum.ndim))
+
+
 def _spectra(model: Model, ops: Operators, fields, time, impulses):
     """rfft2 of the state with the impulses of t added: (φ̂, χ̂)."""
-    spec = jnp.fft.rfft2(fields)
+    spec = _rfft2(model, fields)
     ph, ch = spec[..., 0, :, :], spec[..., 1, :, :]
     for source in impulses:
-        d_ph, d_ch = source.impulse(model, ops, time)
+        d_ph, d_ch = (_widen(model, d) for d in source.impulse(model, natural(model, ops), time))
         ph = ph if d_ph is None else ph + d_ph
         ch = ch if d_ch is None else ch + d_ch
     return ph, ch
@@ -80,8 +101,9 @@ def _duhamel(model: Model, ops: Operators, source, time):
     source's ``substeps`` M sub-intervals δ = Δt/M, each propagated exactly to the step's end:
     Δψ̂ = Σ_j Ŝ(t + (j + ½)δ)·e^{−iω(M−1−j)δ}(1 − e^{−iωδ})/(iω) = Σ_j Ŝ_j (a_j − i b_j)."""
     m = getattr(source, "substeps", 1)
+    rate = lambda t: _widen(model, source.rate(model, natural(model, ops), t))
     if m == 1:
-        return [(source.rate(model, ops, time + 0.5 * model.dt), ops.duhamel_sin, ops.duhamel_cos)]
+        return [(rate(time + 0.5 * model.dt), ops.duhamel_sin, ops.duhamel_cos)]
     delta = model.dt / m
     pos = ops.omega > 0
     w = jnp.where(pos, ops.omega, 1.0)
@@ -90,7 +112,7 @@ def _duhamel(model: Model, ops: Operators, source, time):
     terms = []
     for j in range(m):
         c, s = jnp.cos(ops.omega * (m - 1 - j) * delta), jnp.sin(ops.omega * (m - 1 - j) * delta)
-        s_hat = source.rate(model, ops, time + (j + 0.5) * delta)
+        s_hat = rate(time + (j + 0.5) * delta)
         terms.append((s_hat, c * big_a - s * big_b, c * big_b + s * big_a))
     return terms
 
@@ -109,9 +131,8 @@ def _inverse(model: Model, ops: Operators, state_spec, surf_spec, time, time_err
 
     Two transforms into two buffers: one transform of all four planes would need a copy to
     split them (measured 23 % slower at N = 2048)."""
-    n = model.grid.n
-    new = jnp.fft.irfft2(state_spec, s=(n, n))
-    surf = jnp.fft.irfft2(surf_spec, s=(n, n))
+    new = _irfft2(model, state_spec)
+    surf = _irfft2(model, surf_spec)
     if ops.mask is not None:
         new = new * ops.mask
     surf = _surface_fields(model, surf)
@@ -132,6 +153,24 @@ def _dt_error(model):
 def _pure_step(model, ops, state, impulses=(), rates=(), dt_error=0.0):
     return _inverse(model, ops, *_forward(model, ops, state.fields, state.time, impulses, rates), state.time,
                     state.time_error, dt_error)
+
+
+def _lay(model: Model, fields):
+    """Fields in the model's layout: split by rows over the mesh of a sharded model."""
+    if model.mesh is None:
+        return fields
+    return place(fields, field_sharding(model.mesh, model.mesh_axis, np.ndim(fields)))
+
+
+def _laid(model: Model, state: State) -> State:
+    if model.mesh is None or is_traced(state):
+        return state
+    ndim = np.ndim(state.fields)
+    sharding = field_sharding(model.mesh, model.mesh_axis, ndim)
+    current = getattr(state.fields, "sharding", None)
+    if current is not None and current.is_equivalent_to(sharding, ndim):
+        return state
+    return unchecked(State, place(state.fields, sharding), state.time, state.time_error)
 
 
 # -- checks -------------------------------------------------------------------------------
@@ -179,7 +218,7 @@ def step(model: Model, state: State, sources=()):
     _check_model(model)
     _check_state(model, state)
     impulses, rates, adders = sort_sources(model, sources)
-    new, surf = _pure_step(model, operators(model), state, impulses, rates, _dt_error(model))
+    new, surf = _pure_step(model, operators(model), _laid(model, state), impulses, rates, _dt_error(model))
     if adders:
         if is_traced(state) or is_traced(model):
             raise TypeError("ships (host-side sources) cannot be stepped under jit/vmap/grad: call step "
@@ -187,7 +226,7 @@ def step(model: Model, state: State, sources=()):
         fields, t = new.fields, state.exact_time
         for source in adders:
             fields = source.add(model, fields, t)
-        new = unchecked(State, fields, new.time, new.time_error)
+        new = unchecked(State, _lay(model, fields), new.time, new.time_error)
     return new, surf
 
 
@@ -210,13 +249,13 @@ def run(model: Model, state: State, steps: int, sources=()):
     if impulses or adders:
         raise ValueError("run takes continuous sources (forcing functions) only: apply impulses (stones, "
                          "wind) with add_source before the loop, and step ships with step()")
-    return _run(model, operators(model), state, rates, steps, _dt_error(model))
+    return _run(model, operators(model), _laid(model, state), rates, steps, _dt_error(model))
 
 
 @jax.jit
 def _surface(model, ops, fields, time):
     ph, ch = _spectra(model, ops, fields, time, ())
-    surf = jnp.fft.irfft2(_surface_spectra(model, ops, ph, ch), s=(model.grid.n,) * 2)
+    surf = _irfft2(model, _surface_spectra(model, ops, ph, ch))
     return unchecked(Surface, _surface_fields(model, surf).astype(model.real_dtype), time)
 
 
@@ -224,7 +263,7 @@ def surface(model: Model, state: State) -> Surface:
     """The surface (η, η̇) of ``state``, without stepping."""
     _check_model(model)
     _check_state(model, state)
-    return _surface(model, operators(model), state.fields, state.time)
+    return _surface(model, operators(model), _laid(model, state).fields, state.time)
 
 
 def energy(model: Model, state: State):
@@ -235,9 +274,9 @@ def energy(model: Model, state: State):
     """
     _check_model(model)
     _check_state(model, state)
-    n = model.grid.n
-    kf = jnp.fft.irfft2(operators(model).K * jnp.fft.rfft2(state.fields), s=(n, n))
-    return model.water.rho * jnp.mean(state.fields * kf, axis=(-3, -2, -1))
+    fields = _laid(model, state).fields
+    kf = _irfft2(model, operators(model).K * _rfft2(model, fields))
+    return model.water.rho * jnp.mean(fields * kf, axis=(-3, -2, -1))
 
 
 def frame(model: Model, before: Surface, after: Surface, s: float):
@@ -253,7 +292,12 @@ def initial_state(model: Model, time: float = 0.0) -> State:
     _check_model(model)
     check_scalar("time", time)
     n = model.grid.n
-    return unchecked(State, jnp.zeros((2, n, n), model.dtype), *split_time(time, model.real_dtype))
+    if model.mesh is None:
+        fields = jnp.zeros((2, n, n), model.dtype)
+    else:  # made in place on every device (no host copy; works across processes)
+        sharding = field_sharding(model.mesh, model.mesh_axis, 3)
+        fields = jax.jit(lambda: jnp.zeros((2, n, n), model.dtype), out_shardings=sharding)()
+    return unchecked(State, fields, *split_time(time, model.real_dtype))
 
 
 def state_from_psi(model: Model, psi, time: float = 0.0) -> State:
@@ -263,7 +307,7 @@ def state_from_psi(model: Model, psi, time: float = 0.0) -> State:
     check_array("psi", psi, complex_ok=True, ndim=2, shape_tail=(n, n))
     check_scalar("time", time)
     psi = jnp.asarray(psi)
-    return unchecked(State, jnp.stack([jnp.real(psi), jnp.imag(psi)]).astype(model.dtype),
+    return unchecked(State, _lay(model, jnp.stack([jnp.real(psi), jnp.imag(psi)]).astype(model.dtype)),
                      *split_time(time, model.real_dtype))
 
 
@@ -284,14 +328,15 @@ def add_height(model: Model, state: State, eta) -> State:
     check_array("eta", eta, ndim=2, shape_tail=(n, n))
     _check_height_units(eta, model.grid)
     psi = potential_from_height(jnp.asarray(eta, model.dtype), model.grid, model.water)
-    return unchecked(State, state.fields + jnp.stack([psi.real, psi.imag]).astype(model.dtype), state.time,
-                     state.time_error)
+    state = _laid(model, state)
+    return unchecked(State, state.fields + _lay(model, jnp.stack([psi.real, psi.imag]).astype(model.dtype)),
+                     state.time, state.time_error)
 
 
 @jax.jit
 def _apply(model, ops, fields, time, impulses):
     ph, ch = _spectra(model, ops, fields, time, impulses)
-    return jnp.fft.irfft2(jnp.stack([ph, ch], axis=-3), s=(model.grid.n,) * 2).astype(model.real_dtype)
+    return _irfft2(model, jnp.stack([ph, ch], axis=-3)).astype(model.real_dtype)
 
 
 def add_source(model: Model, state: State, source) -> State:
@@ -302,8 +347,8 @@ def add_source(model: Model, state: State, source) -> State:
     if not impulses:
         raise TypeError(f"source must be an impulse source (Stones, WindSea), got {type(source).__name__}: "
                         f"continuous sources and ships act during step()")
-    return unchecked(State, _apply(model, operators(model), state.fields, state.time, impulses), state.time,
-                     state.time_error)
+    return unchecked(State, _apply(model, operators(model), _laid(model, state).fields, state.time, impulses),
+                     state.time, state.time_error)
 
 
 def checked(fn):
