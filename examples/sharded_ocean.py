@@ -5,7 +5,8 @@ Run it as one process (all of this machine's devices; on a CPU, add
 
     python examples/sharded_ocean.py --n 512 --steps 100 --out eta.npz
 
-as plain processes, one per host or per GPU (every process runs the same command)::
+as plain processes, one per host (every process runs the same command and uses all of
+its host's devices; for one process per GPU give each its own ``CUDA_VISIBLE_DEVICES``)::
 
     WAVEPHYS_COORDINATOR=host0:12355 WAVEPHYS_NUM_PROCESSES=2 WAVEPHYS_PROCESS_ID=0 python examples/sharded_ocean.py
     WAVEPHYS_COORDINATOR=host0:12355 WAVEPHYS_NUM_PROCESSES=2 WAVEPHYS_PROCESS_ID=1 python examples/sharded_ocean.py

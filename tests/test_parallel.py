@@ -66,8 +66,8 @@ def test_sharded_step_equals_one_device_over_a_family(checks):
 
 
 def test_sharded_run_loop_and_wrapper(checks):
-    """Simulation(..., devices=4 host devices): drop, run (scan) and energy equal one device
-    (the states to ≤ 1e-6; bit-identical on this grid)."""
+    """Simulation(..., devices=4 host devices): drop, add_height, run (scan) and energy equal
+    one device (the states to ≤ 1e-6)."""
     loop = checks["loop"]
     assert "rows" in loop["run_sharding"]
     assert loop["run_eta"] <= 1e-6 and loop["run_state"] <= 1e-6
@@ -77,7 +77,7 @@ def test_sharded_run_loop_and_wrapper(checks):
 
 def test_memory_per_device_falls_as_one_over_devices(checks):
     """The compiled step's arguments + outputs + temporaries per device (memory analysis),
-    N = 256: within 20 % of (one device)/P, and halving from 2 to 4 devices."""
+    N = 128: within 20 % of (one device)/P, and halving from 2 to 4 devices."""
     rows = {r["devices"]: r for r in checks["programs"]}
     one = rows[1]["bytes_per_device"]
     for p in (2, 4):
@@ -222,4 +222,23 @@ def test_bad_meshes_and_hosts():
     with pytest.raises(TypeError, match="items must be"):
         sweep(lambda m: m, 5)
     with pytest.raises(ValueError, match="per_device"):
-        sweep(lambda m: m, [1.0], per_device=0)
+        sweep(lambda m: m, [], per_device=0)
+    # one structure, two leaf shapes: two programs, results in order
+    assert [float(v) for v in sweep(lambda a: a.sum(), [np.ones(3), np.ones(4), np.ones(3)])] == [3.0, 4.0, 3.0]
+    with pytest.raises(TypeError, match="mesh_axis"):
+        Simulation(Grid(32, 1.0), devices=[cpu], mesh_axis=3)
+
+
+def test_initialize_names_bad_settings(monkeypatch):
+    """Refused before connecting to anything (jax.distributed is never started here)."""
+    from wavephys.parallel import initialize
+
+    monkeypatch.setenv("WAVEPHYS_NUM_PROCESSES", "two")
+    with pytest.raises(ValueError, match="WAVEPHYS_NUM_PROCESSES"):
+        initialize("127.0.0.1:1")
+    monkeypatch.delenv("WAVEPHYS_NUM_PROCESSES")
+    monkeypatch.setenv("WAVEPHYS_COORDINATOR", "nowhere")
+    with pytest.raises(ValueError, match="WAVEPHYS_COORDINATOR"):
+        initialize()
+    with pytest.raises(ValueError, match="process_id must be < num_processes"):
+        initialize("127.0.0.1:1", 2, 5)

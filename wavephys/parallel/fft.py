@@ -129,7 +129,8 @@ def collective_bytes(compiled_text: str) -> dict[str, int]:
             blocks = len(sizes)
             if blocks == 1:  # the array form: one operand split over the replica group
                 group = re.search(r"replica_groups=\{\{([0-9,]*)\}", line)
-                blocks = len(group.group(1).split(",")) if group else 1
+                iota = re.search(r"replica_groups=\[\d+,(\d+)\]<=", line)  # [groups,size]<=[n]
+                blocks = len(group.group(1).split(",")) if group else (int(iota.group(1)) if iota else 1)
             sent = sum(sizes) * (blocks - 1) // blocks if blocks > 1 else 0
         else:
             sent = sum(sizes)

@@ -1,6 +1,7 @@
 """Many hosts: ``jax.distributed`` wiring for the sharded simulation and the sweeps.
 
-Every process runs the same script. :func:`initialize` connects it to the others (on
+Every process runs the same script (one per host, each using all of its host's devices;
+for one process per GPU, give each its own ``CUDA_VISIBLE_DEVICES`` or ``local_device_ids``). :func:`initialize` connects it to the others (on
 CPU it selects the gloo collectives, so plain processes on one or many machines work);
 afterwards ``jax.devices()`` lists the devices of every process, :func:`hosts_mesh` puts
 them all on one mesh axis, and a ``Model(..., mesh=hosts_mesh())`` steps one grid over all
@@ -27,6 +28,13 @@ __all__ = ["initialize", "is_initialized", "hosts_mesh", "gather"]
 _ENV = ("WAVEPHYS_COORDINATOR", "WAVEPHYS_NUM_PROCESSES", "WAVEPHYS_PROCESS_ID")
 
 
+def _env_int(name: str, text: str) -> int:
+    try:
+        return int(text)
+    except ValueError:
+        raise ValueError(f"the environment variable {name} must be an integer, got {text!r}") from None
+
+
 def is_initialized() -> bool:
     """True once ``jax.distributed`` is connected (by :func:`initialize` or by hand)."""
     return bool(jax.distributed.is_initialized())
@@ -44,11 +52,12 @@ def initialize(coordinator_address: str | None = None, num_processes: int | None
     env = [os.environ.get(k) for k in _ENV]
     coordinator_address = coordinator_address if coordinator_address is not None else env[0]
     if coordinator_address is not None and (not isinstance(coordinator_address, str) or ":" not in coordinator_address):
-        raise ValueError(f"coordinator_address must be 'host:port', got {describe(coordinator_address)}")
+        where = f" (from {_ENV[0]})" if env[0] is not None and coordinator_address == env[0] else ""
+        raise ValueError(f"coordinator_address{where} must be 'host:port', got {describe(coordinator_address)}")
     if num_processes is None and env[1] is not None:
-        num_processes = int(env[1])
+        num_processes = _env_int(_ENV[1], env[1])
     if process_id is None and env[2] is not None:
-        process_id = int(env[2])
+        process_id = _env_int(_ENV[2], env[2])
     if num_processes is not None:
         num_processes = check_int("num_processes", num_processes, lo=1)
     if process_id is not None:
@@ -78,9 +87,11 @@ def hosts_mesh(axis: str = AXIS):
 def gather(x) -> np.ndarray:
     """A (possibly sharded, possibly multi-process) array of finite numbers as one numpy
     array in every process."""
-    if not isinstance(x, jax.Array) or x.is_fully_addressable:
-        check_array("x", x)
-    return _gather(x)
+    if not (isinstance(x, jax.Array) or hasattr(x, "__array__") or isinstance(x, (int, float, list, tuple))):
+        raise TypeError(f"x must be an array, got {describe(x)}")
+    out = _gather(x)
+    check_array("x", out)  # the same check in one process and across processes
+    return out
 
 
 def _gather(x) -> np.ndarray:

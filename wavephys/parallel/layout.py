@@ -56,8 +56,8 @@ def check_mesh(mesh, axis: str, n: int) -> int:
     if not isinstance(axis, str):
         raise TypeError(f"mesh_axis must be a str, got {describe(axis)}")
     if axis not in mesh.axis_names:
-        raise ValueError(f"mesh has no axis named {axis!r} (its axes: {tuple(mesh.axis_names)}): "
-                         f"name the axis to shard the rows over with mesh_axis")
+        raise ValueError(f"mesh has no axis named {axis!r} (its axes: {tuple(mesh.axis_names)}): pass the name "
+                         f"of the axis to split the rows over (mesh_axis={mesh.axis_names[0]!r}, for example)")
     kinds = sorted({d.platform for d in mesh.devices.flat})
     if len(kinds) > 1:
         raise ValueError(f"mesh devices must all be of one kind, got a mix of {kinds}")

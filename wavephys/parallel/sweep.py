@@ -46,17 +46,18 @@ def sweep(fn: Callable, items: Sequence, *, devices=None, per_device: int = 1) -
     if isinstance(items, (str, bytes)) or not hasattr(items, "__len__"):
         raise TypeError(f"items must be a sequence of pytrees (models, scenes), got {describe(items)}")
     items = list(items)
+    per_device = check_int("per_device", per_device, lo=1)
     if not items:
         return []
-    per_device = check_int("per_device", per_device, lo=1)
     mesh = row_mesh(jax.devices() if devices is None else devices, BATCH)
     chunk = mesh.size * per_device
-    groups: dict = {}
+    groups: dict = {}  # one program per structure and leaf shapes
     for i, item in enumerate(items):
         leaves, tree = jax.tree_util.tree_flatten(item)
-        groups.setdefault(tree, []).append((i, leaves))
+        shapes = tuple((np.shape(a), np.result_type(a).str) for a in leaves)
+        groups.setdefault((tree, shapes), []).append((i, leaves))
     out: list = [None] * len(items)
-    for tree, members in groups.items():
+    for (tree, _), members in groups.items():
         batched = _compiled(fn, tree, mesh)
         for start in range(0, len(members), chunk):
             part = members[start:start + chunk]

@@ -36,6 +36,8 @@ class Simulation:
                  cutoff: str = "quadratic", second_order: bool = False, dtype=jnp.float32,
                  ship_patch: int | None = None, leak_tolerance: float = 1e-3, ship_method: str = "kernels",
                  devices=None, mesh=None, mesh_axis: str = "rows"):
+        if not isinstance(mesh_axis, str) or not mesh_axis:
+            raise TypeError(f"mesh_axis must be a non-empty str, got {type(mesh_axis).__name__}")
         if devices is not None:
             if mesh is not None:
                 raise ValueError("give devices or mesh, not both")

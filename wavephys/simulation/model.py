@@ -9,7 +9,7 @@ shapes and compiled programs). ``dataclasses.replace(model, water=...)`` makes v
 from __future__ import annotations
 
 import functools
-from dataclasses import dataclass, replace
+from dataclasses import dataclass
 from typing import NamedTuple, Optional
 
 import jax
@@ -128,7 +128,7 @@ class Model:
         return np.dtype(self.dtype)
 
     @property
-    def devices(self) -> int:
+    def device_count(self) -> int:
         """Devices the rows are split over (1 without a mesh)."""
         return device_count(self.mesh, self.mesh_axis)
 
@@ -137,7 +137,7 @@ class Model:
         """Columns of the model's half spectra: n//2 + 1, padded to a multiple of the
         devices when sharded (:func:`wavephys.parallel.layout.spectrum_width`)."""
         n = self.grid.n
-        return n // 2 + 1 if self.mesh is None else spectrum_width(n, self.devices)
+        return n // 2 + 1 if self.mesh is None else spectrum_width(n, self.device_count)
 
 
 register(Model, ("grid", "water", "dt"),

@@ -22,6 +22,7 @@ under a user's ``jit``/``vmap``/``grad`` they fuse into the caller's program.
 
 from __future__ import annotations
 
+import functools
 from functools import partial
 
 import jax
@@ -53,8 +54,9 @@ def _irfft2(model: Model, spectra):
 
 
 def _widen(model: Model, spectrum):
-    """A source's natural half spectrum ``(..., n, n//2 + 1)`` in the model's layout (padded
-    with zero columns and split by columns when sharded)."""
+    """A source's half spectrum in the model's layout: a natural ``(..., n, n//2 + 1)`` one is
+    padded with zero columns and split by columns when sharded; one already in the padded
+    layout (a source that used the model's own transform) is kept."""
     if spectrum is None or model.mesh is None:
         return spectrum
     pad = model.spectrum_width - spectrum.shape[-1]
@@ -295,9 +297,13 @@ def initial_state(model: Model, time: float = 0.0) -> State:
     if model.mesh is None:
         fields = jnp.zeros((2, n, n), model.dtype)
     else:  # made in place on every device (no host copy; works across processes)
-        sharding = field_sharding(model.mesh, model.mesh_axis, 3)
-        fields = jax.jit(lambda: jnp.zeros((2, n, n), model.dtype), out_shardings=sharding)()
+        fields = _zeros(n, model.dtype, field_sharding(model.mesh, model.mesh_axis, 3))()
     return unchecked(State, fields, *split_time(time, model.real_dtype))
+
+
+@functools.lru_cache(maxsize=16)
+def _zeros(n: int, dtype: str, sharding):
+    return jax.jit(lambda: jnp.zeros((2, n, n), dtype), out_shardings=sharding)
 
 
 def state_from_psi(model: Model, psi, time: float = 0.0) -> State:
@@ -327,10 +333,20 @@ def add_height(model: Model, state: State, eta) -> State:
     n = model.grid.n
     check_array("eta", eta, ndim=2, shape_tail=(n, n))
     _check_height_units(eta, model.grid)
+    if model.mesh is not None:  # fluid at rest: χ̂ −= (ω/K)·η̂, with the model's own (slab) transforms
+        state = _laid(model, state)
+        eta = _lay(model, np.asarray(eta, model.dtype))
+        return unchecked(State, _add_height_sharded(model, operators(model), state.fields, eta), state.time,
+                         state.time_error)
     psi = potential_from_height(jnp.asarray(eta, model.dtype), model.grid, model.water)
-    state = _laid(model, state)
-    return unchecked(State, state.fields + _lay(model, jnp.stack([psi.real, psi.imag]).astype(model.dtype)),
-                     state.time, state.time_error)
+    return unchecked(State, state.fields + jnp.stack([psi.real, psi.imag]).astype(model.dtype), state.time,
+                     state.time_error)
+
+
+@jax.jit
+def _add_height_sharded(model, ops, fields, eta):
+    chi = _irfft2(model, -ops.inverse_height * _rfft2(model, eta)).astype(model.real_dtype)
+    return fields + jnp.stack([jnp.zeros_like(chi), chi])
 
 
 @jax.jit
