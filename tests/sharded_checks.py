@@ -189,25 +189,11 @@ def bad_inputs():
 if __name__ == "__main__":
     what = sys.argv[1:] or ["family", "loop", "programs", "sweeps", "errors", "example"]
     result = {}
-    import time as _time
-
-    _t0 = _time.perf_counter()
-    _lap = lambda name: print(f"{name}: {_time.perf_counter() - _t0:.1f} s", file=sys.stderr, flush=True)
-    if "family" in what:
-        _lap("start family")
-        result["family"] = family()
-    if "loop" in what:
-        _lap("start loop")
-        result["loop"] = loop_and_wrapper()
-    if "programs" in what:
-        _lap("start programs")
-        result["programs"] = programs()
-    if "sweeps" in what:
-        _lap("start sweeps")
-        result["sweeps"] = sweeps()
-    if "errors" in what:
-        _lap("start errors")
-        result["errors"] = bad_inputs()
+    checks = {"family": family, "loop": loop_and_wrapper, "programs": programs, "sweeps": sweeps,
+              "errors": bad_inputs}
+    for name in what:
+        if name in checks:
+            result[name] = checks[name]()
     if "example" in what:  # examples/sharded_ocean.py in this process: the two-process test's reference
         import runpy
 
