@@ -1,4 +1,4 @@
-"""``python -m bench {propagation,boundaries,optics,ship,render,surfaces,scale} [--json PATH] [--quick]``.
+"""``python -m bench {propagation,boundaries,optics,ship,render,surfaces,scale,calibrate,planner} [--json PATH] [--quick]``.
 
 Each writes its rows as JSON and its charts as PNG next to it (default
 ``bench/results/``) and prints a table.
@@ -192,6 +192,27 @@ def run_scale(args) -> None:
     _write(rows, {}, Path(args.json or f"bench/results/scale{'_huge' if args.huge else ''}.json"))
 
 
+def run_calibrate(args) -> None:
+    from bench.planner import CAL_PATH, calibrate
+
+    data = calibrate(_say)
+    print(f"kappa {data['kappa']:.3g}; step at n=128 {1e3 * data['step']['first'][6]:.3f} ms; wrote {CAL_PATH}")
+
+
+def run_planner(args) -> None:
+    from bench import planner
+
+    rows = planner.proof_rows(12 if args.quick else 50, progress=_say)
+    ok = [r for r in rows if "measured_error" in r]
+    within = sum(r["measured_error"] <= r["tolerance"] for r in ok)
+    ratios = [r["measured_error"] / r["predicted_error"] for r in ok if r["predicted_error"] > 0]
+    savings = sorted(r["measured_saving"] for r in ok)
+    print(f"{len(ok)} scenes planned ({len(rows) - len(ok)} infeasible); {within} within tolerance; "
+          f"measured/predicted error worst {max(ratios):.3g}, median {sorted(ratios)[len(ratios) // 2]:.3g}; "
+          f"measured saving median ×{savings[len(savings) // 2]:.2f} (range ×{savings[0]:.2f}–×{savings[-1]:.2f})")
+    _write(rows, planner.figures(rows), Path(args.json or "bench/results/planner.json"))
+
+
 def main(argv=None) -> int:
     p = argparse.ArgumentParser(prog="python -m bench", description=__doc__.split("\n\n")[0])
     sub = p.add_subparsers(dest="which", required=True)
@@ -201,7 +222,9 @@ def main(argv=None) -> int:
                             ("ship", run_ship, "moving hulls: kernels vs stones, FD wake, speed"),
                             ("render", run_render, "renderer: frame times, texture cost, GPU vs reference"),
                             ("surfaces", run_surfaces, "noise, Gerstner, choppy: cost per frame vs physics error"),
-                            ("scale", run_scale, "sharded step: overhead, memory per device, bytes per step")):
+                            ("scale", run_scale, "sharded step: overhead, memory per device, bytes per step"),
+                            ("calibrate", run_calibrate, "measure the planner's cost model (writes its calibration)"),
+                            ("planner", run_planner, "the planner's proof over generated scenes")):
         s = sub.add_parser(name, help=help_)
         s.add_argument("--json", metavar="PATH")
         s.add_argument("--quick", action="store_true", help="smaller sizes (for CI smoke runs)")

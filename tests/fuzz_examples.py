@@ -117,6 +117,45 @@ EXAMPLES = {
     "fields": lambda: np.zeros((2, N, N), np.float32), "time": lambda: np.float32(0.0), "angle": lambda: 19.5, "time_error": lambda: 0.0, "fn": lambda: (lambda x: x), "damping": lambda: 0.05,
 }
 
+def _plan_scene():
+    from wavephys.planner import Scene, StoneSpec
+
+    return Scene(1.0, 1.0 / 32, depth=0.5, open_water=False, duration=2 / 30, fps=30.0, height_range=0.01,
+                 stones=(StoneSpec(0.1, -0.1, 0.1, 0.005),), name="fuzz")
+
+
+def _scene_model():
+    from wavephys.planner import SceneModel
+
+    return SceneModel(_plan_scene())
+
+
+def _plan():
+    from wavephys.planner import plan
+
+    return plan(_plan_scene(), 1e-3)
+
+
+def _plan_output():
+    from wavephys.planner import run
+
+    return run(_plan_scene(), _scene_model())
+
+
+def _scene_toml():
+    path = TMP / "scene.toml"
+    path.write_text('extent = 1.0\npixel = 0.03125\ndepth = 0.5\nopen_water = false\nduration = 0.0667\n'
+                    '[[stones]]\nx = 0.1\ny = -0.1\nradius = 0.1\ndepth = 0.005\n')
+    return path
+
+
+_PLANNER = {"scene": _plan_scene, "model": _scene_model}
+_SCENE_FIELDS = {"extent": lambda: 1.0, "pixel": lambda: 1.0 / 32, "depth": lambda: 0.5, "duration": lambda: 2 / 30,
+                 "fps": lambda: 30.0, "height_range": lambda: 0.01, "water": Water, "name": lambda: "fuzz",
+                 "stones": lambda: _plan_scene().stones, "ships": lambda: (), "wind": lambda: None,
+                 "open_water": lambda: False}
+
+
 def _npz():
     from optics.rendering.textures import save_npz
 
@@ -138,6 +177,31 @@ def _dispersion_record():
 
 
 OVERRIDES = {
+    "wavephys.planner.scene.Scene": _SCENE_FIELDS,
+    "wavephys.planner.scene.Scene.from_dict": {"data": lambda: _plan_scene().as_dict(), "name": lambda: "fuzz"},
+    "wavephys.planner.scene.Scene.from_toml": {"path": _scene_toml},
+    "wavephys.planner.scene.StoneSpec": {"x": lambda: 0.0, "y": lambda: 0.0, "radius": lambda: 0.1,
+                                         "depth": lambda: 0.01},
+    "wavephys.planner.scene.ShipSpec": {"x": lambda: 0.0, "y": lambda: 0.0, "speed": lambda: 1.0,
+                                        "heading": lambda: 0.0, "length": lambda: 2.0, "width": lambda: 0.8,
+                                        "strength": lambda: 0.02},
+    "wavephys.planner.scene.ShipSpec.position": {"t": lambda: 1.0},
+    "wavephys.planner.scene.WindSpec": {"speed": lambda: 5.0, "direction": lambda: 0.0, "amplitude": lambda: 1e-4,
+                                        "seed": lambda: 0},
+    "wavephys.planner.model.SceneModel": {"scene": _plan_scene, "choices": lambda: __import__(
+        "wavephys.planner", fromlist=["Choices"]).Choices(), "dtype": lambda: "float32"},
+    "wavephys.planner.plan.plan": {"scene": _plan_scene, "tolerance": lambda: 1e-3, "colour_tolerance": lambda: 0.01,
+                                   "budget": lambda: 100.0},
+    "wavephys.planner.plan.full_model": {"scene": _plan_scene}, "wavephys.planner.plan.candidates": {"scene": _plan_scene},
+    "wavephys.planner.plan.colour_errors": {"scene": _plan_scene},
+    "wavephys.planner.runner.run": _PLANNER,
+    "wavephys.planner.runner.shade": {**_PLANNER, "heights": lambda: np.zeros((32, 32))},
+    "wavephys.planner.runner.compare": {"output": _plan_output, "reference": _plan_output},
+    "wavephys.planner.plan.Plan.to_json": {"path": lambda: TMP / "plan.json"},
+    "wavephys.planner.charts.plot_plan": {"p": _plan, "measured": lambda: None},
+    "wavephys.planner.generate.generate_scenes": {"count": lambda: 2, "seed": lambda: 0},
+    "wavephys.planner.builtin.builtin_scene": {"name": lambda: "lake"},
+    "wavephys.planner.builtin.builtin_path": {"name": lambda: "lake"},
     "wavephys.parallel.fft.rfft2": {"x": _field},
     "wavephys.parallel.fft.irfft2": {"spectrum": lambda: np.ones((N, N // 2 + 1), np.complex64)},
     "wavephys.parallel.hosts.gather": {"x": _field},
@@ -220,6 +284,12 @@ OVERRIDES = {
 }
 
 SKIP = {
+    # the planner's answers and records, made by it (their fields are what it predicted)
+    "wavephys.planner.plan.Term", "wavephys.planner.plan.Candidate", "wavephys.planner.plan.Infeasible",
+    "wavephys.planner.plan.Plan",
+    # the report runs every section (minutes); its options are checked by tests/test_report.py
+    "wavephys.app.report.build_report",
+    "wavephys.planner.runner.Output",
     # result records, made by the library and returned (their fields are what was measured)
     "wavephys.harness.wake.WakeAngle", "wavephys.physics.wake.CuspLine", "wavephys.harness.energy.Energy",
     "wavephys.harness.dispersion.DispersionSamples", "wavephys.physics.stokes.StokesWave",
@@ -237,7 +307,7 @@ for cls in ("wavephys.physics.disturbances.Stones", "wavephys.physics.wind.WindS
             "wavephys.physics.forcing.Forcing", "wavephys.physics.ship_waves.Ship"):
     SKIP |= {f"{cls}.impulse", f"{cls}.rate", f"{cls}.add"}
 
-NONE_OK = {"mesh", "devices", "resolution", "ship_patch", "damping", "camera", "progress", "limit", "environment", "albedo",
+NONE_OK = {"wind", "colour_tolerance", "budget", "measured", "mesh", "devices", "resolution", "ship_patch", "damping", "camera", "progress", "limit", "environment", "albedo",
            "caustics", "count", "video", "speed", "columns", "mask", "iterations"}
 CHOICES = {"method", "kind", "mode", "cutoff", "spectrum", "illuminant", "gamut", "norm", "normals", "relation",
            "name", "ship_method", "dtype"}
@@ -278,7 +348,8 @@ RANGE_FREE = {("wavephys.physics.wake.GaussianPressure", "amplitude"),  # signed
               ("wavephys.harness.checks.Check", "tolerance")}  # 0 for bound rows
 INF_OK = {"depth", "limit", "expected", "measured"}
 NAN_OK = {"measured"}
-FREE_TEXT = {("optics.rendering.renderer.Renderer.texture", "name")}  # any slot name is valid
+FREE_TEXT = {("optics.rendering.renderer.Renderer.texture", "name"),  # any slot name is valid
+             ("wavephys.planner.scene.Scene", "name"), ("wavephys.planner.scene.Scene.from_dict", "name")}
 # results that hold NaN by design, for huge but valid inputs (documented in the function)
 NAN_RESULT_OK = {"wavephys.models.finite_difference.fd_angular_frequency"}  # no real ω where unstable  # a Check row whose measurement gave NaN is a failed row, by design
 
@@ -306,6 +377,11 @@ def instance(cls):
                   HullSource: lambda: HullSource(Hull("gaussian", 0.3, 0.15)),
                   DispersionSamples: EXAMPLES["samples"], Check: EXAMPLES["check"],
                   GerstnerWaves: lambda: GerstnerWaves(EXAMPLES["wavevectors"](), EXAMPLES["amplitudes"]())}
+        from wavephys import planner as pl
+
+        makers.update({pl.Scene: _plan_scene, pl.SceneModel: _scene_model, pl.Plan: _plan, pl.Choices: pl.Choices,
+                       pl.ShipSpec: lambda: pl.ShipSpec(0.0, 0.0, 1.0), pl.StoneSpec: lambda: pl.StoneSpec(0, 0, 0.1, 0.01),
+                       pl.WindSpec: lambda: pl.WindSpec(5.0)})
         for base, make in makers.items():
             if issubclass(cls, base):
                 _INSTANCES[cls] = make()

@@ -18,7 +18,8 @@ Layers, bottom to top (``docs/architecture.md``):
 * :mod:`wavephys.checks` — the built-in validations of the wave physics;
 * :mod:`wavephys.plot` — figures;
 * :mod:`wavephys.app` — the ``wavephys`` command, built-in scenes and the check
-  registry: the only code that uses both wavephys and :mod:`optics`.
+  registry, and :mod:`wavephys.planner` — the scene planner: the only code that uses
+  both wavephys and :mod:`optics`.
 
 Importing ``wavephys`` is cheap: names load on first use. Old module paths
 (``wavephys.dispersion``, ``wavephys.validate``, …) still import.

@@ -4,6 +4,8 @@
   wavephys validate            run the built-in validations, expected against measured
   wavephys render              render a built-in scene with the headless renderer
   wavephys textures            export a built-in scene's textures
+  wavephys plan SCENE          the cheapest model that meets a tolerance (the scene planner)
+  wavephys report --out DIR    one self-contained HTML page of what is measured
 """
 
 from __future__ import annotations
@@ -13,6 +15,7 @@ import json
 import math
 import sys
 import time
+from pathlib import Path
 
 EXIT_CODES = """exit status:
   0  done (every validation row ok)
@@ -213,6 +216,74 @@ def cmd_textures(args, parser) -> int:
     return 0
 
 
+def _tolerance(text: str):
+    """A tolerance: metres ("0.001") or height-texture quanta ("0.5q")."""
+    quanta = text.strip().lower().endswith("q")
+    try:
+        value = float(text.strip()[:-1] if quanta else text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"expected metres (0.001) or quanta (0.5q), got {text!r}") from None
+    if not math.isfinite(value) or value <= 0:
+        raise argparse.ArgumentTypeError(f"must be > 0, got {text}")
+    return ("q" if quanta else "m", value)
+
+
+def cmd_plan(args, parser) -> int:
+    from wavephys.core.files import output_file
+
+    json_path = _checked(parser, output_file, args.json, "--json", (".json",)) if args.json else None
+    chart_path = _checked(parser, output_file, args.chart, "--chart", (".png",)) if args.chart else None
+    from wavephys.planner import BUILTIN_SCENES, Infeasible, Scene, builtin_scene, plan
+
+    try:
+        scene = builtin_scene(args.scene) if args.scene in BUILTIN_SCENES else Scene.from_toml(Path(args.scene))
+    except FileNotFoundError as exc:
+        parser.error(f"{exc} (or name a built-in scene: {', '.join(BUILTIN_SCENES)})")
+    except (TypeError, ValueError) as exc:
+        parser.error(f"{args.scene}: {exc}")
+    unit, value = args.tolerance
+    tolerance = value * scene.height_quantum if unit == "q" else value
+    colour = None if args.colour_tolerance is None else args.colour_tolerance * scene.image_quantum
+    try:
+        p = plan(scene, tolerance, colour, args.budget)
+    except Infeasible as exc:
+        print(f"wavephys plan: {exc}", file=sys.stderr)
+        return 1
+    print(p.card())
+    if json_path is not None:
+        p.to_json(json_path)
+        print(f"wrote {json_path}")
+    if chart_path is not None:
+        from wavephys.core.files import atomic_path
+        from wavephys.planner.charts import plot_plan
+
+        with atomic_path(chart_path) as tmp:
+            plot_plan(p).savefig(tmp, dpi=110, format="png")
+        print(f"wrote {chart_path}")
+    return 0
+
+
+def cmd_report(args, parser) -> int:
+    from wavephys.core.files import output_folder
+
+    out = _checked(parser, output_folder, args.out, "--out")
+    if args.validation is not None and not Path(args.validation).is_file():
+        parser.error(f"--validation: {args.validation!r} is not a file (write one with wavephys validate --json)")
+    from wavephys.app.registry import registry
+
+    if args.checks:
+        unknown = [c for c in args.checks if c not in registry()]
+        if unknown:
+            parser.error(f"unknown check(s) {', '.join(unknown)}; 'wavephys validate --list' names them")
+    from wavephys.app.report import build_report
+
+    start = time.perf_counter()
+    path = build_report(out, args.checks, args.validation, args.figures, args.quick,
+                        progress=lambda m: print(m, file=sys.stderr, flush=True))
+    print(f"wrote {path} in {time.perf_counter() - start:.0f} s")
+    return 0
+
+
 def _version() -> str:
     from wavephys import __version__
 
@@ -259,6 +330,29 @@ def build_parser() -> argparse.ArgumentParser:
     t.add_argument("--n", type=_int(64, even=True), default=256, help="texels per side (even, ≥ 64)")
     t.add_argument("--time", type=_float(0.0), default=1.0, help="scene time, s")
     t.set_defaults(func=cmd_textures)
+    pl = sub.add_parser("plan", help="the cheapest model that meets a tolerance (the scene planner)",
+                        epilog=EXIT_CODES + "\n  1  (plan) no model meets the tolerance", formatter_class=fmt,
+                        description="Plan a scene (a TOML file, or a built-in: ripples, ocean, pond, lake, harbour): "
+                                    "print its model card.")
+    pl.add_argument("scene", help="a scene TOML file or a built-in scene's name")
+    pl.add_argument("--tolerance", type=_tolerance, default=("q", 0.5),
+                    help="largest height error: metres (0.001) or height-texture quanta (0.5q, the default)")
+    pl.add_argument("--colour-tolerance", type=_float(0.0, open_lo=True), default=None, metavar="QUANTA",
+                    help="largest colour error in image quanta (default 1)")
+    pl.add_argument("--budget", type=_float(0.0, open_lo=True), default=None, metavar="SECONDS",
+                    help="refuse plans whose predicted cost exceeds this")
+    pl.add_argument("--json", metavar="PATH", help="also write the model card as JSON")
+    pl.add_argument("--chart", metavar="PATH", help="draw the Pareto front and error budget (a .png)")
+    pl.set_defaults(func=cmd_plan)
+    rp = sub.add_parser("report", help="one self-contained HTML page of what is measured", epilog=EXIT_CODES,
+                        formatter_class=fmt, description="Validation table, wake pattern and angles, ring waves, bench "
+                                                         "charts, model cards, rendered frames: DIR/report.html.")
+    rp.add_argument("--out", default="wavephys-report", help="output folder (created if its parent exists)")
+    rp.add_argument("--checks", nargs="+", metavar="NAME", help="run only these validations (default: all)")
+    rp.add_argument("--validation", metavar="JSON", help="show this 'wavephys validate --json' table instead")
+    rp.add_argument("--figures", metavar="DIR", help="the bench charts' folder (default: the checkout's bench/figures)")
+    rp.add_argument("--quick", action="store_true", help="smaller grids, two model cards, one frame")
+    rp.set_defaults(func=cmd_report)
     return parser
 
 

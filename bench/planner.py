@@ -1,0 +1,271 @@
+"""The planner's calibration (``python -m bench calibrate``) and its proof (``python -m bench planner``).
+
+``calibrate`` measures, on this machine and after compilation, what the planner's cost
+model (:mod:`wavephys.planner.cost`) needs: a step by grid size (linear and second
+order), a ship's patch per step, a Hermite frame, a Fourier refinement, each Fresnel form
+and absorption method per million pixels, and κ, the float32 rounding of full runs against
+float64 (in a subprocess with x64 enabled). It writes
+``wavephys/planner/data/calibration.json`` atomically.
+
+``planner`` is the proof over scenes nobody picked: for each generated scene
+(:func:`wavephys.planner.generate_scenes`, 32–128 texels) it plans at a tolerance of one
+height quantum, runs the full and the planned model, and records predicted against measured
+error and predicted against measured cost (each run timed warm, after a first run). The
+colour prediction covers the optics terms (Fresnel form, absorption), so it is measured on
+the full model's surface (``measured_colour_optics``); ``measured_colour`` is the whole
+image difference, heights included.
+"""
+
+from __future__ import annotations
+
+import json
+import math
+import os
+import statistics
+import subprocess
+import sys
+import time
+from pathlib import Path
+
+import numpy as np
+
+CAL_PATH = Path(__file__).resolve().parents[1] / "wavephys" / "planner" / "data" / "calibration.json"
+STEP_SIZES = (16, 20, 32, 40, 64, 80, 128, 160, 256, 320, 512, 640, 1024)
+KAPPA_SCENES = 6
+
+
+def _median(fn, repeats=5, warmup=1):
+    import jax
+
+    for _ in range(warmup):
+        jax.block_until_ready(fn())
+    ts = []
+    for _ in range(repeats):
+        t = time.perf_counter()
+        jax.block_until_ready(fn())
+        ts.append(time.perf_counter() - t)
+    return statistics.median(ts)
+
+
+def step_seconds(progress=print) -> dict:
+    """Seconds per step by n, linear and second order (a scan of steps, divided)."""
+    import wavephys.simulation.stepping as st
+    from wavephys import Grid, Stones, Water
+    from wavephys.simulation.model import Model
+
+    out = {"n": list(STEP_SIZES), "first": [], "second": []}
+    for n in STEP_SIZES:
+        steps = max(8, min(200, 2_000_000 // (n * n)))
+        for so, key in ((False, "first"), (True, "second")):
+            model = Model(Grid(n, float(n)), Water(depth=5.0), 1 / 30, margin=n // 8, second_order=so)
+            state = st.add_source(model, st.initial_state(model), Stones(0.0, 0.0, 3.0, 0.05))
+            out[key].append(_median(lambda: st.run(model, state, steps), repeats=5) / steps)
+        progress(f"step n={n}: {out['first'][-1] * 1e3:.3f} ms, second order {out['second'][-1] * 1e3:.3f} ms")
+    return out
+
+
+def ship_seconds(progress=print) -> dict:
+    """Extra seconds per step of one ship, by patch side (step with ship − step without)."""
+    import wavephys.simulation.stepping as st
+    from wavephys import Grid, Water
+    from wavephys.physics.ship_waves import Hull, Ship, straight_path
+    from wavephys.simulation.model import Model
+
+    out = {"n": [], "seconds": []}
+    for patch in (16, 32, 64, 128, 256):
+        n = max(64, 2 * patch)
+        model = Model(Grid(n, float(n)), Water(depth=5.0), 1 / 30, margin=n // 8, ship_patch=patch)
+        ship = Ship(Hull("gaussian", 0.1 * patch, 0.04 * patch), straight_path((0.0, 0.0), (0.5, 0.0)), 0.01)
+        state = st.initial_state(model)
+
+        def with_ship(k=[0]):
+            nonlocal state
+            state, surf = st.step(model, state, [ship])
+            return surf.eta
+
+        def without():
+            return st.step(model, state, [])[1].eta
+
+        extra = _median(with_ship, repeats=9, warmup=2) - _median(without, repeats=9, warmup=2)
+        out["n"].append(patch)
+        out["seconds"].append(max(extra, 1e-6))
+        progress(f"ship patch {patch}: +{extra * 1e3:.3f} ms per step")
+    return out
+
+
+def frame_seconds(progress=print) -> tuple[dict, dict, dict]:
+    """Seconds per output frame, by size, of the runner's frame assembly (blocks of
+    ``FRAME_BLOCK`` frames, brought to the host): the base (gathered at a step), the extra of a
+    Hermite blend (by the simulated n), and the extra of a Fourier refinement by 2 (by the fine n)."""
+    import jax.numpy as jnp
+
+    from wavephys.planner.runner import FRAME_BLOCK, _assemble
+
+    base, blend, refine = ({"n": [], "seconds": []} for _ in range(3))
+    for n in (16, 32, 64, 128, 256, 512, 1024):
+        steps = 9
+        e = jnp.ones((steps, n, n), jnp.float32)
+        idx = jnp.asarray(np.arange(FRAME_BLOCK) % (steps - 1), jnp.int32)
+        zero, half = jnp.zeros(FRAME_BLOCK, jnp.float32), jnp.full(FRAME_BLOCK, 0.5, jnp.float32)
+        dt = jnp.asarray(0.03, jnp.float32)
+        t0 = _median(lambda: np.asarray(_assemble(e, e, idx, zero, dt, 1)), repeats=5) / FRAME_BLOCK
+        t1 = _median(lambda: np.asarray(_assemble(e, e, idx, half, dt, 1)), repeats=5) / FRAME_BLOCK
+        ec = jnp.ones((steps, n // 2, n // 2), jnp.float32)
+        t2 = _median(lambda: np.asarray(_assemble(ec, ec, idx, zero, dt, 2)), repeats=5) / FRAME_BLOCK
+        for table, value in ((base, t0), (blend, max(t1 - t0, 1e-7)), (refine, max(t2 - t0, 1e-7))):
+            table["n"].append(n)
+            table["seconds"].append(value)
+        progress(f"frame n={n}: base {t0 * 1e3:.3f} ms, blend +{(t1 - t0) * 1e3:.3f} ms, refine +{(t2 - t0) * 1e3:.3f} ms")
+    return base, blend, refine
+
+
+def optics_seconds(progress=print) -> tuple[dict, dict]:
+    """Seconds per million pixels of each Fresnel form and absorption method, as the planner's
+    shading evaluates them (eager, float32 reflectance; transmittance tables cached)."""
+    import jax.numpy as jnp
+
+    from optics.light.fresnel import reflectance
+    from wavephys.planner.model import FRESNEL_FORMS
+    from wavephys.planner.runner import transmittance
+    from wavephys.planner.scene import Scene, StoneSpec
+
+    cos = jnp.asarray(np.random.default_rng(0).uniform(0, 1, 1_000_000), jnp.float32)
+    fresnel = {f: _median(lambda: reflectance(cos, method=f), repeats=5) for f in FRESNEL_FORMS}
+    scene = Scene(8.0, 0.125, depth=2.0, stones=(StoneSpec(0.0, 0.0, 0.5, 0.02),))
+    paths = np.random.default_rng(1).uniform(4.0, 9.0, 1_000_000)
+    absorption = {m: _median(lambda: transmittance(scene, m, paths), repeats=3) for m in ("spectral", "rgb")}
+    progress("fresnel " + ", ".join(f"{k} {v * 1e3:.2f} ms" for k, v in fresnel.items()) + "; absorption "
+             + ", ".join(f"{k} {v * 1e3:.1f} ms" for k, v in absorption.items()) + " per 1M pixels")
+    return fresnel, absorption
+
+
+_KAPPA_CHILD = r"""
+import json, sys
+import jax
+jax.config.update("jax_enable_x64", True)
+import numpy as np
+from wavephys.planner import generate_scenes, SceneModel, run
+scenes = generate_scenes(int(sys.argv[1]), seed=int(sys.argv[2]))
+out = {}
+for s in scenes:
+    o = run(s, SceneModel(s, dtype=sys.argv[4]))
+    out[s.name] = o.heights.astype(np.float64)
+np.savez(sys.argv[3], **out)
+"""
+
+
+def kappa(progress=print, count: int = KAPPA_SCENES, seed: int = 99) -> dict:
+    """max over frames |η₃₂ − η₆₄| / s0 (the scene's amplitude bound) over generated scenes,
+    each run in float32 and float64 (x64 in a subprocess: it changes JAX's global config)."""
+    import tempfile
+
+    from wavephys.planner import generate_scenes
+    from wavephys.planner.predict import scene_spectrum
+
+    ratios = {}
+    with tempfile.TemporaryDirectory() as tmp:
+        files = {}
+        for dtype in ("float32", "float64"):
+            files[dtype] = Path(tmp) / f"{dtype}.npz"
+            subprocess.run([sys.executable, "-c", _KAPPA_CHILD, str(count), str(seed), str(files[dtype]), dtype],
+                           check=True, env={**os.environ, "PYTHONPATH": str(CAL_PATH.parents[3])})
+        a, b = np.load(files["float32"]), np.load(files["float64"])
+        for s in generate_scenes(count, seed=seed):
+            ratios[s.name] = float(np.abs(a[s.name] - b[s.name]).max() / scene_spectrum(s).s0)
+    worst = max(ratios.values())
+    progress("kappa per scene: " + ", ".join(f"{k} {v:.2g}" for k, v in ratios.items()))
+    return dict(kappa=4.0 * worst, measured=ratios)
+
+
+def calibrate(progress=print) -> dict:
+    """Measure everything the cost model needs and write the calibration file (module doc)."""
+    import platform
+
+    from wavephys.core.files import atomic_path
+
+    step = step_seconds(progress)
+    ship = ship_seconds(progress)
+    frame, blend, refine = frame_seconds(progress)
+    fresnel, absorption = optics_seconds(progress)
+    k = kappa(progress)
+    data = dict(machine=f"{platform.machine()} {os.cpu_count()} cores, {platform.python_version()}",
+                date=time.strftime("%Y-%m-%d"), step=step, ship=ship, frame=frame, blend=blend, refine=refine,
+                fresnel=fresnel, absorption=absorption, kappa=k["kappa"], kappa_measured=k["measured"],
+                kappa_note="4 × the worst measured max|η32 − η64| / s0 over the scenes")
+    with atomic_path(CAL_PATH) as tmp:
+        tmp.write_text(json.dumps(data, indent=1))
+    return data
+
+
+def proof_rows(count: int = 50, seed: int = 2026, quanta: float = 1.0, progress=print,
+               texels=(32, 48, 64, 96, 128)) -> list:
+    """Plan each of ``count`` generated scenes at ``quanta`` height quanta, run the full and the
+    planned model (each three times; the fastest run timed), and record predicted and measured."""
+    from wavephys.planner import Infeasible, compare, full_model, generate_scenes, plan, run
+    from wavephys.planner.runner import shade
+
+    rows = []
+    for i, scene in enumerate(generate_scenes(count, seed=seed, texels=texels)):
+        tol = quanta * scene.height_quantum
+        t = time.perf_counter()
+        try:
+            p = plan(scene, tol)
+        except Infeasible as exc:
+            rows.append(dict(scene=scene.name, infeasible=str(exc)))
+            progress(f"[{i + 1}/{count}] {scene.name}: infeasible: {exc}")
+            continue
+        planning = time.perf_counter() - t
+        full_m = full_model(scene)
+        ref = min((run(scene, full_m) for _ in range(3)), key=lambda o: o.seconds)  # the first compiles
+        out = min((run(scene, p.model) for _ in range(3)), key=lambda o: o.seconds)
+        err = compare(out, ref)
+        optics_only = float(np.abs(shade(scene, p.model, ref.heights[-1]) - ref.image).max())
+        row = dict(scene=scene.name, kind=scene.name.split("-")[0], texels=scene.texels, frames=scene.frames,
+                   tolerance=tol, predicted_error=p.predicted_error, measured_error=err["height_max"],
+                   measured_rms=err["height_rms"], predicted_rms=p.bounds.rms,
+                   predicted_colour=p.predicted_colour_error, measured_colour=err["colour_max"],
+                   measured_colour_optics=optics_only,
+                   colour_tolerance=p.colour_tolerance, predicted_cost=p.cost, predicted_full_cost=p.full_cost,
+                   measured_cost=out.seconds + out.shade_seconds, measured_full_cost=ref.seconds + ref.shade_seconds,
+                   planning_seconds=planning, choices=p.model.choices.as_dict())
+        row["measured_saving"] = row["measured_full_cost"] / row["measured_cost"]
+        row["predicted_saving"] = p.saving
+        rows.append(row)
+        progress(f"[{i + 1}/{count}] {scene.name}: {p.model.describe()}; error {err['height_max']:.3g} ≤ predicted "
+                 f"{p.predicted_error:.3g} ≤ tol {tol:.3g}; colour of the optics terms {optics_only:.2g} ≤ "
+                 f"{p.predicted_colour_error:.2g}, with the heights' {err['colour_max']:.2g}; saving ×{row['measured_saving']:.2f} (predicted "
+                 f"×{p.saving:.2f})")
+    return rows
+
+
+def figures(rows) -> dict:
+    """Predicted against measured error and cost over the proof's scenes."""
+    import matplotlib.figure
+
+    ok = [r for r in rows if "measured_error" in r]
+    fig = matplotlib.figure.Figure(figsize=(11, 4.4))
+    ax1, ax2 = fig.subplots(1, 2)
+    kinds = sorted({r["kind"] for r in ok})
+    for kind in kinds:
+        sel = [r for r in ok if r["kind"] == kind]
+        nz = [r for r in sel if r["measured_error"] > 0]
+        pts = ax1.scatter([r["predicted_error"] / r["tolerance"] for r in nz],
+                          [r["measured_error"] / r["tolerance"] for r in nz], label=kind, s=18)
+        zero = [r for r in sel if r["measured_error"] == 0]
+        if zero:  # the plan is the full model's heights: no error to draw on a log axis
+            ax1.scatter([r["predicted_error"] / r["tolerance"] for r in zero], [1e-7] * len(zero), marker="v", s=18,
+                        color=pts.get_facecolor()[0])
+        ax2.scatter([r["predicted_saving"] for r in sel], [r["measured_saving"] for r in sel], label=kind, s=18)
+    lo = 1e-6
+    ax1.plot([lo, 1], [lo, 1], "k--", lw=0.8, label="measured = predicted")
+    ax1.axhline(1.0, color="r", lw=0.8, label="tolerance")
+    ax1.set(xscale="log", yscale="log", xlabel="predicted error / tolerance",
+            ylabel="measured error / tolerance (▼: exactly 0)", title=f"height error, {len(ok)} generated scenes")
+    ax1.legend(fontsize=7)
+    top = max([r["measured_saving"] for r in ok] + [r["predicted_saving"] for r in ok] + [1.5])
+    ax2.plot([0.8, top], [0.8, top], "k--", lw=0.8)
+    ax2.set(xscale="log", yscale="log", xlabel="predicted saving (full cost / plan cost)",
+            ylabel="measured saving", title="cost saving of the plan")
+    ax2.legend(fontsize=7)
+    fig.tight_layout()
+    return {"proof": fig}

@@ -1,0 +1,236 @@
+"""The scene planner: scenes as data, predicted errors that bound the measured ones, named
+choices on scenes built for them, and the proof on generated scenes nobody picked."""
+
+from __future__ import annotations
+
+import json
+import math
+import subprocess
+import sys
+from dataclasses import replace
+
+import numpy as np
+import pytest
+
+from wavephys.planner import (BUILTIN_SCENES, Choices, Infeasible, KINDS, Scene, SceneModel, ShipSpec, StoneSpec,
+                              WindSpec, builtin_scene, compare, full_model, generate_scenes, plan, run)
+from wavephys.planner.model import TERMS
+from wavephys.planner.predict import height_bounds
+
+
+def _pool(n=32, frames=12, depth=0.5, fps=30.0, **kw):
+    stones = (StoneSpec(0.3, -0.2, 0.15, 0.01), StoneSpec(-0.6, 0.5, 0.25, 0.02))
+    return Scene(2.0, 2.0 / n, depth=depth, open_water=False, duration=frames / fps, fps=fps, stones=stones,
+                 height_range=0.02, name="test-pool", **kw)
+
+
+# -- scenes as data -------------------------------------------------------------------------
+@pytest.mark.parametrize("name", BUILTIN_SCENES)
+def test_builtin_scenes_load_and_round_trip(name):
+    scene = builtin_scene(name)
+    assert Scene.from_dict(scene.as_dict(), name=scene.name) == scene
+    assert scene.texels == round(scene.extent / scene.pixel)
+
+
+def test_scene_from_toml_with_camera_pixel(tmp_path):
+    path = tmp_path / "cam.toml"
+    path.write_text('extent = 8.0\ncamera_distance = 20.0\npixel_angle = 0.003125\ndepth = "inf"\n'
+                    '[[stones]]\nx = 0.0\ny = 0.0\nradius = 0.5\ndepth = 0.02\n')
+    scene = Scene.from_toml(path)
+    assert scene.pixel == pytest.approx(0.0625) and scene.texels == 128 and math.isinf(scene.depth)
+    assert scene.name == "cam"
+
+
+@pytest.mark.parametrize("text,error,words", [
+    ("extent = 8.0\npixel = 0.125\nbogus = 1\n[[stones]]\nx=0\ny=0\nradius=0.5\ndepth=0.01\n", ValueError,
+     ["'bogus'", "allowed", "extent"]),
+    ("extent = 8.0\npixel = 0.125\n[[stones]]\nx=0\ny=0\nradius=0.5\ndepth=0.01\nsize=3\n", ValueError,
+     ["stones[0]", "'size'"]),
+    ("extent = 8.0\npixel = 0.125\n[water]\nsigma=0.07\ndepth=3\n[[stones]]\nx=0\ny=0\nradius=0.5\ndepth=0.01\n",
+     ValueError, ["water", "'depth'"]),
+    ("extent = 8.0\npixel = 0.3\n[[stones]]\nx=0\ny=0\nradius=0.9\ndepth=0.01\n", ValueError, ["even integer"]),
+    ("extent = 8.0\npixel = -0.125\n[[stones]]\nx=0\ny=0\nradius=0.5\ndepth=0.01\n", ValueError, ["pixel"]),
+    ('extent = 8.0\npixel = 0.125\ndepth = "shallow"\n[[stones]]\nx=0\ny=0\nradius=0.5\ndepth=0.01\n', ValueError,
+     ["depth", "inf"]),
+    ("extent = 8.0\npixel = 0.125\n", ValueError, ["at least one source"]),
+    ("extent = 8.0\npixel = 0.125\n[[stones]]\nx=0\ny=0\nradius=0.5\n", ValueError, ["stones[0] needs", "depth"]),
+    ("extent = 8.0\npixel = 0.125\nfps = 0.5\n[[stones]]\nx=0\ny=0\nradius=0.5\ndepth=0.01\n", ValueError, ["fps"]),
+    ("extent = 8.0\npixel = 0.125\n[[ships]]\nx=0\ny=0\nspeed=-1\n", ValueError, ["ships.speed"]),
+    ("extent = 8.0\npixel = 0.125\n[wind]\ndirection = 3\n", ValueError, ["wind needs speed"]),
+    ('extent = "big"\npixel = 0.125\n[[stones]]\nx=0\ny=0\nradius=0.5\ndepth=0.01\n', TypeError, ["extent"]),
+    ("extent = 8.0\npixel = [0.125\n", ValueError, ["not valid TOML"]),
+])
+def test_bad_scene_files_are_refused_by_name(tmp_path, text, error, words):
+    path = tmp_path / "bad.toml"
+    path.write_text(text)
+    with pytest.raises(error) as info:
+        Scene.from_toml(path)
+    for w in words:
+        assert w in str(info.value), str(info.value)
+
+
+def test_missing_scene_file_names_the_path(tmp_path):
+    with pytest.raises(FileNotFoundError, match="nowhere.toml"):
+        Scene.from_toml(tmp_path / "nowhere.toml")
+
+
+# -- predictions bound measurements ----------------------------------------------------------
+VARIANTS = [Choices(surface_tension=False), Choices(finite_depth=False), Choices(coarsen=2),
+            Choices(steps_per_frame=2), Choices(steps_per_frame=4), Choices(second_order=False),
+            Choices(surface_tension=False, finite_depth=False, coarsen=2, steps_per_frame=2, second_order=False)]
+
+
+@pytest.fixture(scope="module")
+def measured_pool():
+    """A pool, a shallow shore with wind and a ship: the full model and each variant, run."""
+    shore = Scene(16.0, 0.25, depth=0.8, open_water=True, duration=0.4, fps=30.0, height_range=0.05,
+                  wind=WindSpec(3.0, 20.0, 1e-4, 3), stones=(StoneSpec(1.0, -2.0, 0.75, 0.01),), name="test-shore")
+    ship = Scene(24.0, 0.375, depth=4.0, open_water=True, duration=0.4, fps=30.0, height_range=0.05,
+                 ships=(ShipSpec(-1.0, 0.5, 2.0, 10.0, 3.0, 1.5, 0.03),), name="test-ship")
+    out = {}
+    for scene in (_pool(), shore, ship):
+        bounds = height_bounds(scene, 0.0)
+        ref = run(scene, full_model(scene))
+        for c in VARIANTS:
+            got = run(scene, SceneModel(scene, c))
+            key = (c.surface_tension, c.finite_depth, c.coarsen, c.steps_per_frame, c.second_order)
+            out[(scene.name, c)] = (compare(got, ref), bounds[key])
+    return out
+
+
+@pytest.mark.parametrize("scene", ["test-pool", "test-shore", "test-ship"])
+@pytest.mark.parametrize("choices", VARIANTS, ids=lambda c: ",".join(f"{k}={v}" for k, v in c.as_dict().items()
+                                                                      if v != getattr(Choices(), k)))
+def test_predicted_height_error_bounds_the_measured_one(measured_pool, scene, choices):
+    """Every variant's measured max-norm error (over all frames and texels) stays below its
+    predicted bound, and the bound is not vacuous (within 60× of the measurement). The
+    float32 floor is left out of the bound here (κ = 0), so the linear and second-order
+    models must hold on their own; measurements below 1e-6 of the amplitude are rounding."""
+    err, bound = measured_pool[(scene, choices)]
+    floor = 2e-6 * 0.02
+    assert err["height_max"] <= bound.total + floor, (err, bound)
+    assert bound.total <= 60 * max(err["height_max"], floor), (err, bound)
+    assert err["height_rms"] <= 2 * bound.rms + floor, (err, bound)
+
+
+def test_plan_meets_its_tolerance_on_a_scene_and_runs_on_the_pure_step():
+    scene = _pool(n=32, frames=12)
+    tol = 0.5 * scene.height_quantum
+    p = plan(scene, tol)
+    assert p.predicted_error <= tol and p.cost <= p.full_cost
+    assert [t.term for t in p.terms] == list(TERMS)
+    got, ref = run(scene, p.model), run(scene, full_model(scene))
+    err = compare(got, ref)
+    assert err["height_max"] <= p.predicted_error + 1e-9
+    from wavephys.planner.runner import shade
+
+    optics_only = np.abs(shade(scene, p.model, ref.heights[-1]) - ref.image).max()
+    assert optics_only <= p.predicted_colour_error + 1e-6 and err["colour_max"] <= p.colour_tolerance
+    json.dumps(p.as_dict(), default=str)  # the model card serializes
+    import wavephys.simulation.stepping as stepping
+
+    sim = p.model.simulation
+    state, surface = stepping.step(sim, stepping.initial_state(sim), [p.model.stones()])
+    assert surface.eta.shape == (p.model.grid.n, p.model.grid.n)
+
+
+def test_pareto_front_is_monotone():
+    p = plan(_pool(), 1.0 * _pool().height_quantum)
+    costs = [c.cost for c in p.front]
+    errs = [c.bounds.total for c in p.front]
+    assert costs == sorted(costs) and errs == sorted(errs, reverse=True) and len(p.front) >= 2
+
+
+# -- named cases ----------------------------------------------------------------------------
+def _choices(name, quanta=0.5, **changes):
+    scene = builtin_scene(name)
+    if changes:
+        scene = replace(scene, **changes)
+    return plan(scene, quanta * scene.height_quantum).model.choices
+
+
+def test_capillary_scene_keeps_surface_tension():
+    assert _choices("ripples").surface_tension
+
+
+def test_metre_per_pixel_ocean_drops_surface_tension():
+    assert not _choices("ocean").surface_tension
+
+
+def test_deep_lake_drops_finite_depth_and_shallow_pond_keeps_it():
+    assert not _choices("lake").finite_depth
+    assert _choices("pond").finite_depth
+
+
+def test_eight_bit_image_picks_a_cheap_fresnel_form_and_sixteen_bits_do_not():
+    """Seen from above (incidence ≤ 35°), the cheap forms stay within one 8-bit quantum; a
+    16-bit image needs the exact form; at a grazing view (60–70°) even 8 bits need it."""
+    assert _choices("lake", view_elevation=75.0).fresnel not in ("exact", "lut")
+    assert _choices("lake", view_elevation=75.0, image_bits=16).fresnel == "exact"
+    assert _choices("lake", view_elevation=25.0).fresnel == "exact"
+
+
+# -- bad input -------------------------------------------------------------------------------
+def test_tolerance_is_checked_and_an_unreachable_one_says_so():
+    scene = _pool()
+    with pytest.raises(ValueError, match="tolerance"):
+        plan(scene, 0.0)
+    with pytest.raises(TypeError, match="tolerance"):
+        plan(scene, "1 mm")
+    with pytest.raises(Infeasible, match="float32 floor"):
+        plan(scene, 1e-15)
+    with pytest.raises(Infeasible, match="budget"):
+        plan(scene, scene.height_quantum, budget=1e-9)
+    with pytest.raises(TypeError, match="scene"):
+        plan({"extent": 1.0}, 1e-3)
+
+
+def test_run_refuses_a_model_of_another_scene():
+    with pytest.raises(ValueError, match="another scene"):
+        run(_pool(), full_model(_pool(n=64)))
+
+
+# -- proof over generated scenes (the full sweep is `python -m bench planner`) --------------
+def test_generated_scenes_are_seeded_and_cover_every_kind():
+    a, b = generate_scenes(10, seed=5), generate_scenes(10, seed=5)
+    assert a == b and {s.name.split("-")[0] for s in a} == set(KINDS)
+    assert generate_scenes(10, seed=6) != a
+
+
+@pytest.mark.slow
+def test_plans_stay_within_tolerance_on_generated_scenes():
+    """Five generated scenes (one per kind, small sizes): planned at half a height quantum,
+    each plan's measured error against the full model is within its tolerance."""
+    scenes = generate_scenes(5, seed=11, texels=(32, 64))
+    for scene in scenes:
+        tol = 0.5 * scene.height_quantum
+        p = plan(scene, tol)
+        err = compare(run(scene, p.model), run(scene, full_model(scene)))
+        assert err["height_max"] <= tol, (scene.name, err, p.model.describe())
+        assert err["colour_max"] <= p.colour_tolerance, (scene.name, err)
+
+
+# -- the command ------------------------------------------------------------------------------
+def test_cli_plan_prints_the_card_and_writes_json_and_chart(tmp_path):
+    out, chart = tmp_path / "plan.json", tmp_path / "front.png"
+    r = subprocess.run([sys.executable, "-m", "wavephys", "plan", "lake", "--tolerance", "0.5q", "--json", str(out),
+                        "--chart", str(chart)], capture_output=True, text=True, timeout=600)
+    assert r.returncode == 0, r.stderr
+    assert "surface_tension" in r.stdout and "predicted error" in r.stdout
+    data = json.loads(out.read_text())
+    assert data["choices"]["finite_depth"] is False and data["predicted_error"] <= data["tolerance"]
+    from PIL import Image
+
+    assert Image.open(chart).size[0] > 500
+
+
+@pytest.mark.parametrize("args,words", [
+    (["nowhere.toml"], ["nowhere.toml", "does not exist"]),
+    (["lake", "--tolerance", "-1"], ["--tolerance"]),
+    (["lake", "--tolerance", "1e-15"], ["float32 floor"]),
+])
+def test_cli_plan_bad_input(args, words):
+    r = subprocess.run([sys.executable, "-m", "wavephys", "plan", *args], capture_output=True, text=True, timeout=600)
+    assert r.returncode in (1, 2), r
+    for w in words:
+        assert w in r.stderr, r.stderr

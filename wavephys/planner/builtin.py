@@ -1,0 +1,32 @@
+"""Built-in example scenes, shipped as TOML files in ``wavephys/planner/data/scenes``.
+
+``ripples`` a 0.4 m tank at 3 mm texels (capillary waves resolved: σ is kept);
+``ocean``   128 m of deep open sea at 1 m texels under an 8 m/s wind (σ is dropped);
+``pond``    three stones in a 1 m deep pond (finite depth matters);
+``lake``    stones in a 40 m deep lake (kh > π everywhere: tanh kh is dropped);
+``harbour`` a launch at 3 m/s in a 6 m deep basin.
+"""
+
+from __future__ import annotations
+
+from importlib import resources
+
+from wavephys.core.inputs import check_choice
+
+__all__ = ["BUILTIN_SCENES", "builtin_scene", "builtin_path"]
+
+BUILTIN_SCENES = ("ripples", "ocean", "pond", "lake", "harbour")
+
+
+def builtin_path(name: str):
+    """The TOML file of a built-in scene (a path inside the installed package)."""
+    check_choice("name", name, BUILTIN_SCENES)
+    return resources.files("wavephys.planner").joinpath("data", "scenes", f"{name}.toml")
+
+
+def builtin_scene(name: str):
+    """A built-in scene by name (:data:`BUILTIN_SCENES`)."""
+    from wavephys.planner.scene import Scene
+
+    path = builtin_path(name)
+    return Scene.from_toml(str(path))

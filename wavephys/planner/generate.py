@@ -1,0 +1,129 @@
+"""A seeded generator of varied scenes nobody picked: the planner's proof runs on them.
+
+Kinds (drawn in turn, parameters drawn at random within each kind's range):
+
+``pool``      a periodic tank 2–12 m, 0.3–2 m deep, 1–4 stones;
+``shore``     open shallow water 8–40 m, 0.3–3 m deep, a light wind sea, sometimes a stone;
+``open_sea``  open deep water 32–400 m at coarse pixels (0.25–2 m), a wind sea;
+``ship``      open water with a ship at 0.2–10 m/s (hull 4–6 pixels wide), 1–20 m deep or deep;
+``ripples``   a small tank 0.2–0.8 m at fine pixels (1–4 mm): capillary waves resolved.
+
+Texels per side are 32–128 (ship scenes 64–128), 12–60 frames at 24–60 fps, height
+textures of 8 or 16 bits. Ship scenes whose full model cannot run (the patch leaves the
+visible square) are drawn again.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from wavephys.core.inputs import check_choice, check_int
+from wavephys.core.water import Water
+from wavephys.planner.model import SceneModel
+from wavephys.planner.scene import MIN_TEXELS, Scene, ShipSpec, StoneSpec, WindSpec
+
+__all__ = ["generate_scenes", "KINDS"]
+
+KINDS = ("pool", "shore", "open_sea", "ship", "ripples")
+
+
+def generate_scenes(count: int, seed: int = 0, kinds=KINDS, texels=(32, 48, 64, 96, 128)) -> list:
+    """``count`` scenes drawn with ``numpy.random.default_rng(seed)``, cycling through ``kinds``."""
+    count = check_int("count", count, lo=1, hi=10000)
+    seed = check_int("seed", seed, lo=0)
+    for name, items in (("kinds", kinds), ("texels", texels)):
+        if isinstance(items, (str, bytes)) or not hasattr(items, "__iter__") or not len(items):
+            raise TypeError(f"{name} must be a non-empty sequence, got {type(items).__name__}")
+    kinds, texels = tuple(kinds), tuple(texels)
+    for k in kinds:
+        check_choice("kinds", k, KINDS)
+    for t in texels:
+        check_int("texels", t, lo=MIN_TEXELS, hi=512)
+        if t % 16:
+            raise ValueError(f"texels must be multiples of 16, got {t}")
+    rng = np.random.default_rng(seed)
+    out = []
+    while len(out) < count:
+        kind = kinds[len(out) % len(kinds)]
+        try:
+            n = int(rng.choice([t for t in texels if t >= 64] or texels)) if kind == "ship" else int(rng.choice(texels))
+            scene = _draw(kind, rng, n, f"{kind}-{len(out)}")
+            if scene is not None and scene.ships:
+                SceneModel(scene).check_ships()  # the full model must be able to run it
+        except ValueError:  # a draw the scene refuses (a course that leaves the square): draw again
+            continue
+        if scene is not None:
+            out.append(scene)
+    return out
+
+
+def _common(rng, n):
+    fps = float(rng.choice([24.0, 30.0, 60.0]))
+    frames = int(rng.integers(12, 61))
+    return dict(fps=fps, duration=frames / fps, height_bits=int(rng.choice([8, 16])),
+                sun_elevation=float(rng.uniform(10, 80)), view_elevation=float(rng.uniform(10, 80)))
+
+
+def _stones(rng, extent, pixel, count, depth_scale):
+    out = []
+    for _ in range(count):
+        r = float(rng.uniform(2.5 * pixel, max(3 * pixel, extent / 12)))
+        out.append(StoneSpec(float(rng.uniform(-0.35, 0.35) * extent), float(rng.uniform(-0.35, 0.35) * extent), r,
+                             float(rng.uniform(0.02, 0.15) * r * depth_scale)))
+    return tuple(out)
+
+
+def _draw(kind, rng, n, name):
+    c = _common(rng, n)
+    if kind == "pool":
+        extent = float(rng.uniform(2, 12))
+        pixel = extent / n
+        stones = _stones(rng, extent, pixel, int(rng.integers(1, 5)), 1.0)
+        peak = max(s.depth for s in stones)
+        return Scene(extent, pixel, depth=float(rng.uniform(0.3, 2.0)), open_water=False, stones=stones,
+                     height_range=2 * peak, name=name, **c)
+    if kind == "shore":
+        extent = float(rng.uniform(8, 40))
+        pixel = extent / n
+        wind = WindSpec(float(rng.uniform(1.5, 4)), float(rng.uniform(0, 360)), float(10 ** rng.uniform(-5, -3.5)),
+                        int(rng.integers(0, 1000)))
+        stones = _stones(rng, extent, pixel, int(rng.integers(0, 2)), 0.5)
+        return Scene(extent, pixel, depth=float(rng.uniform(0.3, 3.0)), open_water=True, wind=wind, stones=stones,
+                     height_range=0.05, name=name, **c)
+    if kind == "open_sea":
+        pixel = float(rng.choice([0.25, 0.5, 1.0, 2.0]))
+        extent = pixel * n
+        wind = WindSpec(float(rng.uniform(3, 12)), float(rng.uniform(0, 360)), float(10 ** rng.uniform(-5, -3)),
+                        int(rng.integers(0, 1000)))
+        return Scene(extent, pixel, depth=math.inf, open_water=True, wind=wind, height_range=1.0, name=name, **c)
+    if kind == "ship":
+        speed = float(10 ** rng.uniform(math.log10(0.2), 1.0))
+        width_px = float(rng.uniform(4, 6))
+        frames = round(c["duration"] * c["fps"])
+        # the domain holds the course plus the hull and the margin on both sides
+        pixel = float(rng.uniform(0.02, 0.2)) * max(1.0, speed / 2)
+        width = width_px * pixel
+        length = width * float(rng.uniform(2, 3))
+        travel = speed * c["duration"]
+        extent = pixel * n
+        need = travel + 2 * (0.75 * length + extent / 16) + 64 * pixel
+        if need > extent:  # a larger pixel keeps the course inside
+            pixel = need / n * 1.05
+            extent = pixel * n
+            width, length = width_px * pixel, width_px * pixel * 2.5
+        depth = math.inf if rng.random() < 0.3 else float(rng.uniform(1, 20))
+        heading = float(rng.choice([0.0, 30.0, 90.0, 180.0, 225.0]))
+        a = math.radians(heading)
+        x0, y0 = -0.5 * travel * math.cos(a), -0.5 * travel * math.sin(a)
+        ship = ShipSpec(x0, y0, speed, heading, length, width, float(0.01 * speed * width))
+        return Scene(extent, pixel, depth=depth, open_water=True, ships=(ship,), height_range=0.05, name=name, **c)
+    if kind == "ripples":
+        extent = float(rng.uniform(0.2, 0.8))
+        pixel = extent / n
+        stones = _stones(rng, extent, pixel, int(rng.integers(1, 3)), 1.0)
+        stones = tuple(StoneSpec(s.x, s.y, s.radius, min(s.depth, 0.002)) for s in stones)
+        return Scene(extent, pixel, depth=float(rng.uniform(0.02, 0.3)), open_water=False, stones=stones,
+                     water=Water(), height_range=2 * max(s.depth for s in stones), name=name, **c)
+    raise ValueError(kind)

@@ -1,0 +1,240 @@
+"""The planner's configuration: what each switchable term is set to, and the model it makes.
+
+:class:`Choices` holds one setting per term (:data:`TERMS`); :class:`SceneModel` is a
+scene plus choices, and builds what the rest of the library runs: the pure step's
+:class:`wavephys.simulation.Model` (:attr:`SceneModel.simulation`), the sources, the
+output grid, and the optics settings (Fresnel form and absorption method, names in
+:data:`optics.light.fresnel.REFLECTANCE_METHODS` and :data:`ABSORPTION_METHODS`).
+
+The grid of a scene: the output texels (``extent / pixel`` per side), surrounded for
+open water by a cutoff margin of n/8 texels on every side (so the simulated square is
+1.25 × the visible one); ``coarsen`` = c simulates on every c-th point of it and
+Fourier-interpolates each frame back onto the output texels.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, fields, replace
+from functools import cached_property
+
+import numpy as np
+
+from wavephys.core.grid import Grid
+from wavephys.core.inputs import check_bool, check_choice, check_instance, check_int
+from wavephys.core.water import Water
+from wavephys.planner.scene import Scene
+
+__all__ = ["Choices", "SceneModel", "TERMS", "COARSEN", "STEPS_PER_FRAME", "FRESNEL_FORMS", "ABSORPTION_METHODS",
+           "full_choices"]
+
+COARSEN = (1, 2, 4)
+"""Simulation grid spacings the planner considers, in output texels."""
+STEPS_PER_FRAME = (1, 2, 4, 8)
+"""Output frames per simulation step the planner considers (frames between steps by Hermite)."""
+FRESNEL_FORMS = ("exact", "lut", "schlick", "jensen_golias", "loviscach")
+"""Fresnel reflectance forms the planner considers (names in optics' REFLECTANCE_METHODS)."""
+ABSORPTION_METHODS = ("spectral", "rgb")
+"""Beer–Lambert absorption: integrated over the spectrum (colour-science) or three fitted RGB
+coefficients (:func:`optics.light.attenuation.fit_rgb_coefficients`)."""
+TERMS = ("surface_tension", "finite_depth", "coarsen", "steps_per_frame", "second_order", "fresnel", "absorption")
+"""The switchable terms, in the order model cards list them."""
+
+
+@dataclass(frozen=True)
+class Choices:
+    """One setting per switchable term; the defaults are the full model.
+
+    Parameters
+    ----------
+    surface_tension : bool
+        Keep σ (capillary waves) in the dispersion; False sets σ = 0.
+    finite_depth : bool
+        Keep tanh(kh); False treats the water as deep.
+    coarsen : int
+        Simulation grid spacing in output texels (:data:`COARSEN`).
+    steps_per_frame : int
+        Δt = steps_per_frame / fps; frames between steps are Hermite-interpolated
+        (:data:`STEPS_PER_FRAME`). 1: every frame is a step.
+    second_order : bool
+        Add the second-order height term.
+    fresnel : str
+        Fresnel reflectance form (:data:`FRESNEL_FORMS`).
+    absorption : str
+        ``"spectral"`` or ``"rgb"`` (:data:`ABSORPTION_METHODS`).
+    """
+
+    surface_tension: bool = True
+    finite_depth: bool = True
+    coarsen: int = 1
+    steps_per_frame: int = 1
+    second_order: bool = True
+    fresnel: str = "exact"
+    absorption: str = "spectral"
+
+    def __post_init__(self):
+        for k in ("surface_tension", "finite_depth", "second_order"):
+            object.__setattr__(self, k, check_bool(k, getattr(self, k)))
+        object.__setattr__(self, "coarsen", check_int("coarsen", self.coarsen, lo=1))
+        check_choice("coarsen", self.coarsen, COARSEN)
+        object.__setattr__(self, "steps_per_frame", check_int("steps_per_frame", self.steps_per_frame, lo=1))
+        check_choice("steps_per_frame", self.steps_per_frame, STEPS_PER_FRAME)
+        check_choice("fresnel", self.fresnel, FRESNEL_FORMS)
+        check_choice("absorption", self.absorption, ABSORPTION_METHODS)
+
+    def simpler(self) -> int:
+        """How many terms are dropped or cheapened against the full model (tie-breaker: with equal
+        cost the planner takes the simpler model)."""
+        full = Choices()
+        return sum(getattr(self, f.name) != getattr(full, f.name) for f in fields(self))
+
+    def as_dict(self) -> dict:
+        return {f.name: getattr(self, f.name) for f in fields(self)}
+
+
+def full_choices() -> Choices:
+    """The most complete configuration (the reference every plan is measured against)."""
+    return Choices()
+
+
+@dataclass(frozen=True)
+class SceneModel:
+    """A scene and its choices: the configuration the pure step, the optics and the renderer use.
+
+    Attributes are derived on use: :attr:`simulation` (a :class:`wavephys.simulation.Model`),
+    :attr:`grid` (the simulated square), :attr:`output_grid`, :attr:`dt`, :attr:`steps`.
+    ``dtype`` is the simulation's (float64 needs ``jax_enable_x64``; the planner plans float32).
+    """
+
+    scene: Scene
+    choices: Choices = Choices()
+    dtype: str = "float32"
+
+    def __post_init__(self):
+        check_instance("scene", self.scene, Scene, "wavephys.planner.Scene")
+        check_instance("choices", self.choices, Choices, "wavephys.planner.Choices")
+        check_choice("dtype", self.dtype, ("float32", "float64"))
+        n_total = self.scene.texels + 2 * self.scene.margin
+        c = self.choices.coarsen
+        if n_total % (2 * c) or self.scene.margin % c or n_total // c < 16:
+            raise ValueError(f"coarsen = {c} does not divide this scene's grid ({n_total} points with a "
+                             f"{self.scene.margin}-point margin) into an even grid of ≥ 16 points")
+        for i, s in enumerate(self.scene.stones):
+            if s.radius < self.grid.dx:
+                raise ValueError(f"coarsen = {c}: stones[{i}].radius {s.radius:g} m is below the simulation grid "
+                                 f"spacing {self.grid.dx:g} m")
+
+    # -- grids and times --------------------------------------------------------------
+    @property
+    def full_grid(self) -> Grid:
+        """The simulated square at output resolution (visible texels plus margin)."""
+        n = self.scene.texels + 2 * self.scene.margin
+        return Grid(n, n * self.scene.pixel)
+
+    @property
+    def grid(self) -> Grid:
+        """The simulation grid (every ``coarsen``-th point of :attr:`full_grid`)."""
+        full = self.full_grid
+        return Grid(full.n // self.choices.coarsen, full.length)
+
+    @property
+    def output_grid(self) -> Grid:
+        """The visible texels."""
+        return Grid(self.scene.texels, self.scene.extent)
+
+    @property
+    def dt(self) -> float:
+        """Simulation step, s."""
+        return self.choices.steps_per_frame / self.scene.fps
+
+    @property
+    def steps(self) -> int:
+        """Simulation steps to cover the scene's frames."""
+        return -(-self.scene.frames // self.choices.steps_per_frame)
+
+    @property
+    def water(self) -> Water:
+        """The simulated water (σ = 0 without surface tension, deep without finite depth)."""
+        w = self.scene.water
+        if not self.choices.surface_tension:
+            w = replace(w, sigma=0.0)
+        if not self.choices.finite_depth:
+            w = replace(w, depth=math.inf)
+        return w
+
+    @cached_property
+    def ship_patch(self) -> int:
+        """Ship patch side, points: the smallest power of two (≥ 16) that holds the hull and its
+        motion over Δt with a quarter to spare, at most the grid."""
+        if not self.scene.ships:
+            return min(64, self.grid.n)
+        dx = self.grid.dx
+        need = max(1.5 * 0.5 * math.hypot(s.length, s.width) + 0.5 * s.speed * self.dt for s in self.scene.ships)
+        side = 16
+        while side * dx / 2 < 1.25 * need and side < self.grid.n:
+            side *= 2
+        return min(side, self.grid.n)
+
+    @property
+    def simulation(self):
+        """The :class:`wavephys.simulation.Model` of this configuration (pure step, ``run``)."""
+        from wavephys.simulation.model import Model
+
+        return Model(self.grid, self.water, self.dt, margin=self.scene.margin // self.choices.coarsen,
+                     second_order=self.choices.second_order, dtype=self.dtype, ship_patch=self.ship_patch)
+
+    # -- sources ----------------------------------------------------------------------
+    def stones(self):
+        """The scene's stones as :class:`wavephys.Stones` (or None)."""
+        if not self.scene.stones:
+            return None
+        from wavephys.physics.disturbances import Stones
+
+        s = self.scene.stones
+        return Stones([v.x for v in s], [v.y for v in s], [v.radius for v in s], [v.depth for v in s])
+
+    def ships(self) -> list:
+        """The scene's ships as :class:`wavephys.physics.ship_waves.Ship` sources."""
+        from wavephys.physics.ship_waves import Hull, Ship, straight_path
+
+        return [Ship(Hull("gaussian", s.length, s.width), straight_path((s.x, s.y), s.velocity), s.strength)
+                for s in self.scene.ships]
+
+    def check_ships(self) -> None:
+        """ValueError if a ship's patch leaks past ``leak_tolerance`` at this Δt or leaves the
+        visible square (checked before any stepping)."""
+        from wavephys.physics.ship_waves import patch_leak
+
+        model = self.simulation
+        half, grid = model.ship_patch // 2, model.grid
+        lo, hi = model.margin, grid.n - model.margin
+        for i, (spec, ship) in enumerate(zip(self.scene.ships, self.ships())):
+            leak = patch_leak(ship, grid, model.water, 0.0, model.dt, half)
+            if leak > model.leak_tolerance:
+                raise ValueError(f"ships[{i}]: {leak:.2g} of the waves leak past the {2 * half}-point patch at "
+                                 f"Δt = {model.dt:.3g} s")
+            for t in (0.0, self.scene.duration):
+                r0, c0, _ = grid.window(*spec.position(t), half)
+                if not (lo <= r0 and r0 + 2 * half <= hi and lo <= c0 and c0 + 2 * half <= hi):
+                    raise ValueError(f"ships[{i}]: its {2 * half}-point patch leaves the visible square at t = {t:g} s")
+
+    def describe(self) -> str:
+        c = self.choices
+        parts = [f"grid {self.grid.n}² (dx {self.grid.dx:.3g} m)", f"Δt {self.dt:.4g} s",
+                 "σ" if c.surface_tension else "no σ", "tanh kh" if c.finite_depth else "deep",
+                 "2nd order" if c.second_order else "linear", f"Fresnel {c.fresnel}", f"absorption {c.absorption}"]
+        return ", ".join(parts)
+
+
+def interior(model: SceneModel, field):
+    """The visible texels of a field on :attr:`SceneModel.full_grid` (last two axes)."""
+    m = model.scene.margin
+    return field[..., m:field.shape[-2] - m, m:field.shape[-1] - m] if m else field
+
+
+def texel_shift_phase(full: Grid, coarse: Grid):
+    """e^{ik·(x₀_coarse − x₀_full)} on the coarse grid's full spectrum: turns a DFT coefficient
+    referred to the full grid's first sample into one referred to the coarse grid's."""
+    ky, kx = (np.asarray(a) for a in coarse.wavenumbers())
+    shift = float(coarse.origin) - float(full.origin)
+    return np.exp(1j * (kx + ky) * shift)

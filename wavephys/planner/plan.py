@@ -1,0 +1,321 @@
+"""The planner: the cheapest configuration whose predicted error stays within the tolerance.
+
+Heights and colour are planned separately, because their errors are measured in
+different units and their terms do not interact in the planner's models:
+
+* heights (m, max norm over every frame and texel): every combination of σ, tanh kh,
+  grid coarsening, steps per frame and the second-order term is bounded jointly by
+  :func:`wavephys.planner.predict.height_bounds` (one per-mode bound for all linear terms;
+  the second-order and float32 terms added by the triangle inequality);
+* colour ([0, 1] image scale, compared with the image's quantum): each Fresnel form
+  and absorption method, bounded over the scene's own incidence angles and water paths
+  (ΔC ≤ ΔR + albedo·ΔT, the shading of :func:`wavephys.planner.runner.shade`).
+
+Among the candidates within tolerance the cheapest by the calibrated cost
+(:mod:`wavephys.planner.cost`) wins; at equal cost, the one with fewer terms.
+"""
+
+from __future__ import annotations
+
+import json
+import math
+from dataclasses import dataclass, field, replace
+from functools import lru_cache
+from typing import Optional
+
+import numpy as np
+
+from wavephys.core.inputs import check_instance, check_scalar
+from wavephys.planner.cost import calibration, colour_cost, height_cost
+from wavephys.planner.model import (ABSORPTION_METHODS, FRESNEL_FORMS, TERMS, Choices, SceneModel, full_choices)
+from wavephys.planner.predict import HeightBounds, height_bounds, scene_spectrum
+from wavephys.planner.scene import Scene
+
+__all__ = ["plan", "Plan", "Term", "Candidate", "Infeasible", "full_model", "candidates", "colour_errors"]
+
+class Infeasible(ValueError):
+    """No configuration meets the tolerance (the message says why and what the full model reaches)."""
+
+
+@dataclass(frozen=True)
+class Candidate:
+    """One height configuration: its choices, predicted error bounds and predicted cost (s)."""
+
+    choices: Choices
+    bounds: HeightBounds
+    cost: float
+
+
+@dataclass(frozen=True)
+class Term:
+    """One row of a model card: the term, its choice, what that choice alone adds to the error
+    (m for heights, [0, 1] for colour), what it saves (s), and why."""
+
+    term: str
+    choice: object
+    error: float
+    saving: float
+    reason: str
+    unit: str = "m"
+
+
+@dataclass(frozen=True)
+class Plan:
+    """The planner's answer (module doc). ``model`` is the configuration to run
+    (:class:`SceneModel`; ``model.simulation`` is the pure step's model), ``predicted_error``
+    the height bound (m), ``predicted_colour_error`` the colour bound ([0, 1]), ``cost`` the
+    predicted seconds (``height_cost`` of it for the heights), ``full_cost`` those of the full
+    model, ``terms`` the model card, ``front`` the Pareto front of the height candidates."""
+
+    scene: Scene
+    tolerance: float
+    colour_tolerance: float
+    model: SceneModel
+    bounds: HeightBounds
+    predicted_colour_error: float
+    cost: float
+    full_cost: float
+    terms: tuple
+    height_cost: float = 0.0
+    front: tuple = field(repr=False, default=())
+
+    @property
+    def predicted_error(self) -> float:
+        return self.bounds.total
+
+    @property
+    def saving(self) -> float:
+        """Predicted cost of the full model over the plan's."""
+        return self.full_cost / self.cost
+
+    def card(self) -> str:
+        """The model card as a text table."""
+        s = self.scene
+        q = s.height_quantum
+        lines = [f"scene {s.name}: {s.texels}² texels of {s.pixel:.4g} m, {s.frames} frames at {s.fps:g} fps, "
+                 f"depth {s.depth:g} m",
+                 f"tolerance {self.tolerance:.3g} m ({self.tolerance / q:.3g} height quanta), colour "
+                 f"{self.colour_tolerance / s.image_quantum:.3g} image quanta",
+                 f"model: {self.model.describe()}",
+                 f"predicted error {self.predicted_error:.3g} m ({self.predicted_error / q:.3g} quanta; linear "
+                 f"{self.bounds.linear:.2g}, second order {self.bounds.second_order:.2g}, float32 "
+                 f"{self.bounds.rounding:.2g}), colour {self.predicted_colour_error / s.image_quantum:.3g} quanta",
+                 f"predicted cost {self.cost:.3g} s against {self.full_cost:.3g} s for the full model "
+                 f"(×{self.saving:.3g} cheaper)", ""]
+        head = ("term", "choice", "error alone", "saves [s]", "reason")
+        rows = [(t.term, str(t.choice), f"{t.error:.2g} {t.unit}", f"{t.saving:.2g}", t.reason) for t in self.terms]
+        widths = [max(len(h), *(len(r[i]) for r in rows)) for i, h in enumerate(head[:-1])]
+        fmt = "  ".join(f"{{:<{w}}}" for w in widths) + "  {}"
+        lines += [fmt.format(*head), fmt.format(*("-" * w for w in widths), "------")]
+        lines += [fmt.format(*r) for r in rows]
+        return "\n".join(lines)
+
+    def as_dict(self) -> dict:
+        return dict(scene=self.scene.as_dict(), tolerance=self.tolerance, colour_tolerance=self.colour_tolerance,
+                    choices=self.model.choices.as_dict(), simulation=dict(n=self.model.grid.n,
+                                                                          dx=self.model.grid.dx, dt=self.model.dt,
+                                                                          steps=self.model.steps),
+                    predicted_error=self.predicted_error,
+                    bounds=dict(linear=self.bounds.linear, second_order=self.bounds.second_order,
+                                rounding=self.bounds.rounding, rms=self.bounds.rms),
+                    predicted_colour_error=self.predicted_colour_error, cost=self.cost, full_cost=self.full_cost,
+                    height_cost=self.height_cost,
+                    terms=[dict(term=t.term, choice=t.choice, error=t.error, unit=t.unit, saving=t.saving,
+                                reason=t.reason) for t in self.terms],
+                    front=[dict(choices=c.choices.as_dict(), predicted_error=c.bounds.total, cost=c.cost)
+                           for c in self.front])
+
+    def to_json(self, path) -> None:
+        """Write :meth:`as_dict` as JSON (atomically)."""
+        from wavephys.core.files import atomic_path, output_file
+
+        p = output_file(path, "path", (".json",))
+        with atomic_path(p) as tmp:
+            tmp.write_text(json.dumps(self.as_dict(), indent=2, default=str))
+
+
+def full_model(scene: Scene) -> SceneModel:
+    """The most complete configuration of ``scene``: the reference every plan is measured against."""
+    check_instance("scene", scene, Scene, "wavephys.planner.Scene")
+    return SceneModel(scene, full_choices())
+
+
+def candidates(scene: Scene) -> list:
+    """Every height configuration the scene can run, with predicted bounds and cost (the
+    colour choices set to the full model's)."""
+    check_instance("scene", scene, Scene, "wavephys.planner.Scene")
+    return list(_candidates(scene))
+
+
+@lru_cache(maxsize=32)
+def _candidates(scene: Scene) -> tuple:
+    cal = calibration()
+    bounds = height_bounds(scene, cal["kappa"])
+    out = []
+    for (st, fd, c, spf, so), b in bounds.items():
+        try:
+            model = SceneModel(scene, Choices(st, fd, c, spf, so))
+            if scene.ships:
+                model.check_ships()
+        except ValueError:
+            continue
+        out.append(Candidate(model.choices, b, height_cost(model, cal)["total"]))
+    return tuple(out)
+
+
+def _incidence_range(scene: Scene) -> tuple[float, float]:
+    """Incidence angles (degrees) the view meets: the view's own ± the steepest facet tilt."""
+    slope = scene_spectrum(scene).max_slope
+    tilt = math.degrees(math.atan(min(slope, 50.0)))
+    theta = 90.0 - scene.view_elevation
+    return max(0.0, theta - tilt), min(90.0, theta + tilt)
+
+
+def colour_errors(scene: Scene) -> dict:
+    """Bounds on the colour error ([0, 1] scale) of each Fresnel form and absorption method:
+    {"fresnel": {form: max ΔR}, "absorption": {method: albedo · max ΔT}} over the scene's
+    incidence range and water paths."""
+    check_instance("scene", scene, Scene, "wavephys.planner.Scene")
+    import jax.numpy as jnp
+
+    from optics.light.fresnel import reflectance
+    from wavephys.planner.runner import FLOOR_ALBEDO, path_range, transmittance
+
+    lo, hi = _incidence_range(scene)
+    cos = jnp.asarray(np.cos(np.radians(np.linspace(lo, hi, 4001))), jnp.float32)
+    exact = np.asarray(reflectance(cos, method="exact"), np.float64)
+    fresnel = {f: float(np.abs(np.asarray(reflectance(cos, method=f), np.float64) - exact).max())
+               for f in FRESNEL_FORMS}
+    absorption = {"spectral": 0.0, "rgb": 0.0}
+    if not math.isinf(scene.depth):
+        d = np.linspace(*path_range(scene), 512)
+        delta = np.abs(transmittance(scene, "rgb", d) - transmittance(scene, "spectral", d)).max()
+        absorption["rgb"] = float(FLOOR_ALBEDO * delta)
+    return dict(fresnel=fresnel, absorption=absorption)
+
+
+def _pick(items, key_cost, key_simpler):
+    return min(items, key=lambda it: (round(key_cost(it), 12), -key_simpler(it)))
+
+
+def plan(scene: Scene, tolerance: float, colour_tolerance: Optional[float] = None,
+         budget: Optional[float] = None) -> Plan:
+    """The cheapest configuration of ``scene`` whose predicted height error is ≤ ``tolerance``
+    (m, max norm over all frames and texels) and colour error ≤ ``colour_tolerance`` (on the
+    image's [0, 1] scale, so at most 1; default one image quantum).
+
+    ``budget``: largest acceptable predicted cost, s (None: any). Raises :class:`Infeasible`
+    (a ValueError) when nothing meets the tolerance, saying what the full model reaches.
+    """
+    check_instance("scene", scene, Scene, "wavephys.planner.Scene")
+    check_scalar("tolerance", tolerance, lo=0.0, lo_open=True)
+    if colour_tolerance is None:
+        colour_tolerance = scene.image_quantum
+    check_scalar("colour_tolerance", colour_tolerance, lo=0.0, lo_open=True, hi=1.0)
+    if budget is not None:
+        check_scalar("budget", budget, lo=0.0, lo_open=True)
+    tolerance, colour_tolerance = float(tolerance), float(colour_tolerance)
+    cands = candidates(scene)
+    full = next((c for c in cands if c.choices == _height_part(full_choices())), None)
+    if full is None:
+        raise Infeasible(f"scene {scene.name!r}: the full model cannot run it (a ship's patch leaks or leaves "
+                         f"the visible square at Δt = 1/fps)")
+    ok = [c for c in cands if c.bounds.total <= tolerance]
+    if not ok:
+        raise Infeasible(f"no model meets {tolerance:.3g} m: the full model's own float32 floor is "
+                         f"{full.bounds.total:.3g} m (run in float64 for less), and the best candidate reaches "
+                         f"{min(c.bounds.total for c in cands):.3g} m")
+    best = _pick(ok, lambda c: c.cost, lambda c: c.choices.simpler())
+    colour = colour_errors(scene)
+    options = []
+    for f in FRESNEL_FORMS:
+        for a in ABSORPTION_METHODS:
+            err = colour["fresnel"][f] + colour["absorption"][a]
+            options.append((f, a, err, colour_cost(scene, f, a)))
+    ok_c = [o for o in options if o[2] <= colour_tolerance]
+    if not ok_c:
+        raise Infeasible(f"no optics form meets the colour tolerance {colour_tolerance:.3g}")
+    simpler = lambda o: (o[0] != "exact") + (o[1] != "spectral")
+    f, a, colour_err, c_cost = _pick(ok_c, lambda o: o[3], simpler)
+    exact_cost = colour_cost(scene, "exact", "spectral")
+    choices = replace(best.choices, fresnel=f, absorption=a)
+    cost, full_cost = best.cost + c_cost, full.cost + exact_cost
+    if budget is not None and cost > budget:
+        raise Infeasible(f"the cheapest model within {tolerance:.3g} m costs {cost:.3g} s, over the budget "
+                         f"{budget:.3g} s")
+    terms = _card(scene, cands, full, choices, colour)
+    front = _pareto(cands)
+    return Plan(scene, tolerance, colour_tolerance, SceneModel(scene, choices), best.bounds, colour_err, cost,
+                full_cost, tuple(terms), best.cost, tuple(front))
+
+
+def _height_part(choices: Choices) -> Choices:
+    return replace(choices, fresnel="exact", absorption="spectral")
+
+
+def _pareto(cands) -> list:
+    """Candidates no other beats on both cost and predicted error, cheapest first."""
+    pts = sorted(cands, key=lambda c: (c.cost, c.bounds.total))
+    front, best = [], math.inf
+    for c in pts:
+        if c.bounds.total < best:
+            front.append(c)
+            best = c.bounds.total
+    return front
+
+
+def _card(scene: Scene, cands, full: Candidate, choices: Choices, colour: dict) -> list:
+    """One row per term: the effect of the plan's choice for that term alone (all others full)."""
+    by = {c.choices: c for c in cands}
+    spectrum = scene_spectrum(scene)
+    rows = []
+    for term in TERMS[:5]:
+        value = getattr(choices, term)
+        alone = by.get(replace(full.choices, **{term: value}))
+        err = (alone.bounds.total - full.bounds.total) if alone else math.nan
+        saving = (full.cost - alone.cost) if alone else math.nan
+        rows.append(Term(term, value, max(err, 0.0), saving, _reason(scene, spectrum, term, value, err)))
+    for term, table in (("fresnel", "fresnel"), ("absorption", "absorption")):
+        value = getattr(choices, term)
+        err = colour[table][value]
+        ref = "exact" if term == "fresnel" else "spectral"
+        saving = (colour_cost(scene, ref, "spectral") - colour_cost(scene, value, "spectral")) if term == "fresnel" \
+            else (colour_cost(scene, "exact", ref) - colour_cost(scene, "exact", value))
+        rows.append(Term(term, value, err, saving, _colour_reason(scene, term, value, err), unit="colour"))
+    return rows
+
+
+def _reason(scene, spectrum, term, value, err) -> str:
+    q = scene.height_quantum
+    water = scene.water
+    effect = f"adds ≤ {err:.2g} m ({err / q:.2g} quanta)" if math.isfinite(err) else "not runnable alone"
+    if term == "surface_tension":
+        lam_c = 2 * math.pi * math.sqrt(water.sigma / (water.rho * water.g)) if water.sigma > 0 else 0.0
+        shortest = 2 * scene.pixel
+        seen = f"shortest wave shown {shortest:.3g} m, capillary length 2π√(σ/ρg) = {lam_c:.3g} m"
+        return (f"kept: {seen}" if value else f"dropped: {seen}; {effect}")
+    if term == "finite_depth":
+        if math.isinf(scene.depth):
+            return "deep water: tanh kh = 1 exactly"
+        k_min = float(spectrum.k.min())
+        return (f"{'kept' if value else 'dropped'}: smallest kh = {k_min * scene.depth:.3g}"
+                + ("" if value else f"; {effect}"))
+    if term == "coarsen":
+        return "output resolution" if value == 1 else f"grid {value}× coarser than the texels: {effect}"
+    if term == "steps_per_frame":
+        dt = value / scene.fps
+        return ("a step per frame" if value == 1 else
+                f"Δt = {dt:.3g} s, ω_top·Δt = {spectrum.omega_top * dt:.2g}: Hermite frames {effect}")
+    if term == "second_order":
+        return (f"kept: η₂ up to {spectrum.s0 * spectrum.s1 / 2:.2g} m" if value else f"dropped: {effect}")
+    return ""
+
+
+def _colour_reason(scene, term, value, err) -> str:
+    q = scene.image_quantum
+    if term == "fresnel":
+        lo, hi = _incidence_range(scene)
+        return f"{value}: |ΔR| ≤ {err:.2g} over incidence {lo:.0f}–{hi:.0f}° = {err / q:.2g} image quanta"
+    if math.isinf(scene.depth):
+        return f"{value}: deep water, no floor seen"
+    return f"{value}: ≤ {err / q:.2g} image quanta over paths {scene.depth * 2:.3g} m and longer"

@@ -1,0 +1,417 @@
+r"""Predicted height errors of a configuration against the full model, from the scene's own numbers.
+
+The spectral step is exact per Fourier mode, so the linear surface of every scene the
+planner takes is a closed form per mode k (docs/planner.md §2). With C_k(t) the DFT of the
+complex height η_c (η = Re η_c) on the full grid:
+
+* stones and the wind sea, given at t = 0 as heights: C_k(t) = A_k e^{−iω_k t};
+* a ship on a straight course from x₀ at velocity U, source ∂(s f)/∂t:
+  C_k(t) = s·m_k·(k·U)·f̂_k e^{−ik·x₀} e^{−iω_k t} · t·φ₁(i a_k t), a_k = ω_k − k·U,
+  φ₁(z) = (eᶻ − 1)/z, m = K/ω.
+
+A configuration changes ω and m (σ = 0, tanh kh → 1), drops the modes its coarser grid
+cannot hold, and between steps replaces C by its cubic Hermite interpolant from C and the
+simulation's η̇ = −iωC at the step ends. The difference X_k(t) = C_k^full(t) − C_k^cfg(t)
+is evaluated per mode, and the height error of stones and ships bounded by the triangle
+inequality,
+
+.. math:: \max_x|\Delta\eta(x, t)| \le \frac1{n^2}\sum_k |\hat H_k|,\qquad
+          \hat H_k = \tfrac12\left(X_k + \overline{X_{-k}}\right),
+
+which is rigorous for the linear surface (the cutoff only removes waves); its RMS is exact
+by Parseval. A wind sea has random phases, so its differences are Gaussian fields: their
+maximum over the output's N points stays below z·RMS, z = sqrt(2 ln(2N/p)), except with
+probability p = 10⁻³ (the union bound). The second-order term η₂ = ½ Re(η_c Λη_c) is bounded by
+½ (Σ|C|/n²)(Σ|k||C|/n²) when dropped, and by the same bilinear bound on the differences when
+kept; float32 rounding adds κ·Σ|C|/n² with κ measured by ``python -m bench calibrate``.
+"""
+
+from __future__ import annotations
+
+__internal__ = True  # the planner's own models: used through plan(), not fuzzed as public API
+
+import math
+from dataclasses import dataclass
+from functools import lru_cache
+
+import jax
+import jax.numpy as jnp
+import numpy as np
+
+from wavephys.core.water import Water
+from wavephys.planner.model import COARSEN, STEPS_PER_FRAME, Choices, SceneModel
+from wavephys.planner.scene import Scene
+
+__all__ = ["HeightBounds", "scene_spectrum", "height_bounds", "hermite_blend_error"]
+
+SUPPORT_FRACTION = 1e-6
+"""Modes are dropped from the per-mode sums in ascending order of their largest possible
+|C| while the dropped total stays below this fraction of Σ|C|; the dropped total, doubled,
+is added to every bound."""
+MAX_EVALUATED_FRAMES = 24
+
+
+def _dispersion(k, water: Water):
+    """(ω, m = K/ω) in float64 on a numpy wavenumber array (the library's formulas)."""
+    from wavephys.physics.dispersion import angular_frequency, surface_operator
+
+    with jax.enable_x64(True):
+        kj = jnp.asarray(k, jnp.float64)
+        omega = np.asarray(angular_frequency(kj, water), np.float64)
+        big_k = np.asarray(surface_operator(kj, water), np.float64)
+    m = np.where(omega > 0, big_k / np.where(omega > 0, omega, 1.0), 0.0)
+    return omega, m
+
+
+def _phi1(z):
+    """(eᶻ − 1)/z for complex z, 1 at z = 0 (accurate near 0 by expm1)."""
+    small = np.abs(z) < 1e-12
+    zz = np.where(small, 1.0, z)
+    return np.where(small, 1.0 + 0.5 * z, np.expm1(zz) / zz)
+
+
+@dataclass(frozen=True)
+class _Spectrum:
+    """The scene's modes on the full grid, restricted to where they matter."""
+
+    n: int
+    k: np.ndarray            # |k| on the support (M,)
+    kx: np.ndarray
+    ky: np.ndarray
+    mirror: np.ndarray       # index in the support of −k
+    index: tuple             # (rows, cols) of the support in the full spectrum
+    A: np.ndarray            # deterministic impulse heights at t = 0 (stones) (M,) complex
+    W: np.ndarray            # the wind sea's heights at t = 0 (M,) complex (random phases)
+    ships: tuple             # ((B (M,) complex, (Ux, Uy)), ...): B = s (k·U) f̂ e^{-ik·x0}
+    dropped: float           # Σ of the dropped modes' largest |C|, / n²
+    z: float                 # Gaussian union-bound factor of the wind sea's maxima
+    s0: float                # bound on max|η_c| (triangle for stones and ships, z·RMS for the sea)
+    s1: float                # bound on max|Λη_c| (the same with |k| weights); also bounds |∇η|
+    s0_hi: dict              # per coarsen c: s0 of the modes with a component > k_N(c)/2
+    s1_hi: dict
+    omega_top: float         # the largest ω of the support, over the four dispersion variants
+    omega_edges: np.ndarray  # upper edges of the ω bins (rad/s)
+    omega_bins: tuple        # (d0, d1, v0, v1) per ω bin (_bins)
+    alias: dict              # per coarsen c: the bound on η₂ products the coarse grid folds back
+
+    @property
+    def max_slope(self) -> float:
+        """A bound on |∇η| over the scene (s1)."""
+        return self.s1
+
+
+def scene_spectrum(scene: Scene) -> _Spectrum:
+    """The scene's per-mode amplitudes on its full grid (cached per scene)."""
+    return _scene_spectrum(scene)
+
+
+@lru_cache(maxsize=16)
+def _scene_spectrum(scene: Scene) -> _Spectrum:
+    model = SceneModel(scene)
+    grid = model.full_grid
+    n = grid.n
+    ky, kx = (np.broadcast_to(np.asarray(a, np.float64), (n, n)) for a in grid.wavenumbers())
+    k = np.hypot(kx, ky)
+    A = np.zeros((n, n), np.complex128)
+    W = np.zeros((n, n), np.complex128)
+    if scene.stones:
+        from wavephys.physics.disturbances import stone_height_spectrum
+
+        with jax.enable_x64(True):
+            A += np.asarray(stone_height_spectrum(model.stones(), grid, real=False), np.complex128)
+    if scene.wind is not None:
+        W += wind_heights(scene, grid)
+    variants = [_dispersion(k, v) for v in _waters(scene)]
+    m_max = np.max([m for _, m in variants], axis=0)
+    sup = np.abs(A)
+    ships = []
+    T = scene.duration
+    for spec, ship in zip(scene.ships, model.ships()):
+        f_hat = _hull_dft(ship, grid, spec)
+        ux, uy = spec.velocity
+        kv = kx * ux + ky * uy
+        B = spec.strength * kv * f_hat
+        ships.append((B, (ux, uy)))
+        a_min = np.min([np.abs(om - kv) for om, _ in variants], axis=0)
+        sup = sup + m_max * np.abs(B) * np.minimum(T, 2.0 / np.maximum(a_min, 1e-300))
+    sup[0, 0] = 0.0
+    det = sup.copy()  # the deterministic sources' largest |C| per mode
+    sup = sup + np.abs(W)
+    total = float(sup.sum())
+    if total == 0.0:
+        raise ValueError(f"scene {scene.name!r}: its sources make no waves on a {n}² grid")
+    # the support: drop the smallest modes while their total stays below SUPPORT_FRACTION
+    sym = np.maximum(sup, np.roll(np.flip(sup, (0, 1)), 1, (0, 1)))  # a mode and its mirror together
+    order = np.argsort(sym, axis=None)
+    csum = np.cumsum(sup.ravel()[order])
+    cut = int(np.searchsorted(csum, SUPPORT_FRACTION * total, side="right"))
+    keep = np.zeros(n * n, bool)
+    keep[order[cut:]] = True
+    keep = keep.reshape(n, n)
+    keep |= np.roll(np.flip(keep, (0, 1)), 1, (0, 1))
+    keep[0, 0] = False
+    dropped = float(sup[~keep].sum()) / n**2
+    rows, cols = np.nonzero(keep)
+    pos = -np.ones((n, n), np.int64)
+    pos[rows, cols] = np.arange(rows.size)
+    mirror = pos[(-rows) % n, (-cols) % n]
+    z = gaussian_factor(scene)
+    w2 = np.abs(W) ** 2
+    bound = lambda sel, weight: (float((weight * det)[sel].sum()) / n**2
+                                 + math.sqrt(2.0) * z * math.sqrt(float((weight**2 * w2)[sel].sum())) / n**2)
+    everywhere = np.ones((n, n), bool)
+    s0, s1 = bound(everywhere, 1.0), bound(everywhere, k)
+    s0_hi, s1_hi, alias = {}, {}, {}
+    kmax = np.maximum(np.abs(kx), np.abs(ky))
+    for c in COARSEN:
+        k_nyq = math.pi / (c * float(grid.dx))
+        hi = kmax > 0.5 * k_nyq
+        s0_hi[c], s1_hi[c] = bound(hi, 1.0), bound(hi, k)
+        # products of two kept modes fold back only if their components sum past k_N: bin the
+        # modes by max(|kx|, |ky|) / k_N and add the pairs of bins whose upper edges can
+        edges = np.linspace(0.0, 1.0, ALIAS_BINS + 1)[1:]
+        b = np.where(kmax < k_nyq, np.minimum((kmax / k_nyq * ALIAS_BINS).astype(int), ALIAS_BINS - 1), -1)
+        folds = (edges[:, None] + edges[None, :] > 1.0 + 1e-12).astype(float)
+        alias[c] = pair_bound(folds, _bins(b, ALIAS_BINS, det, w2, k, n), z)
+    omega_all = np.max([om for om, _ in variants], axis=0)
+    omega_top = float(omega_all[keep].max())
+    omega_edges = np.linspace(0.0, omega_top, OMEGA_BINS + 1)[1:]
+    ob = np.minimum((omega_all / omega_top * OMEGA_BINS).astype(int), OMEGA_BINS - 1)
+    omega_bins = _bins(ob, OMEGA_BINS, det, w2, k, n)
+    return _Spectrum(n, k[rows, cols], kx[rows, cols], ky[rows, cols], mirror, (rows, cols), A[rows, cols],
+                     W[rows, cols], tuple((B[rows, cols], u) for B, u in ships), dropped, z, s0, s1, s0_hi, s1_hi,
+                     omega_top, omega_edges, omega_bins, alias)
+
+
+ALIAS_BINS = 16
+OMEGA_BINS = 24
+
+
+def _bins(index, count, det, w2, k, n):
+    """Per bin (index −1: none): the deterministic sums Σ|C|, Σ|k||C| (/n²) and the wind sea's
+    variances Σ|W|², Σ k²|W|² (/n⁴)."""
+    out = np.zeros((4, count))
+    for i in range(count):
+        sel = index == i
+        out[:, i] = ((det[sel]).sum() / n**2, (k * det)[sel].sum() / n**2, w2[sel].sum() / n**4,
+                     (k * k * w2)[sel].sum() / n**4)
+    return tuple(out)
+
+
+def pair_bound(G, bins, z) -> float:
+    """Bound on ½|Σ_ab G_ab η_c,a Λη_c,b| (η₂'s pairs of bins a, b weighted by G ≥ 0).
+
+    Stones and ships (deterministic): ½ Σ G_ab d0_a d1_b (the triangle inequality). The wind
+    sea (random phases): each sum over one bin's partner, Σ_b G_ab Λη_c,b, is a Gaussian field
+    of variance Σ_b G_ab² v1_b, bounded by √2·z·RMS; sea–sea pairs use ½(√2z)² sqrt(Σ G² v0 v1)
+    (for a constant G this is the product of the two fields' bounds)."""
+    d0, d1, v0, v1 = bins
+    r = math.sqrt(2.0) * z
+    dd = float(np.sum(G * d0[:, None] * d1[None, :]))
+    ww = r * r * math.sqrt(float(np.sum(G * G * v0[:, None] * v1[None, :])))
+    cross = r * (float(np.sum(d0 * np.sqrt(np.sum(G * G * v1[None, :], axis=1))))
+                 + float(np.sum(d1 * np.sqrt(np.sum(G * G * v0[:, None], axis=0)))))
+    return 0.5 * (dd + ww + cross)
+
+
+def second_order_blend(spec: _Spectrum, dt: float) -> float:
+    """Bound on the error of blending η₂ between steps without its rate: η₂ is a sum over pairs
+    of modes at frequencies ω_p ± ω_q, each blended with error ≤ g((ω_p + ω_q)Δt)
+    (:func:`hermite_blend_error`); binned by ω (:func:`pair_bound`)."""
+    e = spec.omega_edges
+    g = np.array([[hermite_blend_error((wa + wb) * dt) for wb in e] for wa in e])
+    return pair_bound(g, spec.omega_bins, spec.z)
+
+
+CONFIDENCE = 1e-3
+"""Probability the wind sea's bound may be exceeded (:func:`gaussian_factor`)."""
+
+
+def gaussian_factor(scene: Scene) -> float:
+    """z = sqrt(2 ln(2N/p)): a Gaussian field of RMS σ exceeds z·σ somewhere among N points with
+    probability below p (the union bound), N = texels² × frames, p = :data:`CONFIDENCE`. The
+    wind sea's heights, and every linear change of them, are such fields (random phases)."""
+    points = scene.texels**2 * scene.frames
+    return math.sqrt(2.0 * math.log(2.0 * points / CONFIDENCE))
+
+
+def _waters(scene: Scene):
+    """The four dispersion variants, full first: (σ, tanh) on/off."""
+    return [SceneModel(scene, Choices(surface_tension=s, finite_depth=d)).water
+            for s, d in ((True, True), (False, True), (True, False), (False, False))]
+
+
+def _variant_index(choices: Choices) -> int:
+    return {(True, True): 0, (False, True): 1, (True, False): 2, (False, False): 3}[
+        (choices.surface_tension, choices.finite_depth)]
+
+
+def wind_heights(scene: Scene, grid) -> np.ndarray:
+    """The wind sea's complex-height DFT ĥ at t = 0 on ``grid`` (full spectrum, m per sample sum)."""
+    from wavephys.physics.wind import phillips_spectrum, synthesize_height
+
+    w = scene.wind
+    ky, kx = grid.wavenumbers()
+    with jax.enable_x64(True):
+        f = phillips_spectrum(jnp.asarray(kx, jnp.float64), jnp.asarray(ky, jnp.float64), scene.water, w.speed,
+                              math.radians(w.direction), w.amplitude)
+        f = jnp.broadcast_to(f, (grid.n, grid.n))
+        eta_c = synthesize_height(f, grid, jax.random.PRNGKey(w.seed))
+        return np.fft.fft2(np.asarray(eta_c, np.complex128))
+
+
+def _hull_dft(ship, grid, spec) -> np.ndarray:
+    """DFT (sum over samples) of the ship's footprint at t = 0 on ``grid``."""
+    x, y = (np.asarray(a, np.float64) for a in grid.mesh())
+    a = math.radians(spec.heading)
+    c, s = math.cos(a), math.sin(a)
+    u = c * (x - spec.x) + s * (y - spec.y)
+    v = -s * (x - spec.x) + c * (y - spec.y)
+    f = np.exp(-0.5 * ((u / (spec.length / 4)) ** 2 + (v / (spec.width / 4)) ** 2))
+    return np.fft.fft2(f)
+
+
+def _evaluated_frames(frames: int) -> np.ndarray:
+    """Frame numbers (1…F) at which errors are evaluated: all of short scenes; else the last
+    16 (where dispersion errors are largest and every Hermite phase occurs) and 8 spread."""
+    if frames <= MAX_EVALUATED_FRAMES:
+        return np.arange(1, frames + 1)
+    last = np.arange(frames - 15, frames + 1)
+    spread = np.unique(np.linspace(1, frames - 16, MAX_EVALUATED_FRAMES - 16).round().astype(int))
+    return np.concatenate([spread, last])
+
+
+def _C(spec: _Spectrum, omega, m, t, wind: bool = False):
+    """C_k(t) on the support for times t (shape (T, 1)): the deterministic sources (stones and
+    ships), or with ``wind`` the wind sea alone."""
+    phase = np.exp(-1j * omega[None, :] * t)
+    if wind:
+        return spec.W[None, :] * phase
+    out = spec.A[None, :] * phase
+    for B, (ux, uy) in spec.ships:
+        a = omega - (spec.kx * ux + spec.ky * uy)
+        out = out + (m * B)[None, :] * phase * t * _phi1(1j * a[None, :] * t)
+    return out
+
+
+def _hermite_C(spec, omega, m, t_frames, dt, wind: bool = False):
+    """The simulation's frames: C at the steps around each frame, Hermite-blended with η̇ = −iωC."""
+    from wavephys.physics.interpolation import hermite_weights
+
+    step = np.floor(t_frames / dt + 1e-9)
+    s = t_frames / dt - step
+    t0, t1 = step * dt, (step + 1) * dt
+    c0, c1 = _C(spec, omega, m, t0, wind), _C(spec, omega, m, t1, wind)
+    h00, h01, h10, h11 = (np.asarray(h, np.float64) for h in hermite_weights(np.clip(s, 0.0, 1.0)))
+    d0, d1 = -1j * omega[None, :] * c0, -1j * omega[None, :] * c1
+    blend = h00 * c0 + h01 * c1 + dt * (h10 * d0 + h11 * d1)
+    on_step = s < 1e-9
+    return np.where(on_step, c0, blend)
+
+
+def hermite_blend_error(theta: float) -> float:
+    """max over s ∈ [0, 1] and θ' ≤ θ of |h00 + h01·e^{−iθ'} − e^{−iθ's}|: the frame error of
+    modes of phase step up to θ whose rate is not supplied (the second-order term's case);
+    at most 2 (h00 + h01 = 1, both ≥ 0)."""
+    from wavephys.physics.interpolation import hermite_weights
+
+    s = np.linspace(0.0, 1.0, 65)[:, None]
+    h00, h01, _, _ = (np.asarray(h, np.float64) for h in hermite_weights(s))
+    th = np.linspace(0.0, max(float(theta), 0.0), 257)[None, :]
+    return float(min(2.0, np.max(np.abs(h00 + h01 * np.exp(-1j * th) - np.exp(-1j * th * s)))))
+
+
+@dataclass(frozen=True)
+class HeightBounds:
+    """Predicted height errors (m) of one configuration against the full model.
+
+    ``linear`` max-norm bound of the first-order surface, ``second_order`` of the η₂ term,
+    ``rounding`` the float32 floor; ``total`` their sum (the triangle inequality: terms
+    add in the max norm). ``rms``: a bound on the RMS over the simulated square, the linear
+    RMS (exact, by Parseval) plus the second-order term's max-norm bound.
+    """
+
+    linear: float
+    second_order: float
+    rounding: float
+    rms: float
+
+    @property
+    def total(self) -> float:
+        return self.linear + self.second_order + self.rounding
+
+
+def height_bounds(scene: Scene, kappa: float) -> dict:
+    """:class:`HeightBounds` of every height configuration of ``scene`` (a dict keyed by
+    (surface_tension, finite_depth, coarsen, steps_per_frame, second_order)).
+
+    Stones and ships are bounded by the triangle inequality (rigorous for the linear
+    surface); the wind sea by z × its RMS (:func:`gaussian_factor`). ``kappa``: the float32
+    rounding coefficient (calibrated). The full configuration's own bound is the float32
+    floor alone.
+    """
+    spec = scene_spectrum(scene)
+    n = spec.n
+    full_grid = SceneModel(scene).full_grid
+    frames = _evaluated_frames(scene.frames)
+    t = (frames / scene.fps)[:, None]
+    waters = _waters(scene)
+    disp = [_dispersion(spec.k, w) for w in waters]
+    has_wind = bool(np.any(spec.W))
+    kinds = (False, True) if has_wind else (False,)
+    full = {w: _C(spec, disp[0][0], disp[0][1], t, w) for w in kinds}
+    h_full = {w: 0.5 * (c + np.conj(c[:, spec.mirror])) for w, c in full.items()}
+    kmax_axis = np.maximum(np.abs(spec.kx), np.abs(spec.ky))
+    masks = {}
+    for c in COARSEN:  # the modes a grid c times coarser holds (its Nyquist lines excluded)
+        k_nyq = math.pi / (c * float(full_grid.dx))
+        masks[c] = np.ones_like(kmax_axis, bool) if c == 1 else (kmax_axis < k_nyq - 1e-9 * k_nyq)
+    blend = {spf: second_order_blend(spec, spf / scene.fps) for spf in STEPS_PER_FRAME}
+    z, root2 = spec.z, math.sqrt(2.0)
+    kk = spec.k
+    out = {}
+    for vi, (st, fd) in enumerate(((True, True), (False, True), (True, False), (False, False))):
+        omega, m = disp[vi]
+        for spf in STEPS_PER_FRAME:
+            if spf > scene.frames:
+                continue
+            dt = spf / scene.fps
+            diffs = {}
+            for w in kinds:
+                cfg = _C(spec, omega, m, t, w) if spf == 1 else _hermite_C(spec, omega, m, t, dt, w)
+                x = full[w] - cfg
+                diffs[w] = (x, 0.5 * (x + np.conj(x[:, spec.mirror])))
+            for c in COARSEN:
+                keep = masks[c]
+                lost = np.where(keep, 0.0, 2.0)  # a lost mode: its content, and at most as much misplaced
+                e_lin = d0 = d1 = 0.0
+                rms = 0.0
+                for w, (x, h) in diffs.items():
+                    ah = np.where(keep, np.abs(h), lost * np.abs(h_full[w]))
+                    ax = np.where(keep, np.abs(x), lost * np.abs(full[w]))
+                    sq = np.sqrt(np.sum(ah**2, axis=1)) / n**2
+                    rms += float(np.max(sq))
+                    if w:  # the random sea: z × RMS (Parseval), √2 for the complex height
+                        e_lin += z * float(np.max(sq))
+                        d0 += root2 * z * float(np.max(np.sqrt(np.sum(ax**2, axis=1)))) / n**2
+                        d1 += root2 * z * float(np.max(np.sqrt(np.sum((kk * ax) ** 2, axis=1)))) / n**2
+                    else:
+                        e_lin += float(np.max(np.sum(ah, axis=1))) / n**2
+                        d0 += float(np.max(np.sum(ax, axis=1))) / n**2
+                        d1 += float(np.max(np.sum(kk * ax, axis=1))) / n**2
+                for so in (True, False):
+                    key = (st, fd, c, spf, so)
+                    if key == (True, True, 1, 1, True):  # the full model itself
+                        out[key] = HeightBounds(0.0, 0.0, float(kappa * spec.s0), 0.0)
+                        continue
+                    if so:
+                        e2 = 0.5 * (d0 * spec.s1 + spec.s0 * d1)
+                        if c > 1:  # products of modes the coarse grid folds back (aliasing)
+                            e2 += spec.alias[c]
+                        if spf > 1:  # η₂ is interpolated without its rate
+                            e2 += blend[spf]
+                    else:
+                        e2 = 0.5 * spec.s0 * spec.s1
+                    dropped = 2 * spec.dropped
+                    out[key] = HeightBounds(e_lin + dropped, float(e2), float(kappa * spec.s0), rms + float(e2))
+    return out

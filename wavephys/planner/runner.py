@@ -1,0 +1,231 @@
+"""Run a scene with a configuration: the height frames its output shows, and the colour image.
+
+:func:`run` simulates with the pure step (:mod:`wavephys.simulation`), blends frames
+between steps, Fourier-interpolates a coarse grid back onto the output texels and keeps the
+visible square; :func:`shade` turns a frame into the image the planner's colour terms are
+judged on. :func:`compare` measures one output against another (max norm and RMS).
+"""
+
+from __future__ import annotations
+
+import functools
+import math
+import time as _time
+from dataclasses import dataclass
+
+import jax
+import jax.numpy as jnp
+import numpy as np
+
+from wavephys.core.inputs import check_instance
+from wavephys.planner.model import SceneModel, interior, texel_shift_phase
+from wavephys.planner.scene import Scene
+
+__all__ = ["Output", "run", "shade", "compare", "FLOOR_ALBEDO"]
+
+FLOOR_ALBEDO = 0.6
+"""Reflectance of the floor seen through the water in :func:`shade` (pale sand)."""
+
+
+@dataclass(frozen=True)
+class Output:
+    """What a scene shows: ``heights`` (F, n, n) m on the output texels at 1/fps … duration,
+    ``image`` (n, n, 3) of the last frame on a [0, 1] scale, and the wall ``seconds`` the
+    simulation and frames took (``shade_seconds`` for the image)."""
+
+    heights: np.ndarray
+    image: np.ndarray
+    seconds: float
+    shade_seconds: float
+
+
+def _initial_state(model: SceneModel):
+    import wavephys.simulation.stepping as stepping
+
+    sim = model.simulation
+    state = stepping.initial_state(sim)
+    if model.scene.wind is not None:
+        state = stepping.state_from_psi(sim, _wind_psi(model))
+    stones = model.stones()
+    if stones is not None:
+        state = stepping.add_source(sim, state, stones)
+    return state
+
+
+def _wind_psi(model: SceneModel):
+    """The wind sea on the simulation grid: the full grid's ĥ restricted to the modes this grid
+    holds (its Nyquist row and column left out) and referred to its first sample, as a
+    travelling field ψ̂ = −i(ω/K)ĥ of the configuration's own dispersion."""
+    from wavephys.planner.predict import _dispersion, wind_heights
+
+    full, grid = model.full_grid, model.grid
+    h_full = wind_heights(model.scene, full)
+    nf, nc = full.n, grid.n
+    f = np.fft.fftfreq(nc, 1.0 / nc).astype(int)
+    h = h_full[np.ix_(f % nf, f % nf)] * (nc / nf) ** 2 * texel_shift_phase(full, grid)
+    nyq = np.abs(f) == nc // 2
+    h[nyq, :] = 0.0
+    h[:, nyq] = 0.0
+    k = np.asarray(grid.wavenumber_magnitude(), np.float64)
+    omega, m = _dispersion(k, model.water)
+    inverse = np.where(m > 0, 1.0 / np.where(m > 0, m, 1.0), 0.0)
+    return np.fft.ifft2(-1j * inverse * h)
+
+
+def run(scene: Scene, model: SceneModel) -> Output:
+    """Simulate ``scene`` with ``model`` (a :class:`SceneModel` of that scene): heights on the
+    output texels at every frame, and the shaded last frame."""
+    check_instance("scene", scene, Scene, "wavephys.planner.Scene")
+    check_instance("model", model, SceneModel, "wavephys.planner.SceneModel")
+    if model.scene != scene:
+        raise ValueError("model was made for another scene: SceneModel(scene, choices)")
+    import wavephys.simulation.stepping as stepping
+
+    if scene.ships:
+        model.check_ships()
+    sim = model.simulation
+    start = _time.perf_counter()
+    state = _initial_state(model)
+    if scene.ships:
+        ships, etas, rates = model.ships(), [], []
+        for _ in range(model.steps):
+            state, surf = stepping.step(sim, state, ships)
+            etas.append(surf.eta)
+            rates.append(surf.eta_dot)
+        last = stepping.surface(sim, state)
+        eta = jnp.stack(etas + [last.eta])
+        eta_dot = jnp.stack(rates + [last.eta_dot])
+    else:
+        state, surfs = stepping.run(sim, state, model.steps)
+        last = stepping.surface(sim, state)
+        eta = jnp.concatenate([surfs.eta, last.eta[None]])
+        eta_dot = jnp.concatenate([surfs.eta_dot, last.eta_dot[None]])
+    heights = _frames(model, eta, eta_dot)
+    seconds = _time.perf_counter() - start
+    t0 = _time.perf_counter()
+    image = shade(scene, model, heights[-1])
+    return Output(heights, image, seconds, _time.perf_counter() - t0)
+
+
+@jax.jit
+def _blend(e0, e1, d0, d1, dt, s):
+    """Hermite frames at fractions ``s`` (shape (F, 1, 1)) between surfaces e0, e1 with rates d0, d1."""
+    from wavephys.physics.interpolation import hermite_weights
+
+    h00, h01, h10, h11 = hermite_weights(s)
+    return h00 * e0 + h01 * e1 + dt * (h10 * d0 + h11 * d1)
+
+
+@functools.partial(jax.jit, static_argnames=("factor",))
+def _assemble(eta, eta_dot, index, s, dt, factor):
+    """One block of frames: gathered from the step surfaces, blended where s > 0, refined by
+    ``factor`` (Fourier interpolation) — one compiled program per block."""
+    from wavephys.core.spectral import fourier_refine
+
+    last = eta.shape[0] - 1
+    nxt = jnp.minimum(index + 1, last)
+    w = s[:, None, None]
+    blend = _blend(eta[index], eta[nxt], eta_dot[index], eta_dot[nxt], dt, w)
+    frames = jnp.where(w > 0, blend, eta[index])
+    return jax.vmap(lambda f: fourier_refine(f, factor))(frames) if factor > 1 else frames
+
+
+FRAME_BLOCK = 64
+"""Frames assembled per compiled call (bounds the memory of a long scene's frames)."""
+
+
+def _frames(model: SceneModel, eta, eta_dot):
+    """Frames 1…F from the surfaces at the steps (Hermite between them), on the output texels."""
+    spf, frames = model.choices.steps_per_frame, model.scene.frames
+    j = np.arange(1, frames + 1)
+    index, rest = j // spf, (j % spf) / spf
+    dtype = eta.dtype
+    out = []
+    for b in range(0, frames, FRAME_BLOCK):
+        sl = slice(b, b + FRAME_BLOCK)
+        idx = np.zeros(FRAME_BLOCK, np.int32)
+        fr = np.zeros(FRAME_BLOCK, dtype)
+        count = len(index[sl])
+        idx[:count], fr[:count] = index[sl], rest[sl]  # padded to one block shape: one compile
+        block = _assemble(eta, eta_dot, jnp.asarray(idx), jnp.asarray(fr), jnp.asarray(model.dt, dtype),
+                          model.choices.coarsen)
+        out.append(np.asarray(interior(model, block))[:count])
+    return np.concatenate(out)
+
+
+def shade(scene: Scene, model: SceneModel, heights):
+    """The colour the planner's optics terms are judged on: C = R + (1 − R)·T(d)·albedo per
+    channel, seen along the scene's view elevation (from −x), with R the configuration's
+    Fresnel form at the facet's incidence angle and T the absorption over the path d down
+    to the floor and straight back up (0 in deep water). [0, 1] scale, shape (n, n, 3)."""
+    from optics.light.fresnel import N_WATER, reflectance
+    from wavephys.core.inputs import check_array
+
+    check_instance("scene", scene, Scene, "wavephys.planner.Scene")
+    check_instance("model", model, SceneModel, "wavephys.planner.SceneModel")
+    n = scene.texels
+    check_array("heights", heights, ndim=2, shape_tail=(n, n))
+
+    grid = model.output_grid
+    gx, gy = (np.asarray(g, np.float64) for g in grid.gradient(jnp.asarray(heights)))
+    normal = np.stack([-gx, -gy, np.ones_like(gx)], -1)
+    normal /= np.linalg.norm(normal, axis=-1, keepdims=True)
+    e = math.radians(scene.view_elevation)
+    to_eye = np.array([-math.cos(e), 0.0, math.sin(e)])
+    cos_i = np.clip(normal @ to_eye, 0.0, 1.0)
+    r = np.asarray(reflectance(jnp.asarray(cos_i, jnp.float32), method=model.choices.fresnel), np.float64)
+    if math.isinf(scene.depth):
+        trans = np.zeros(cos_i.shape + (3,))
+    else:
+        sin_t = np.sqrt(1.0 - cos_i**2) / N_WATER
+        path = scene.depth * (1.0 / np.sqrt(1.0 - sin_t**2) + 1.0)
+        trans = transmittance(scene, model.choices.absorption, path)
+    return r[..., None] + (1.0 - r[..., None]) * trans * FLOOR_ALBEDO
+
+
+def transmittance(scene: Scene, method: str, path):
+    """Linear-sRGB transmittance over path lengths ``path`` (m) by ``method``: ``"spectral"``
+    (colour-science integration, tabulated on 64 path lengths and interpolated) or ``"rgb"``
+    (three coefficients fitted over the scene's own range of paths)."""
+    path = np.asarray(path, np.float64)
+    hi = path_range(scene)[1]
+    if method == "rgb":
+        return np.exp(-path[..., None] * _rgb_coefficients(hi))
+    table, rgb = _srgb_table(hi)
+    return np.stack([np.interp(path, table, rgb[:, c]) for c in range(3)], -1)
+
+
+@functools.lru_cache(maxsize=64)
+def _rgb_coefficients(hi: float):
+    from optics.light.attenuation import fit_rgb_coefficients
+
+    return fit_rgb_coefficients(hi)
+
+
+@functools.lru_cache(maxsize=64)
+def _srgb_table(hi: float):
+    from optics.light.attenuation import water_srgb
+
+    table = np.linspace(0.0, hi, 64)
+    return table, water_srgb(table)
+
+
+def path_range(scene: Scene) -> tuple[float, float]:
+    """Shortest and longest water path (m) of :func:`shade` over incidence 0…90° (down at the
+    refracted angle, back up vertically)."""
+    from optics.light.fresnel import N_WATER
+
+    cos_t_min = math.sqrt(1.0 - 1.0 / N_WATER**2)
+    return 2.0 * scene.depth, scene.depth * (1.0 / cos_t_min + 1.0)
+
+
+def compare(output, reference) -> dict:
+    """Errors of ``output`` against ``reference`` (two :class:`Output`): heights (max norm over
+    every frame and texel, m, and RMS) and the image (max over texels and channels, [0, 1])."""
+    check_instance("output", output, Output, "wavephys.planner.Output")
+    check_instance("reference", reference, Output, "wavephys.planner.Output")
+    if output.heights.shape != reference.heights.shape:
+        raise ValueError(f"outputs of different scenes: heights {output.heights.shape} vs {reference.heights.shape}")
+    d = output.heights.astype(np.float64) - reference.heights.astype(np.float64)
+    return dict(height_max=float(np.abs(d).max()), height_rms=float(np.sqrt(np.mean(d * d))),
+                colour_max=float(np.abs(output.image - reference.image).max()))

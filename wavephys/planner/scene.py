@@ -1,0 +1,376 @@
+"""Scenes as data: what the output must show, from a TOML file or built in code.
+
+A :class:`Scene` says what a viewer will see, not how to compute it: the square of water
+(``extent``), the smallest feature the viewer can resolve (``pixel``: the output texel,
+or a camera distance times the angle one pixel subtends), the water and its depth, the
+sources (stones dropped at t = 0, ships on straight courses, a wind sea), how long and
+how often frames are needed, the bit depths of the height texture and the image, and
+the sun and view elevations. The planner (:func:`wavephys.planner.plan`) turns it into
+the cheapest model that meets a tolerance.
+
+TOML layout (every key optional except ``extent`` and one of ``pixel`` /
+``camera_distance`` + ``pixel_angle``)::
+
+    name = "pond"
+    extent = 16.0            # m, side of the visible square
+    pixel = 0.0625           # m per output texel (extent / pixel = texels per side, even)
+    depth = 2.0              # m, or "inf" for deep water
+    open_water = true        # waves leave the square (open-ocean cutoff) or wrap (a tank)
+    duration = 2.0           # s of output
+    fps = 30.0               # output frames per second
+    height_bits = 8          # bit depth of the height texture
+    height_range = 0.05      # m: the texture maps [-range, range] onto its codes
+    image_bits = 8
+    sun_elevation = 40.0     # degrees above the horizon
+    view_elevation = 35.0    # degrees above the horizon of the camera's line of sight
+    [water]                  # wavephys.Water fields (SI), depth comes from the top level
+    sigma = 0.074
+    [[stones]]               # dropped at t = 0: x, y (m), radius (m), depth (m)
+    x = 0.0
+    y = 1.0
+    radius = 0.2
+    depth = 0.02
+    [[ships]]                # straight course from (x, y) at speed (m/s) along heading (deg)
+    x = -4.0
+    y = 0.0
+    speed = 2.0
+    heading = 0.0
+    length = 2.0             # m, Gaussian hull of this length and width
+    width = 0.8
+    strength = 0.02          # m²/s
+    [wind]                   # a Phillips sea added at t = 0
+    speed = 5.0              # m/s
+    direction = 0.0          # degrees
+    amplitude = 1e-4         # Phillips constant (dimensionless scale)
+    seed = 0
+
+Units are SI throughout; every value is checked (named errors) when the scene is made.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import MISSING, dataclass, fields, replace
+from pathlib import Path
+from typing import Optional
+
+from wavephys.core.inputs import check_bool, check_instance, check_int, check_scalar, describe
+from wavephys.core.water import Water
+
+__all__ = ["Scene", "StoneSpec", "ShipSpec", "WindSpec", "MIN_TEXELS", "MAX_TEXELS"]
+
+MIN_TEXELS, MAX_TEXELS = 32, 2048
+"""Output texels per side the planner accepts (the range its error and cost models were measured on)."""
+MAX_FRAMES = 4000
+"""Most output frames of one scene (duration × fps)."""
+
+
+def _float(table_name: str, key: str, value, **limits) -> float:
+    check_scalar(f"{table_name}{key}", value, **limits)
+    return float(value)
+
+
+@dataclass(frozen=True)
+class StoneSpec:
+    """A stone dropped at t = 0: centre (x, y) m in scene coordinates (0 at the centre),
+    crater radius and depth, m (the crater of :class:`wavephys.Stones`)."""
+
+    x: float
+    y: float
+    radius: float
+    depth: float
+
+    def __post_init__(self):
+        for k in ("x", "y"):
+            object.__setattr__(self, k, _float("stones.", k, getattr(self, k)))
+        object.__setattr__(self, "radius", _float("stones.", "radius", self.radius, lo=0.0, lo_open=True))
+        object.__setattr__(self, "depth", _float("stones.", "depth", self.depth, lo=0.0))
+
+
+@dataclass(frozen=True)
+class ShipSpec:
+    """A ship on a straight course from (x, y) m at ``speed`` m/s along ``heading`` degrees
+    (0 = +x), with a Gaussian hull of ``length`` × ``width`` m and a source strength in m²/s."""
+
+    x: float
+    y: float
+    speed: float
+    heading: float = 0.0
+    length: float = 2.0
+    width: float = 0.8
+    strength: float = 0.02
+
+    def __post_init__(self):
+        for k in ("x", "y", "heading", "strength"):
+            object.__setattr__(self, k, _float("ships.", k, getattr(self, k)))
+        object.__setattr__(self, "speed", _float("ships.", "speed", self.speed, lo=0.0, lo_open=True, hi=50.0))
+        for k in ("length", "width"):
+            object.__setattr__(self, k, _float("ships.", k, getattr(self, k), lo=0.0, lo_open=True))
+
+    @property
+    def velocity(self) -> tuple[float, float]:
+        """(vx, vy), m/s."""
+        a = math.radians(self.heading)
+        return self.speed * math.cos(a), self.speed * math.sin(a)
+
+    def position(self, t: float) -> tuple[float, float]:
+        """Where the hull's centre is at time t (s), m."""
+        check_scalar("t", t)
+        vx, vy = self.velocity
+        return self.x + vx * t, self.y + vy * t
+
+
+@dataclass(frozen=True)
+class WindSpec:
+    """A Phillips wind sea added at t = 0: wind ``speed`` m/s from ``direction`` degrees,
+    ``amplitude`` the Phillips constant, ``seed`` of its random phases."""
+
+    speed: float
+    direction: float = 0.0
+    amplitude: float = 1e-4
+    seed: int = 0
+
+    def __post_init__(self):
+        object.__setattr__(self, "speed", _float("wind.", "speed", self.speed, lo=0.1, hi=40.0))
+        object.__setattr__(self, "direction", _float("wind.", "direction", self.direction))
+        object.__setattr__(self, "amplitude", _float("wind.", "amplitude", self.amplitude, lo=0.0, lo_open=True,
+                                                     hi=1.0))
+        object.__setattr__(self, "seed", check_int("wind.seed", self.seed, lo=0, hi=2**31 - 1))
+
+
+@dataclass(frozen=True)
+class Scene:
+    """What a scene's output must show (module doc). All lengths m, times s, angles degrees.
+
+    Parameters
+    ----------
+    extent : float
+        Side of the visible square of water, m.
+    pixel : float
+        Output texel, m: the smallest feature a viewer can see. ``extent / pixel`` must be
+        an even integer in [MIN_TEXELS, MAX_TEXELS]. Give it, or (in TOML) a
+        ``camera_distance`` (m) and ``pixel_angle`` (rad), whose product it is.
+    depth : float
+        Water depth, m (``math.inf``: deep water).
+    open_water : bool
+        True: waves leave the square (an open-ocean cutoff margin of 1/8 of the side
+        surrounds it); False: the square is periodic (a tank whose waves wrap). A scene
+        with a wind sea is periodic either way (:attr:`margin`).
+    duration, fps : float
+        Seconds of output and output frames per second (frames at 1/fps, 2/fps, …,
+        duration).
+    height_bits, height_range : int, float
+        The height texture's bit depth and the half-range it spans, m (±range).
+    image_bits : int
+        Bit depth of the rendered image.
+    sun_elevation, view_elevation : float
+        Degrees above the horizon (view: of the camera's line of sight to the water).
+    water : Water
+        Water properties; its ``depth`` is replaced by ``depth``.
+    stones, ships, wind :
+        The sources (:class:`StoneSpec`, :class:`ShipSpec`, :class:`WindSpec` or None).
+    """
+
+    extent: float
+    pixel: float
+    depth: float = math.inf
+    open_water: bool = True
+    duration: float = 2.0
+    fps: float = 30.0
+    height_bits: int = 8
+    height_range: float = 0.05
+    image_bits: int = 8
+    sun_elevation: float = 45.0
+    view_elevation: float = 35.0
+    water: Water = Water()
+    stones: tuple = ()
+    ships: tuple = ()
+    wind: Optional[WindSpec] = None
+    name: str = "scene"
+
+    def __post_init__(self):
+        set_ = lambda k, v: object.__setattr__(self, k, v)
+        if not isinstance(self.name, str) or not self.name:
+            raise TypeError(f"name must be a non-empty str, got {describe(self.name)}")
+        set_("extent", _float("", "extent", self.extent, lo=0.01, hi=1e5))
+        set_("pixel", _float("", "pixel", self.pixel, lo=0.0, lo_open=True))
+        texels = self.extent / self.pixel
+        n = round(texels)
+        if abs(texels - n) > 1e-6 * texels or n % 2:
+            raise ValueError(f"extent / pixel must be an even integer (texels per side), got "
+                             f"{self.extent:g} / {self.pixel:g} = {texels:.6g}")
+        if not MIN_TEXELS <= n <= MAX_TEXELS:
+            raise ValueError(f"extent / pixel = {n} texels per side is outside [{MIN_TEXELS}, {MAX_TEXELS}], the "
+                             f"range the planner's models were measured on")
+        set_("depth", _float("", "depth", self.depth, lo=0.0, lo_open=True, allow_inf=True))
+        set_("open_water", check_bool("open_water", self.open_water))
+        set_("duration", _float("", "duration", self.duration, lo=0.0, lo_open=True, hi=3600.0))
+        set_("fps", _float("", "fps", self.fps, lo=1.0, hi=1000.0))
+        frames = round(self.duration * self.fps)
+        if frames < 1 or frames > MAX_FRAMES:
+            raise ValueError(f"duration × fps = {self.duration * self.fps:g} frames must lie in [1, {MAX_FRAMES}]")
+        set_("height_bits", check_int("height_bits", self.height_bits, lo=1, hi=32))
+        set_("height_range", _float("", "height_range", self.height_range, lo=0.0, lo_open=True))
+        set_("image_bits", check_int("image_bits", self.image_bits, lo=1, hi=32))
+        set_("sun_elevation", _float("", "sun_elevation", self.sun_elevation, lo=0.0, lo_open=True, hi=90.0))
+        set_("view_elevation", _float("", "view_elevation", self.view_elevation, lo=0.0, lo_open=True, hi=90.0))
+        check_instance("water", self.water, Water, "wavephys.Water")
+        set_("water", replace(self.water, depth=self.depth))
+        for key, cls in (("stones", StoneSpec), ("ships", ShipSpec)):
+            items = getattr(self, key)
+            if isinstance(items, (str, bytes, dict)) or not hasattr(items, "__iter__"):
+                raise TypeError(f"{key} must be a sequence of {cls.__name__}, got {describe(items)}")
+            items = tuple(items)
+            for i, item in enumerate(items):
+                check_instance(f"{key}[{i}]", item, cls, f"wavephys.planner.{cls.__name__}")
+            set_(key, items)
+        if self.wind is not None:
+            check_instance("wind", self.wind, WindSpec, "wavephys.planner.WindSpec (or None)")
+        if not (self.stones or self.ships or self.wind):
+            raise ValueError("a scene needs at least one source: stones, ships or wind")
+        self._check_sources()
+
+    def _check_sources(self):
+        half = self.extent / 2
+        for i, s in enumerate(self.stones):
+            if abs(s.x) > half or abs(s.y) > half:
+                raise ValueError(f"stones[{i}] at ({s.x:g}, {s.y:g}) m lies outside the ±{half:g} m square")
+            if s.radius < 2 * self.pixel:
+                raise ValueError(f"stones[{i}].radius {s.radius:g} m must be ≥ 2 pixels ({2 * self.pixel:g} m): a "
+                                 f"smaller crater is not seen")
+            if 4 * s.radius > self.extent:
+                raise ValueError(f"stones[{i}].radius {s.radius:g} m must be ≤ extent/4 = {self.extent / 4:g} m")
+        for i, s in enumerate(self.ships):
+            for t in (0.0, self.duration):
+                x, y = s.position(t)
+                reach = half - 0.75 * s.length - 0.5 * self.extent / 8
+                if abs(x) > reach or abs(y) > reach:
+                    raise ValueError(f"ships[{i}] is at ({x:.3g}, {y:.3g}) m at t = {t:g} s: its course must stay "
+                                     f"{0.75 * s.length + self.extent / 16:.3g} m inside the square (±{reach:.3g} m)")
+            if s.width < 4 * self.pixel:
+                raise ValueError(f"ships[{i}].width {s.width:g} m must be ≥ 4 pixels ({4 * self.pixel:g} m)")
+
+    # -- derived numbers ----------------------------------------------------------------
+    @property
+    def texels(self) -> int:
+        """Output texels per side."""
+        return round(self.extent / self.pixel)
+
+    @property
+    def frames(self) -> int:
+        """Number of output frames (at 1/fps, …, duration)."""
+        return round(self.duration * self.fps)
+
+    @property
+    def margin(self) -> int:
+        """Cutoff margin, output texels per side: n/8 for open water, 0 for a periodic tank and
+        for a scene with a wind sea (the sea fills the square, so it is simulated periodic, as
+        FFT oceans are: a cutoff would damp it by an amount that depends on Δt, measured at
+        4 % of its height after one step of 1/15 s against 1/30 s)."""
+        return self.texels // 8 if self.open_water and self.wind is None else 0
+
+    @property
+    def height_quantum(self) -> float:
+        """One code of the height texture, m: 2·range / (2^bits − 1)."""
+        return 2.0 * self.height_range / (2.0 ** self.height_bits - 1.0)
+
+    @property
+    def image_quantum(self) -> float:
+        """One code of the image on a [0, 1] scale: 1 / (2^bits − 1)."""
+        return 1.0 / (2.0 ** self.image_bits - 1.0)
+
+    # -- files ----------------------------------------------------------------------------
+    @classmethod
+    def from_dict(cls, data: dict, name: str = "scene") -> "Scene":
+        """A scene from the TOML layout of the module doc (a dict). Unknown keys are refused
+        by name, with the allowed ones."""
+        if not isinstance(data, dict):
+            raise TypeError(f"a scene must be a table (dict), got {describe(data)}")
+        data = dict(data)
+        allowed = {f.name for f in fields(cls)} | {"camera_distance", "pixel_angle"}
+        _refuse_unknown("scene", data, allowed)
+        if "camera_distance" in data or "pixel_angle" in data:
+            if "pixel" in data:
+                raise ValueError("give pixel, or camera_distance and pixel_angle, not both")
+            if not ("camera_distance" in data and "pixel_angle" in data):
+                raise ValueError("camera_distance and pixel_angle go together (pixel = distance × angle)")
+            d = _float("", "camera_distance", data.pop("camera_distance"), lo=0.0, lo_open=True)
+            a = _float("", "pixel_angle", data.pop("pixel_angle"), lo=0.0, lo_open=True, hi=0.1)
+            data["pixel"] = d * a
+        for key in ("extent", "pixel"):
+            if key not in data:
+                raise ValueError(f"a scene needs {key!r}" + (" (or camera_distance and pixel_angle)"
+                                                             if key == "pixel" else ""))
+        if isinstance(data.get("depth"), str):
+            if data["depth"].strip().lower() not in ("inf", "infinity", "deep"):
+                raise ValueError(f"depth must be a number of metres or \"inf\", got {data['depth']!r}")
+            data["depth"] = math.inf
+        if "water" in data:
+            water = data["water"]
+            if not isinstance(water, dict):
+                raise TypeError(f"water must be a table of Water fields, got {describe(water)}")
+            _refuse_unknown("water", water, {"g", "rho", "sigma"})
+            data["water"] = Water(**{k: float(v) for k, v in water.items()})
+        for key, spec in (("stones", StoneSpec), ("ships", ShipSpec)):
+            if key in data:
+                items = data[key]
+                if not isinstance(items, list):
+                    raise TypeError(f"{key} must be an array of tables ([[{key}]]), got {describe(items)}")
+                built = []
+                for i, item in enumerate(items):
+                    if not isinstance(item, dict):
+                        raise TypeError(f"{key}[{i}] must be a table, got {describe(item)}")
+                    _refuse_unknown(f"{key}[{i}]", item, {f.name for f in fields(spec)})
+                    try:
+                        built.append(spec(**item))
+                    except TypeError as exc:
+                        if "required positional" in str(exc) or "missing" in str(exc):
+                            need = [f.name for f in fields(spec) if f.default is MISSING and f.default_factory is MISSING]
+                            raise ValueError(f"{key}[{i}] needs {', '.join(need)}; got {sorted(item)}") from None
+                        raise
+                data[key] = tuple(built)
+        if "wind" in data:
+            wind = data["wind"]
+            if not isinstance(wind, dict):
+                raise TypeError(f"wind must be a table, got {describe(wind)}")
+            _refuse_unknown("wind", wind, {f.name for f in fields(WindSpec)})
+            if "speed" not in wind:
+                raise ValueError("wind needs speed (m/s)")
+            data["wind"] = WindSpec(**wind)
+        data.setdefault("name", name)
+        return cls(**data)
+
+    @classmethod
+    def from_toml(cls, path) -> "Scene":
+        """Read a scene from a TOML file (module doc). FileNotFoundError names the path."""
+        import tomllib
+
+        if not isinstance(path, (str, Path)):
+            raise TypeError(f"path must be a str or pathlib.Path, got {describe(path)}")
+        p = Path(path)
+        if not p.is_file():
+            raise FileNotFoundError(f"scene file {str(p)!r} does not exist")
+        try:
+            data = tomllib.loads(p.read_text())
+        except tomllib.TOMLDecodeError as exc:
+            raise ValueError(f"{p}: not valid TOML: {exc}") from None
+        return cls.from_dict(data, name=p.stem)
+
+    def as_dict(self) -> dict:
+        """The scene as the TOML layout's dict (``from_dict(scene.as_dict())`` equals it)."""
+        out = {f.name: getattr(self, f.name) for f in fields(self)
+               if f.name not in ("water", "stones", "ships", "wind")}
+        out["depth"] = "inf" if math.isinf(self.depth) else self.depth
+        out["water"] = dict(g=self.water.g, rho=self.water.rho, sigma=self.water.sigma)
+        out["stones"] = [vars(s).copy() for s in self.stones]
+        out["ships"] = [vars(s).copy() for s in self.ships]
+        if self.wind is not None:
+            out["wind"] = vars(self.wind).copy()
+        return out
+
+
+def _refuse_unknown(where: str, table: dict, allowed: set) -> None:
+    unknown = sorted(set(table) - set(allowed))
+    if unknown:
+        raise ValueError(f"{where}: unknown key(s) {', '.join(map(repr, unknown))}; allowed: "
+                         f"{', '.join(sorted(allowed))}")
