@@ -200,7 +200,7 @@ def calibrate(progress=print) -> dict:
 def proof_rows(count: int = 50, seed: int = 2026, quanta: float = 1.0, progress=print,
                texels=(32, 48, 64, 96, 128)) -> list:
     """Plan each of ``count`` generated scenes at ``quanta`` height quanta, run the full and the
-    planned model (each three times; the fastest run timed), and record predicted and measured."""
+    planned model (each five times; the fastest run timed), and record predicted and measured."""
     from wavephys.planner import Infeasible, compare, full_model, generate_scenes, plan, run
     from wavephys.planner.runner import shade
 
@@ -216,8 +216,8 @@ def proof_rows(count: int = 50, seed: int = 2026, quanta: float = 1.0, progress=
             continue
         planning = time.perf_counter() - t
         full_m = full_model(scene)
-        ref = min((run(scene, full_m) for _ in range(3)), key=lambda o: o.seconds)  # the first compiles
-        out = min((run(scene, p.model) for _ in range(3)), key=lambda o: o.seconds)
+        ref = min((run(scene, full_m) for _ in range(5)), key=lambda o: o.seconds)  # the first compiles
+        out = min((run(scene, p.model) for _ in range(5)), key=lambda o: o.seconds)
         err = compare(out, ref)
         optics_only = float(np.abs(shade(scene, p.model, ref.heights[-1]) - ref.image).max())
         row = dict(scene=scene.name, kind=scene.name.split("-")[0], texels=scene.texels, frames=scene.frames,

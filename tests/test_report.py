@@ -6,7 +6,6 @@ import os
 import re
 import shutil
 import subprocess
-import sys
 
 import pytest
 
@@ -15,10 +14,10 @@ CHROMIUM = shutil.which("chromium") or shutil.which("chromium-browser") or shuti
 
 @pytest.fixture(scope="module")
 def report(tmp_path_factory):
+    from wavephys.app.cli import main
+
     out = tmp_path_factory.mktemp("report")
-    r = subprocess.run([sys.executable, "-m", "wavephys", "report", "--out", str(out), "--checks", "fresnel",
-                        "--quick"], capture_output=True, text=True, timeout=900)
-    assert r.returncode == 0, r.stderr
+    assert main(["report", "--out", str(out), "--checks", "fresnel", "--quick"]) == 0
     return out / "report.html"
 
 
@@ -51,9 +50,12 @@ def test_report_loads_in_headless_chromium_without_errors_and_shows_its_images(r
     (["--checks", "no-such-check"], ["no-such-check", "--list"]),
     (["--validation", "missing.json"], ["--validation", "not a file"]),
 ])
-def test_report_bad_input_is_a_usage_error(tmp_path, args, words):
-    r = subprocess.run([sys.executable, "-m", "wavephys", "report", "--out", str(tmp_path / "r"), *args],
-                       capture_output=True, text=True, timeout=300)
-    assert r.returncode == 2
+def test_report_bad_input_is_a_usage_error(capsys, tmp_path, args, words):
+    from wavephys.app.cli import main
+
+    with pytest.raises(SystemExit) as info:
+        main(["report", "--out", str(tmp_path / "r"), *args])
+    assert info.value.code == 2
+    err = capsys.readouterr().err
     for w in words:
-        assert w in r.stderr
+        assert w in err

@@ -351,7 +351,7 @@ def build_parser() -> argparse.ArgumentParser:
     rp.add_argument("--checks", nargs="+", metavar="NAME", help="run only these validations (default: all)")
     rp.add_argument("--validation", metavar="JSON", help="show this 'wavephys validate --json' table instead")
     rp.add_argument("--figures", metavar="DIR", help="the bench charts' folder (default: the checkout's bench/figures)")
-    rp.add_argument("--quick", action="store_true", help="smaller grids, two model cards, one frame")
+    rp.add_argument("--quick", action="store_true", help="smaller grids, one model card, one frame")
     rp.set_defaults(func=cmd_report)
     return parser
 

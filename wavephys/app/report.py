@@ -100,7 +100,7 @@ def _wake(quick: bool, say) -> str:
     from wavephys.plot import plot_wake
 
     say("steady wake ...")
-    grid, water, speed = Grid(512 if quick else 1024, 40.0), Water(sigma=0.0), 1.0
+    grid, water, speed = Grid(384 if quick else 1024, 40.0), Water(sigma=0.0), 1.0
     eta = steady_wake(grid, water, speed, GaussianPressure(100.0, 0.15))
     largest = wake_angle(eta, grid, near=2.0, far=16.0, exclude=0.3)
     edge = wake_angle(eta, grid, method="cusp", speed=speed, near=3.0, far=14.0)
@@ -138,7 +138,7 @@ def _planner(quick: bool, say) -> str:
     from wavephys.planner import BUILTIN_SCENES, Infeasible, builtin_scene, plan
     from wavephys.planner.charts import plot_plan
 
-    names = BUILTIN_SCENES[:2] if quick else BUILTIN_SCENES
+    names = BUILTIN_SCENES[2:3] if quick else BUILTIN_SCENES
     out = ""
     for i, name in enumerate(names):
         say(f"[plan {i + 1}/{len(names)}] {name}")
@@ -184,7 +184,7 @@ def build_report(out_dir, checks=None, validation=None, figures=None, quick: boo
     ``checks``: names of the validations to run (default: all); ``validation``: a JSON file
     from ``wavephys validate --json`` to show instead of running them; ``figures``: the
     bench charts' folder (default: the checkout's ``bench/figures``); ``quick``: smaller
-    grids, two planner scenes and one frame (for tests).
+    grids, one planner scene and one frame (for tests).
     """
     from wavephys.core.files import atomic_path, output_folder
     from wavephys.core.inputs import check_bool

@@ -44,8 +44,12 @@ def generate_scenes(count: int, seed: int = 0, kinds=KINDS, texels=(32, 48, 64, 
         if t % 16:
             raise ValueError(f"texels must be multiples of 16, got {t}")
     rng = np.random.default_rng(seed)
-    out = []
+    out, attempts = [], 0
     while len(out) < count:
+        attempts += 1
+        if attempts > 50 * count:
+            raise ValueError(f"could not draw {count} runnable scenes of kinds {kinds} with texels {texels} "
+                             f"(ship scenes need 64 texels or more)")
         kind = kinds[len(out) % len(kinds)]
         try:
             n = int(rng.choice([t for t in texels if t >= 64] or texels)) if kind == "ship" else int(rng.choice(texels))

@@ -219,7 +219,7 @@ def second_order_blend(spec: _Spectrum, dt: float) -> float:
     of modes at frequencies ω_p ± ω_q, each blended with error ≤ g((ω_p + ω_q)Δt)
     (:func:`hermite_blend_error`); binned by ω (:func:`pair_bound`)."""
     e = spec.omega_edges
-    g = np.array([[hermite_blend_error((wa + wb) * dt) for wb in e] for wa in e])
+    g = hermite_blend_error((e[:, None] + e[None, :]) * dt)
     return pair_bound(g, spec.omega_bins, spec.z)
 
 
@@ -309,16 +309,31 @@ def _hermite_C(spec, omega, m, t_frames, dt, wind: bool = False):
     return np.where(on_step, c0, blend)
 
 
-def hermite_blend_error(theta: float) -> float:
-    """max over s ∈ [0, 1] and θ' ≤ θ of |h00 + h01·e^{−iθ'} − e^{−iθ's}|: the frame error of
-    modes of phase step up to θ whose rate is not supplied (the second-order term's case);
-    at most 2 (h00 + h01 = 1, both ≥ 0)."""
+@lru_cache(maxsize=1)
+def _blend_weights():
+    """h00, h01 of the cubic Hermite basis on 65 fractions s ∈ [0, 1] (column vectors)."""
     from wavephys.physics.interpolation import hermite_weights
 
-    s = np.linspace(0.0, 1.0, 65)[:, None]
+    s = np.linspace(0.0, 1.0, 65)
     h00, h01, _, _ = (np.asarray(h, np.float64) for h in hermite_weights(s))
-    th = np.linspace(0.0, max(float(theta), 0.0), 257)[None, :]
-    return float(min(2.0, np.max(np.abs(h00 + h01 * np.exp(-1j * th) - np.exp(-1j * th * s)))))
+    return s[:, None], h00[:, None], h01[:, None]
+
+
+def hermite_blend_error(theta) -> np.ndarray:
+    """max over s ∈ [0, 1] and θ' ≤ θ of |h00 + h01·e^{−iθ'} − e^{−iθ's}|: the frame error of
+    modes of phase step up to θ whose rate is not supplied (the second-order term's case);
+    at most 2 (h00 + h01 = 1, both ≥ 0). Vectorized over θ (evaluated on a grid of 4096
+    steps up to the largest θ, taking the grid value at or above each θ)."""
+    theta = np.asarray(theta, np.float64)
+    top = float(np.max(theta, initial=0.0))
+    if top <= 0.0:
+        return np.zeros_like(theta)
+    s, h00, h01 = _blend_weights()
+    grid = np.linspace(0.0, top, 4097)[None, :]
+    raw = np.max(np.abs(h00 + h01 * np.exp(-1j * grid) - np.exp(-1j * grid * s)), axis=0)
+    envelope = np.minimum(np.maximum.accumulate(raw), 2.0)
+    at = np.minimum(np.searchsorted(grid[0], theta, side="left"), grid.size - 1)
+    return envelope[at]
 
 
 @dataclass(frozen=True)
