@@ -94,8 +94,8 @@ class Plan:
         q = s.height_quantum
         lines = [f"scene {s.name}: {s.texels}² texels of {s.pixel:.4g} m, {s.frames} frames at {s.fps:g} fps, "
                  f"depth {s.depth:g} m",
-                 f"tolerance {self.tolerance:.3g} m ({self.tolerance / q:.3g} height quanta), colour "
-                 f"{self.colour_tolerance / s.image_quantum:.3g} image quanta",
+                 f"tolerance {self.tolerance:.3g} m ({_quanta(self.tolerance / q)} of the height texture), colour "
+                 f"{_quanta(self.colour_tolerance / s.image_quantum)} of the image",
                  f"model: {self.model.describe()}",
                  f"predicted error {self.predicted_error:.3g} m ({self.predicted_error / q:.3g} quanta; linear "
                  f"{self.bounds.linear:.2g}, second order {self.bounds.second_order:.2g}, float32 "
@@ -132,6 +132,10 @@ class Plan:
         p = output_file(path, "path", (".json",))
         with atomic_path(p) as tmp:
             tmp.write_text(json.dumps(self.as_dict(), indent=2, default=str))
+
+
+def _quanta(x: float) -> str:
+    return f"{x:.3g} quantum" if abs(x - 1.0) < 5e-4 else f"{x:.3g} quanta"
 
 
 def full_model(scene: Scene) -> SceneModel:

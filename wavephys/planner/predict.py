@@ -414,10 +414,15 @@ def height_bounds(scene: Scene, kappa: float) -> dict:
                         e_lin += float(np.max(np.sum(ah, axis=1))) / n**2
                         d0 += float(np.max(np.sum(ax, axis=1))) / n**2
                         d1 += float(np.max(np.sum(kk * ax, axis=1))) / n**2
+                same = waters[vi] == waters[0] and c == 1 and spf == 1  # e.g. tanh off in deep water
                 for so in (True, False):
                     key = (st, fd, c, spf, so)
-                    if key == (True, True, 1, 1, True):  # the full model itself
+                    if same and so:  # the full model itself (or one that computes the same numbers)
                         out[key] = HeightBounds(0.0, 0.0, float(kappa * spec.s0), 0.0)
+                        continue
+                    if same:  # only the second-order term differs
+                        out[key] = HeightBounds(0.0, 0.5 * spec.s0 * spec.s1, float(kappa * spec.s0),
+                                                0.5 * spec.s0 * spec.s1)
                         continue
                     if so:
                         e2 = 0.5 * (d0 * spec.s1 + spec.s0 * d1)
