@@ -9,6 +9,7 @@ holds wall times of the pieces a scene's run is made of, each measured after com
 * ``blend``: the extra of a Hermite frame between steps, by the simulated n;
 * ``refine``: the extra of Fourier interpolation of a frame from a grid 2× coarser, by the fine n;
 * ``fresnel``, ``absorption``: seconds per million pixels of each form;
+* ``run_overhead``: the fixed seconds of one run (state, sources, dispatch, host copies);
 * ``kappa``: float32 rounding of a full run, max |η₃₂ − η₆₄| / (Σ|C|/n²).
 
 Sizes between the measured ones are interpolated log-log; beyond them the cost is
@@ -63,7 +64,8 @@ def height_cost(model: SceneModel, cal: dict | None = None) -> dict:
     frames = interpolate(cal["frame"], model.full_grid.n) * scene.frames
     blend = interpolate(cal["blend"], n) * between
     refine = interpolate(cal["refine"], model.full_grid.n) * scene.frames if c.coarsen > 1 else 0.0
-    parts = dict(steps=steps * step, ships=steps * ships, frames=frames, blend=blend, refine=refine)
+    parts = dict(overhead=cal.get("run_overhead", 0.0), steps=steps * step, ships=steps * ships, frames=frames,
+                 blend=blend, refine=refine)
     parts["total"] = sum(parts.values())
     return parts
 

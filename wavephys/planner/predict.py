@@ -247,7 +247,13 @@ def _variant_index(choices: Choices) -> int:
 
 
 def wind_heights(scene: Scene, grid) -> np.ndarray:
-    """The wind sea's complex-height DFT ĥ at t = 0 on ``grid`` (full spectrum, m per sample sum)."""
+    """The wind sea's complex-height DFT ĥ at t = 0 on ``grid`` (full spectrum, m per sample sum;
+    cached per scene and grid: a read-only array)."""
+    return _wind_heights(scene, grid)
+
+
+@lru_cache(maxsize=8)
+def _wind_heights(scene: Scene, grid) -> np.ndarray:
     from wavephys.physics.wind import phillips_spectrum, synthesize_height
 
     w = scene.wind
@@ -257,7 +263,9 @@ def wind_heights(scene: Scene, grid) -> np.ndarray:
                               math.radians(w.direction), w.amplitude)
         f = jnp.broadcast_to(f, (grid.n, grid.n))
         eta_c = synthesize_height(f, grid, jax.random.PRNGKey(w.seed))
-        return np.fft.fft2(np.asarray(eta_c, np.complex128))
+        out = np.fft.fft2(np.asarray(eta_c, np.complex128))
+    out.setflags(write=False)
+    return out
 
 
 def _hull_dft(ship, grid, spec) -> np.ndarray:
@@ -342,8 +350,9 @@ class HeightBounds:
 
     ``linear`` max-norm bound of the first-order surface, ``second_order`` of the η₂ term,
     ``rounding`` the float32 floor; ``total`` their sum (the triangle inequality: terms
-    add in the max norm). ``rms``: a bound on the RMS over the simulated square, the linear
-    RMS (exact, by Parseval) plus the second-order term's max-norm bound.
+    add in the max norm). ``rms``: a bound on the RMS over the visible square: the linear RMS
+    over the simulated square (exact, by Parseval) times sqrt(simulated/visible area), plus
+    the second-order and float32 max-norm bounds.
     """
 
     linear: float
@@ -382,6 +391,7 @@ def height_bounds(scene: Scene, kappa: float) -> dict:
         k_nyq = math.pi / (c * float(full_grid.dx))
         masks[c] = np.ones_like(kmax_axis, bool) if c == 1 else (kmax_axis < k_nyq - 1e-9 * k_nyq)
     blend = {spf: second_order_blend(spec, spf / scene.fps) for spf in STEPS_PER_FRAME}
+    area = full_grid.n / scene.texels  # an RMS over the visible square ≤ this × the RMS over the simulated one
     z, root2 = spec.z, math.sqrt(2.0)
     kk = spec.k
     out = {}
@@ -417,12 +427,12 @@ def height_bounds(scene: Scene, kappa: float) -> dict:
                 same = waters[vi] == waters[0] and c == 1 and spf == 1  # e.g. tanh off in deep water
                 for so in (True, False):
                     key = (st, fd, c, spf, so)
+                    floor = float(kappa * spec.s0)
                     if same and so:  # the full model itself (or one that computes the same numbers)
-                        out[key] = HeightBounds(0.0, 0.0, float(kappa * spec.s0), 0.0)
+                        out[key] = HeightBounds(0.0, 0.0, floor, floor)
                         continue
                     if same:  # only the second-order term differs
-                        out[key] = HeightBounds(0.0, 0.5 * spec.s0 * spec.s1, float(kappa * spec.s0),
-                                                0.5 * spec.s0 * spec.s1)
+                        out[key] = HeightBounds(0.0, 0.5 * spec.s0 * spec.s1, floor, 0.5 * spec.s0 * spec.s1 + floor)
                         continue
                     if so:
                         e2 = 0.5 * (d0 * spec.s1 + spec.s0 * d1)
@@ -433,5 +443,6 @@ def height_bounds(scene: Scene, kappa: float) -> dict:
                     else:
                         e2 = 0.5 * spec.s0 * spec.s1
                     dropped = 2 * spec.dropped
-                    out[key] = HeightBounds(e_lin + dropped, float(e2), float(kappa * spec.s0), rms + float(e2))
+                    out[key] = HeightBounds(e_lin + dropped, float(e2), float(kappa * spec.s0),
+                                            rms * area + float(e2) + float(kappa * spec.s0))
     return out
