@@ -1,4 +1,4 @@
-"""``python -m bench {propagation,boundaries,optics,ship,render,surfaces,scale,calibrate,planner} [--json PATH] [--quick]``.
+"""``python -m bench {propagation,boundaries,optics,ship,wake,render,surfaces,scale,calibrate,planner} [--json PATH] [--quick]``.
 
 Each writes its rows as JSON and its charts as PNG next to it (default
 ``bench/results/``) and prints a table.
@@ -100,6 +100,18 @@ def run_ship(args) -> None:
             extra = f", +{100 * r['extra_fraction']:.1f} % per step" if "extra_fraction" in r else ""
             print(f"{r['method']}: {r['seconds'] * 1e3:.2f} ms{extra}")
     _write(rows, ship.figures(rows), Path(args.json or "bench/results/ship.json"))
+
+
+def run_wake(args) -> None:
+    from bench import wake
+
+    rows = wake.angle_rows((0.3, 0.5, 1.0, 2.0, 4.0) if args.quick else None, _say)
+    for r in rows:
+        m = "no ridge" if r["measured"] is None else f"{r['measured']:6.2f}° ± {r['measured_uncertainty']:.2f}°"
+        c = "  (cusp: not resolvable)" if r["cusp"] is None else f"  cusp {r['cusp']:.2f}° ± {r['cusp_uncertainty']:.2f}°"
+        print(f"Fr={r['froude']:5.2f}  max amplitude: measured {m}, theory {r['theory']:6.2f}° ± "
+              f"{r['theory_uncertainty']:.2f}°, Rabaud-Moisy {r['rabaud_moisy']:6.2f}°{c}")
+    _write(rows, wake.figures(rows), Path(args.json or "bench/results/wake.json"))
 
 
 def run_render(args) -> None:
@@ -220,6 +232,7 @@ def main(argv=None) -> int:
                             ("boundaries", run_boundaries, "measured failure boundaries"),
                             ("optics", run_optics, "Fresnel, absorption and caustics: error vs cost"),
                             ("ship", run_ship, "moving hulls: kernels vs stones, FD wake, speed"),
+                            ("wake", run_wake, "wake angles against Froude number: measured, theory, published law"),
                             ("render", run_render, "renderer: frame times, texture cost, GPU vs reference"),
                             ("surfaces", run_surfaces, "noise, Gerstner, choppy: cost per frame vs physics error"),
                             ("scale", run_scale, "sharded step: overhead, memory per device, bytes per step"),

@@ -115,6 +115,7 @@ EXAMPLES = {
     "devices": lambda: jax.devices()[:1], "mesh": lambda: None, "axis": lambda: "rows", "mesh_axis": lambda: "rows", "per_device": lambda: 1, "shards": lambda: 2,
     "planes": lambda: 2, "itemsize": lambda: 8, "compiled_text": lambda: "%a = f32[4]{0} all-reduce(%b)",
     "fields": lambda: np.zeros((2, N, N), np.float32), "time": lambda: np.float32(0.0), "angle": lambda: 19.5, "time_error": lambda: 0.0, "fn": lambda: (lambda x: x), "damping": lambda: 0.05,
+    "froude": lambda: 1.0, "lateral": lambda: np.linspace(-0.5, 0.5, 5), "sections": lambda: 8,
 }
 
 def _plan_scene():
@@ -267,6 +268,12 @@ OVERRIDES = {
     "optics.rendering.renderer.Renderer.texture": {"name": lambda: "extra", "array": _field},
     "wavephys.simulation.stepping.add_source": {"source": lambda: Stones(0.1, -0.2, 0.25, 1e-3)},
     "wavephys.physics.wake.steady_wake": {"speed": lambda: 1.0},
+    "wavephys.physics.wake.froude_number": {"size": lambda: 0.05},
+    "wavephys.physics.wake.wake_envelope": {"source": lambda: GaussianPressure(50.0, 0.05),
+                                            "distance": lambda: np.array([1.0, 2.0])},
+    "wavephys.harness.wake.max_amplitude_angle_theory": {"source": lambda: GaussianPressure(50.0, 0.023),
+                                                         "near": lambda: 1.0, "far": lambda: 4.0,
+                                                         "spacing": lambda: 0.02},
     "optics.rendering.textures.height_precision": {"eta": lambda: _field() + np.float32(0.01)},
     "wavephys.physics.wake.HullSource": {"hull": lambda: Hull("gaussian", 0.3, 0.15)},
     "optics.rendering.renderer.render_sequence": {"renderer": lambda: instance(_renderer_class()),

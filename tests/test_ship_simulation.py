@@ -34,14 +34,15 @@ def test_time_stepped_wake_has_kelvin_angle_and_transverse_wavelength():
 
 @pytest.mark.slow
 def test_time_stepped_outer_edge_of_a_moderate_hull():
-    """A hull of σ = 0.3 m (0.95 of 2πU²/g at U = 0.7 m/s): its maximum is far off Kelvin's
-    angle, its outer edge is not."""
+    """A hull of σ = 0.3 m (0.95 of 2πU²/g at U = 0.7 m/s): its outer edge is at Kelvin's angle,
+    and its angle of maximum amplitude stays inside the wedge (19.90° ± 0.16°; the envelope
+    taken across the track alone once gave 26.5° ± 1.0°, outside it)."""
     grid = Grid(1024, 20.0)
     eta, (x, y, _) = _run(grid, Hull("gaussian", 0.3, 0.3), (-7.5, 0.0), 0.7, 0.1, 22.0, 64)
     edge = wake_angle(eta, grid, source=(x, y), method="cusp", speed=0.7, near=1.0, far=8.0)
     assert abs(edge.angle - KELVIN_ANGLE) < 0.3, edge
     largest = wake_angle(eta, grid, source=(x, y), near=1.0, far=8.0, exclude=0.2)
-    assert abs(largest.angle - KELVIN_ANGLE) > 1.0, largest
+    assert largest.angle < KELVIN_ANGLE + 0.5 + 2 * largest.uncertainty and largest.uncertainty < 0.5, largest
 
 
 @pytest.mark.slow

@@ -31,12 +31,13 @@ class _Samples(Spec):
 
 
 class _Angles(Spec):
-    """A measured angle (degrees, or an object with ``angle``), or a list or tuple of them."""
+    """A measured angle (degrees in (−90, 90), or an object with ``angle``), or a list or tuple of
+    them (a wake's maximum on the track measures about 0, a little either side)."""
 
     def __call__(self, name, value, arguments):
         items = list(value) if isinstance(value, (list, tuple)) else [value]
         for i, a in enumerate(items):
-            Real(lo=0.0, hi=90.0)(name if len(items) == 1 else f"{name}[{i}]", getattr(a, "angle", a), arguments)
+            Real(lo=-90.0, hi=90.0, lo_open=True, hi_open=True)(name if len(items) == 1 else f"{name}[{i}]", getattr(a, "angle", a), arguments)
         return value
 
 __all__ = ["WaveFigure", "plot_surface", "plot_dispersion", "plot_error_vs_time", "plot_curves", "plot_wake",

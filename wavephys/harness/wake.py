@@ -7,10 +7,12 @@ largest envelope is located (parabolic refinement) and a line is fitted; the ang
 atan of its slope, with the fit's standard error (or half the disagreement of the two
 sides, if larger) as its uncertainty. Two estimators (:data:`WAKE_ANGLE_METHODS`):
 
-* :func:`wake_angle_max` — the angle of maximum amplitude (envelope of η itself). For a
-  near-point source it is the cusp line (Kelvin's 19.47° in deep water); for sources that
-  are not small against 2πU²/g it is a different quantity that moves inward (Rabaud &
-  Moisy 2013).
+* :func:`wake_angle_max` — the angle of maximum amplitude (envelope of all the waves). It
+  approaches the cusp line (Kelvin's 19.47° in deep water) only far behind a small source;
+  for a Gaussian pressure source it follows the Froude number Fr = U/sqrt(g·b): on the
+  track (transverse waves) below Fr ≈ 0.35, near Kelvin's angle up to Fr ≈ 0.9, then
+  falling roughly as 1/Fr (Darmon, Benzaquen & Raphaël 2014; Rabaud & Moisy 2013).
+  :func:`max_amplitude_angle_theory` gives linear theory's value for the same sections.
 * :func:`wake_angle_cusp` — the outer edge (cusp line) for sources of any size, from the
   waves near the cusp wavenumber k_c of :func:`wavephys.physics.wake.cusp_line`.
 
@@ -27,13 +29,14 @@ import jax.numpy as jnp
 import numpy as np
 
 from wavephys.core.grid import Grid
-from wavephys.core.inputs import check_array, check_instance, check_scalar
+from wavephys.core.inputs import check_array, check_instance, check_int, check_scalar
 from wavephys.core.methods import Methods
 from wavephys.core.water import Water
 from wavephys.physics.dispersion import group_speed, phase_speed
-from wavephys.physics.wake import CuspLine, cusp_line
+from wavephys.physics.wake import CuspLine, GaussianPressure, cusp_line, wake_envelope
 
-__all__ = ["WakeAngle", "wake_angle", "wake_angle_max", "wake_angle_cusp", "WAKE_ANGLE_METHODS", "track_wavelength"]
+__all__ = ["WakeAngle", "wake_angle", "wake_angle_max", "wake_angle_cusp", "WAKE_ANGLE_METHODS", "track_wavelength",
+           "max_amplitude_angle_theory"]
 
 
 @dataclass(frozen=True)
@@ -49,16 +52,16 @@ class WakeAngle:
         return f"{self.angle:.2f}° ± {self.uncertainty:.2f}° ({self.method}, {self.points} sections)"
 
 
-def _envelope(profile):
-    """Amplitude envelope along the last axis (analytic signal of each half)."""
-    n = profile.shape[-1]
-    spec = np.fft.fft(profile, axis=-1)
-    h = np.zeros(n)
-    h[0] = 1
-    h[1:(n + 1) // 2] = 2
-    if n % 2 == 0:
-        h[n // 2] = 1
-    return np.abs(np.fft.ifft(spec * h, axis=-1))
+def _wave_envelope(eta, grid: Grid, direction: float):
+    """Envelope of every wave in a steady wake: the modulus of the analytic signal along the
+    direction of travel (only the wavevectors k·u > 0 kept, doubled). All stationary waves of
+    a source moving along u have k·u > 0, so this is their local amplitude, for transverse
+    waves (crests across the track) as for diverging ones, with no oscillation left in it."""
+    spec = np.fft.fft2(eta)
+    ky, kx = np.broadcast_arrays(*(np.asarray(a, np.float64) for a in grid.wavenumbers()))
+    along = kx * math.cos(direction) + ky * math.sin(direction)
+    tiny = 1e-9 * float(grid.dk)
+    return np.abs(np.fft.ifft2(spec * np.where(along > tiny, 2.0, np.where(along < -tiny, 0.0, 1.0))))
 
 
 def _cusp_band(eta, grid: Grid, wavenumber: float, bandwidth: float, direction: float, side: int):
@@ -127,51 +130,198 @@ def _lattice(eta, grid: Grid, source, near: float, far: float, exclude: float):
     return np.asarray(eta, np.float64), ds, ys
 
 
-def _ridge_angle(env: dict, ds, ys, exclude: float, model) -> tuple[float, float, int]:
-    """Fit y(d) of the envelope's maximum on each side; (mean angle, uncertainty, sections used)."""
+def _ridge_positions(e_side, y_side, exclude: float, tolerance):
+    """Per section: lateral position of the envelope's largest value (parabolic refinement)
+    and its spread, half the extent of the values within ``tolerance`` (relative) of it —
+    large where the maximum is flat or two ridges are nearly equal. Sections whose maximum
+    lies at the outer edge, or at the edge of an excluded strip, have no ridge (NaN); those
+    with the maximum on the track (``exclude = 0``) are flagged."""
+    step = float(y_side[1] - y_side[0])
+    lat, spread = np.full(len(e_side), np.nan), np.full(len(e_side), np.nan)
+    on_track = np.zeros(len(e_side), bool)
+    for r, row in enumerate(e_side):
+        i = int(np.argmax(row))
+        top = float(row[i])
+        if not (np.isfinite(top) and top > 0) or i == row.size - 1 or (i == 0 and exclude > 0):
+            continue
+        off = 0.0
+        on_track[r] = i == 0
+        if i > 0:
+            a_, b_, c_ = row[i - 1:i + 2]
+            den = a_ - 2 * b_ + c_
+            off = 0.5 * (a_ - c_) / den if den < 0 else 0.0
+        lat[r] = y_side[i] + off * step
+        if tolerance is None:
+            spread[r] = step / 2
+        else:
+            close = y_side[row >= (1.0 - tolerance) * top]
+            spread[r] = max(0.5 * float(close.max() - close.min()), step / 2)
+    return lat, spread, on_track
+
+
+def _fit_side(ds, lat, spread, model):
+    """Weighted least squares of y(d) = model(d)·c (weights 1/spread²): slope and its standard
+    error. Sections more than three spreads (or three robust deviations) off the ridge the
+    others agree on are dropped and the fit repeated; the covariance is scaled up by the
+    reduced χ² when the ridge scatters more than its
+    spreads say, and by sections/runs when its residuals come in runs of one sign (a ridge
+    hopping between two maxima: neighbouring sections are then not independent)."""
+    ok = np.isfinite(lat)
+    A = model(ds[ok])
+    if ok.sum() <= max(A.shape[1], 0.2 * lat.size):
+        raise ValueError(f"too few sections with a clear maximum ({int(ok.sum())} of {lat.size}): the largest "
+                         "amplitude lies at "
+                         "the edge of the sections or of the excluded strip (e.g. transverse waves on the track); "
+                         "widen near..far or change exclude")
+    y, spread, params = lat[ok], spread[ok], A.shape[1]
+    keep = np.ones(y.size, bool)
+    for _ in range(4):  # drop sections far off the ridge the others agree on (robust refits)
+        w = keep / spread**2
+        normal = A.T @ (A * w[:, None])
+        coef = np.linalg.solve(normal, A.T @ (w * y))
+        resid = A @ coef - y
+        scale = 1.4826 * float(np.median(np.abs(resid[keep])))
+        new = np.abs(resid) <= 3.0 * np.maximum(spread, scale)
+        if np.array_equal(new, keep) or new.sum() <= params:
+            break
+        keep = new
+    resid, w, count = resid[keep], w[keep], int(keep.sum())
+    chi2 = float(np.sum(w * resid**2)) / max(count - params, 1)
+    # neighbouring sections are not independent (a ridge that hops between two maxima leaves
+    # long runs of residuals of one sign): count independent sections as the runs of signs
+    runs = 1 + int(np.count_nonzero(np.diff(np.sign(resid)) != 0))
+    cov = np.linalg.inv(normal) * max(chi2, 1.0) * max(count / max(runs, params + 1), 1.0)
+    return float(coef[1]), math.sqrt(float(cov[1, 1])), count
+
+
+def _side_angle(ds, lat, spread, on_track, model):
+    """(angle, uncertainty, sections) on one side, degrees. Where most sections have their
+    maximum on the track, that is the answer (the transverse waves of a slow, broad source:
+    angle 0); otherwise those sections see the near field and the ridge off the track is
+    fitted. When both kinds hold at least a tenth of the sections, the maximum jumps between
+    them (near Fr ≈ 0.35 for a Gaussian source), and the uncertainty covers both answers."""
+    found = np.isfinite(lat)
+    share = on_track.sum() / max(int(found.sum()), 1)
+    off = np.where(on_track, np.nan, lat)
+    results = {}
+    for name, values in (("track", lat), ("ridge", off)):
+        try:
+            slope, sb, count = _fit_side(ds, values, spread, model)
+        except ValueError:
+            continue
+        results[name] = (math.degrees(math.atan(slope)), math.degrees(sb / (1 + slope**2)), count)
+    main = "track" if share > 0.5 else "ridge"
+    if main not in results:
+        _fit_side(ds, off if main == "ridge" else lat, spread, model)  # raises the reason
+    angle, error, count = results[main]
+    if 0.1 <= share <= 0.9 and len(results) == 2:
+        other = 0.0 if main == "ridge" else results["ridge"][0]
+        error = max(error, abs(angle - other))
+    return angle, error, count
+
+
+def _ridge_angle(env: dict, ds, ys, exclude: float, model, tolerance=None) -> tuple[float, float, int]:
+    """Fit y(d) of the envelope's maximum on each side; (mean angle, uncertainty, sections used).
+
+    The uncertainty is the larger of the fits' standard errors and half the disagreement of
+    the two sides."""
     angles, errors, used = [], [], 0
     for side in (1, -1):
         yy = side * ys
         pos = yy > exclude
         order = np.argsort(yy[pos])
         y_side, e_side = yy[pos][order], env[side][:, pos][:, order]
-        lat = np.full(ds.size, np.nan)
-        for r, row in enumerate(e_side):
-            i = int(np.argmax(row))
-            if 0 < i < row.size - 1:
-                a_, b_, c_ = row[i - 1:i + 2]
-                den = a_ - 2 * b_ + c_
-                off = 0.5 * (a_ - c_) / den if den < 0 else 0.0
-                lat[r] = y_side[i] + off * (y_side[1] - y_side[0])
-        ok = np.isfinite(lat)
-        A = model(ds[ok])
-        if ok.sum() <= A.shape[1]:
-            raise ValueError("too few sections with a clear maximum: widen near..far")
-        coef, *_ = np.linalg.lstsq(A, lat[ok], rcond=None)
-        sigma2 = float(np.sum((A @ coef - lat[ok]) ** 2)) / max(int(ok.sum()) - A.shape[1], 1)
-        sb = math.sqrt(sigma2 * np.linalg.inv(A.T @ A)[1, 1])
-        angles.append(math.degrees(math.atan(coef[1])))
-        errors.append(math.degrees(sb / (1 + coef[1] ** 2)))
-        used += int(ok.sum())
+        lat, spread, on_track = _ridge_positions(e_side, y_side, exclude, tolerance)
+        angle, error, count = _side_angle(ds, lat, spread, on_track, model)
+        angles.append(angle)
+        errors.append(error)
+        used += count
     unc = float(max(np.sqrt(np.mean(np.square(errors))), abs(angles[0] - angles[1]) / 2))
     return float(np.mean(angles)), unc, used
 
 
+def _airy_model(d):
+    """y = b·d + c·d^{1/3}: the ray from the source, and the Airy width of a cusp region."""
+    return np.stack([np.cbrt(d), d], 1)
+
+
 def wake_angle_max(eta, grid: Grid, *, source=(0.0, 0.0), direction: float = 0.0, near: float, far: float,
-                   exclude: float = 0.0) -> WakeAngle:
+                   exclude: float = 0.0, tolerance: float = 0.01) -> WakeAngle:
     """Angle of maximum amplitude of a wake (degrees ± uncertainty), from heights η (m).
 
-    Envelope of η across the track (analytic signal); y = a + b·d + c·d^{1/3} is fitted to
-    its maximum on each side (d^{1/3}: the Airy width of the cusp region; a: the offset of
-    a finite source). ``near``, ``far``: distances behind ``source`` (m, 0 < near < far ≤
-    L/2); ``exclude``: half-width (m) of a strip along the track that is ignored (the
-    transverse waves).
+    The envelope is the modulus of the analytic signal along the direction of travel (every
+    stationary wave travels forward, so it is the local amplitude of transverse and diverging
+    waves alike). In each section across the track its largest value is located, with a
+    spread: half the width of the values within ``tolerance`` (relative, default 1 %) of it,
+    so a flat maximum or two nearly equal ridges count for little. y = b·d + c·d^{1/3} (the
+    ray from the source, and the Airy width of a cusp region) is fitted on each side,
+    weighted by 1/spread², robustly (sections far off the ridge are dropped). The
+    uncertainty is the fit's standard error (scaled up when the sections scatter more than
+    their spreads, or in runs) or half the disagreement of the two sides, whichever is
+    larger; where the maximum jumps between the track and a ridge, it covers both.
+
+    ``near``, ``far``: distances behind ``source`` (m, 0 < near < far ≤ L/2); ``exclude``:
+    half-width (m) of a strip along the track that is ignored (with ``exclude = 0`` a
+    maximum on the track counts, as the transverse waves of slow, broad sources have it:
+    the angle is then 0). Sections whose maximum lies at the edge of the strip or of the
+    section have no ridge; too few of them raise ``ValueError``. The linear theory's value
+    for a Gaussian source through the same fit: :func:`max_amplitude_angle_theory`.
     """
     eta, ds, ys = _lattice(eta, grid, source, near, far, exclude)
     check_scalar("direction", direction, lo=-2 * math.pi, hi=2 * math.pi)
-    env = dict.fromkeys((1, -1), _envelope(_sections(eta, grid, source, direction, ds, ys)))
-    angle, unc, used = _ridge_angle(env, ds, ys, exclude, lambda d: np.stack([np.ones_like(d), d, np.cbrt(d)], 1))
+    check_scalar("tolerance", tolerance, lo=0.0, hi=0.5, lo_open=True)
+    env = dict.fromkeys((1, -1), _sections(_wave_envelope(eta, grid, direction), grid, source, direction, ds, ys))
+    angle, unc, used = _ridge_angle(env, ds, ys, exclude, _airy_model, tolerance)
     return WakeAngle(angle, unc, "max", used)
+
+
+def max_amplitude_angle_theory(speed, source: GaussianPressure, *, near: float, far: float, exclude: float = 0.0,
+                               spacing: float, water: Water = Water(sigma=0.0), sections: int = 16,
+                               tolerance: float = 0.01, damping: float = 0.0) -> WakeAngle:
+    """The angle of maximum amplitude that linear theory gives for a Gaussian pressure source,
+    through the same sections and fit as :func:`wake_angle_max` (degrees ± the fit's error).
+
+    The envelope is the far-field integral :func:`wavephys.physics.wake.wake_envelope`
+    (independent of any grid), sampled on ``sections`` sections from ``near`` to ``far`` m
+    behind the source, ``spacing``/2 apart across the track (use the grid spacing of the
+    field you compare with; at most 800 points a section). Compare a measured :class:`WakeAngle` with this one at the same
+    ``near``, ``far``, ``exclude`` and ``tolerance``: the angle of maximum amplitude of a
+    finite source still moves with distance, so only the same sections compare. ``damping``
+    (1/s, default 0) is Rayleigh's ε of a damped steady wake (:func:`~wavephys.physics.wake.steady_wake`
+    uses 8U/L); it fades slow diverging waves first, so it moves the angle too.
+    """
+    check_scalar("speed", speed, lo=0.0, lo_open=True)
+    check_instance("source", source, GaussianPressure, "wavephys.physics.wake.GaussianPressure")
+    check_scalar("spacing", spacing, lo=0.0, lo_open=True)
+    check_scalar("near", near, lo=0.0, lo_open=True)
+    check_scalar("far", far, lo=0.0, lo_open=True)
+    if not near < far:
+        raise ValueError(f"near must be less than far, got near={near!r}, far={far!r}")
+    check_scalar("exclude", exclude, lo=0.0)
+    sections = check_int("sections", sections, lo=4, hi=4096)
+    check_scalar("tolerance", tolerance, lo=0.0, hi=0.5, lo_open=True)
+    check_instance("water", water, Water, "wavephys.Water")
+    longest = 2 * math.pi * float(speed) ** 2 / float(water.g)  # the transverse waves' length (deep water)
+    if far > 1000 * longest:
+        raise ValueError(f"far must be at most 1000 transverse wavelengths (2 pi U^2/g = {longest:.4g} m) behind "
+                         f"the source for the direction integral, got {far!r}")
+    if not spacing < far:
+        raise ValueError(f"spacing must be less than far ({far!r} m), got {spacing!r}")
+    check_scalar("damping", damping, lo=0.0)
+    if damping * far / float(speed) > 50.0:
+        raise ValueError(f"damping {damping!r} 1/s fades the waves by more than e^-50 at far = {far!r} m "
+                         f"(damping·far/U must be at most 50)")
+    ds = np.linspace(near, far, sections)
+    half = far * math.tan(math.radians(40.0))  # beyond any cusp line of a subcritical wake
+    if not exclude < half / 2:
+        raise ValueError(f"exclude must be less than far·tan(40°)/2 = {half / 2:.4g} m (the sections reach "
+                         f"{half:.4g} m across the track), got {exclude!r}")
+    step = max(spacing / 2, half / 400)  # the maxima are refined between lattice points
+    ys = np.arange(step / 2, half, step)  # one side: the source is axisymmetric
+    env = wake_envelope(ds, ys, speed, source, water, damping)
+    angle, unc, used = _ridge_angle(dict.fromkeys((1, -1), np.concatenate([env[:, ::-1], env], 1)), ds,
+                                    np.concatenate([-ys[::-1], ys]), exclude, _airy_model, tolerance)
+    return WakeAngle(angle, unc, "max (linear theory)", used)
 
 
 def wake_angle_cusp(eta, grid: Grid, *, source=(0.0, 0.0), direction: float = 0.0, near: float, far: float,
@@ -203,7 +353,7 @@ def wake_angle_cusp(eta, grid: Grid, *, source=(0.0, 0.0), direction: float = 0.
                          f"fit between near and far ({far - near:.4g} m): lower the speed or use a larger domain")
     env = {side: np.abs(_sections(_cusp_band(eta, grid, cusp.wavenumber, bandwidth, direction, side), grid,
                                   source, direction, ds, ys)) for side in (1, -1)}
-    angle, unc, used = _ridge_angle(env, ds, ys, exclude, lambda d: np.stack([np.ones_like(d), d], 1))
+    angle, unc, used = _ridge_angle(env, ds, ys, exclude, lambda d: np.stack([np.ones_like(d), d], 1), 0.01)
     return WakeAngle(angle, float(math.hypot(unc, _band_spread(speed, water, cusp, bandwidth))), "cusp", used)
 
 

@@ -43,6 +43,7 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 
+import jax
 import jax.numpy as jnp
 import numpy as np
 
@@ -54,7 +55,8 @@ from wavephys.core.grid import Grid
 from wavephys.core.water import Water
 
 __all__ = ["GaussianPressure", "HullSource", "steady_wake", "KELVIN_ANGLE", "transverse_wavelength", "CuspLine",
-           "cusp_line", "stationary_wavenumber"]
+           "cusp_line", "stationary_wavenumber", "froude_number", "gaussian_size", "wake_envelope",
+           "mach_like_angle"]
 
 KELVIN_ANGLE = math.degrees(math.asin(1.0 / 3.0))
 """Kelvin's wake half-angle for deep-water gravity waves, degrees (19.47°)."""
@@ -206,6 +208,143 @@ class HullSource:
         # sampled on the grid's own points with the hull at (0, 0): the DFT of :meth:`Grid.source_phase`
         f_hat = hull_spectrum(self.hull, grid, (0.0, 0.0), (0.0, 0.0, 0.0))
         return -1j * kx * speed * self.strength * f_hat
+
+
+def froude_number(speed, size, water: Water = Water(sigma=0.0)) -> float:
+    """Froude number Fr = U/sqrt(g·b) of a :class:`GaussianPressure` of size σ moving at U.
+
+    The length is b = π·sqrt(2)·σ, the width in p0·exp(−π²r²/b²) = p0·exp(−r²/(2σ²)), the
+    form Darmon, Benzaquen & Raphaël (2014) use for an axisymmetric source (docs/physics.md
+    §1.3). ``speed`` U in m/s (> 0), ``size`` σ in m (> 0).
+    """
+    check_scalar("speed", speed, lo=0.0, lo_open=True)
+    check_scalar("size", size, lo=0.0, lo_open=True)
+    check_instance("water", water, Water, "wavephys.Water")
+    return float(speed) / math.sqrt(float(water.g) * math.pi * math.sqrt(2.0) * float(size))
+
+
+def gaussian_size(froude, speed, water: Water = Water(sigma=0.0)) -> float:
+    """The size σ (m) of the :class:`GaussianPressure` that has Froude number ``froude`` at
+    ``speed`` (m/s): the inverse of :func:`froude_number`, σ = U²/(g·Fr²·π·sqrt(2))."""
+    check_scalar("froude", froude, lo=0.0, lo_open=True)
+    check_scalar("speed", speed, lo=0.0, lo_open=True)
+    check_instance("water", water, Water, "wavephys.Water")
+    return float(speed) ** 2 / (float(water.g) * float(froude) ** 2 * math.pi * math.sqrt(2.0))
+
+
+def mach_like_angle(froude) -> float:
+    """Rabaud & Moisy's (2013) large-Froude wake angle, degrees: α = 1/(2·sqrt(2π)·Fr) rad.
+
+    The ray of the longest divergent waves a source of length b makes (k ≈ 2π/b): for
+    θ → 90°, tan φ ≈ 1/(2 tan θ) and k = g sec²θ/U², so φ ≈ sqrt(g/k)/(2U). Valid for
+    Fr ≳ 0.6 (below, Kelvin's 19.47°); a scaling law, not an exact result.
+    """
+    check_scalar("froude", froude, lo=0.0, lo_open=True)
+    return math.degrees(1.0 / (2.0 * math.sqrt(2.0 * math.pi) * float(froude)))
+
+
+def _stationary_waves(speed, water: Water, t):
+    """Per wave direction t = tan θ: stationary wavenumber k₀ (rad/m, NaN where none) and the
+    residue weight k₀·H(k₀)/|c_g(k₀) − U cos θ| (s/m·rad/m ...) of the far-field integral."""
+    cos_t = 1.0 / np.sqrt(1.0 + t * t)
+    k0 = stationary_wavenumber(speed * cos_t, water)
+    ok = np.isfinite(k0)
+    kk = jnp.asarray(np.where(ok, k0, 1.0))
+    h = np.asarray(height_multiplier(kk, water), np.float64)
+    cg = np.asarray(group_speed(kk, water), np.float64)
+    slip = np.abs(cg - speed * cos_t)
+    weight = np.where(ok & (slip > 0), np.where(ok, k0, 0.0) * h / np.where(slip > 0, slip, 1.0), 0.0)
+    return np.where(ok, k0, 0.0), weight, cos_t
+
+
+def wake_envelope(distance, lateral, speed, source: "GaussianPressure", water: Water = Water(sigma=0.0),
+                  damping: float = 0.0):
+    """Amplitude envelope (m) of the far-field steady wake of a Gaussian pressure source.
+
+    The wave part of the linear steady wake (Havelock's integral over wave directions θ,
+    evaluated independently of any grid): behind a source moving at U in +x,
+
+    .. math::
+
+        W(x, y) = -\\frac{i}{2\\pi\\rho}\\int_{-\\pi/2}^{\\pi/2}
+            \\frac{k_0 H(k_0)\\,\\hat p(k_0)}{|c_g(k_0) - U\\cos\\theta|}
+            e^{i k_0 (x\\cos\\theta + y\\sin\\theta)}\\,d\\theta, \\qquad \\eta = \\mathrm{Re}\\,W,
+
+    with k₀(θ) the stationary wavenumber (c(k₀) = U cos θ), H = K/ω and p̂ the source's
+    Fourier transform (2πσ²p0·e^{−k²σ²/2}); |W| is the envelope, since W holds only waves
+    travelling forward. Deep water, gravity only: |W| = (1/(πρg))|∫k₀²p̂e^{ik₀ϖ}dθ|, the
+    model Darmon, Benzaquen & Raphaël (2014) analyse. The local (non-wave) disturbance is
+    left out, so use it a few source sizes behind the source (docs/physics.md §1.3).
+
+    Parameters
+    ----------
+    distance : array_like (m,)
+        Distances d behind the source, m, > 0 (x = −d).
+    lateral : array_like (p,)
+        Offsets y across the track, m.
+    speed : float
+        U, m/s, > 0.
+    source : GaussianPressure
+    water : Water
+        Any depth and surface tension (the gravity branch of the stationary waves).
+    damping : float
+        Rayleigh's ε, 1/s, ≥ 0 (default 0, the physical limit): with ε > 0 each wave fades as
+        exp(−ε|ϖ|/|c_g − U cos θ|), ϖ = x cos θ + y sin θ, as in :func:`steady_wake`.
+
+    Returns
+    -------
+    numpy.ndarray (m, p)
+        |W| at (−d, y), m.
+    """
+    check_array("distance", distance, ndim=1, lo=0.0, lo_open=True)
+    check_array("lateral", lateral, ndim=1)
+    check_scalar("speed", speed, lo=0.0, lo_open=True)
+    check_instance("source", source, GaussianPressure, "wavephys.physics.wake.GaussianPressure")
+    check_instance("water", water, Water, "wavephys.Water")
+    check_scalar("damping", damping, lo=0.0)
+    ds, ys = np.asarray(distance, np.float64), np.asarray(lateral, np.float64)
+    sigma, rho = float(source.size), float(water.rho)
+    # directions t = tan θ where the integrand matters (p̂ falls as e^{−k²σ²/2}, k₀ ∝ 1 + t²)
+    t = np.linspace(-60.0, 60.0, 4001)
+    k0, weight, _ = _stationary_waves(speed, water, t)
+    weight = weight * np.exp(-0.5 * (k0 * sigma) ** 2) / (1.0 + t * t)
+    if not np.any(weight > 0):
+        raise ValueError(f"speed {speed!r} m/s: no stationary waves behind the source (below c_min?)")
+    keep = np.nonzero(weight > 1e-12 * weight.max())[0]
+    t_lo, t_hi = t[max(keep[0] - 1, 0)], t[min(keep[-1] + 1, t.size - 1)]
+    # enough directions that the phase k₀(x cos θ + y sin θ) turns < 0.2 rad between them
+    probe = np.linspace(t_lo, t_hi, 4001)
+    k0p, _, cos_p = _stationary_waves(speed, water, probe)
+    y_far = np.max(np.abs(ys), initial=0.0)
+    turn = max(float(np.max(np.abs(np.diff(k0p * cos_p * (-np.max(ds)) + k0p * probe * cos_p * sign * y_far))))
+               for sign in (-1.0, 1.0))  # largest phase change per probe step, at the lattice's far corners
+    count = int(min(max(2001, 4000 * turn / 0.2), 400_001))
+    t = np.linspace(t_lo, t_hi, count)
+    k0, weight, cos_t = _stationary_waves(speed, water, t)
+    phat = 2 * math.pi * sigma**2 * float(source.amplitude) * np.exp(-0.5 * (k0 * sigma) ** 2)
+    w = weight * phat / (1.0 + t * t) * (t[1] - t[0]) / (2 * math.pi * rho)  # dθ = dt/(1 + t²)
+    sin_t = t * cos_t
+    fade = damping / _slip(speed, water, k0, cos_t)  # 1/m along ϖ (0 without damping)
+    rows = [_envelope_section(float(d), ys, k0, cos_t, sin_t, fade, w) for d in ds]
+    return np.stack([np.asarray(r, np.float64) for r in rows])
+
+
+@jax.jit
+def _envelope_section(d, ys, k0, cos_t, sin_t, fade, w):
+    """|Σ_θ w·e^{i k₀ ϖ}·e^{−fade·|ϖ|}| over the waves behind (ϖ < 0), for one section, float32
+    (the envelope to ~1e-6 relative; the phases are formed in the inputs' precision first)."""
+    path = -d * cos_t[None, :] + ys[:, None] * sin_t[None, :]  # ϖ, m (< 0 where the waves are)
+    phase = (k0[None, :] * path).astype(jnp.float32)
+    amp = jnp.where(path < 0, jnp.exp(-fade[None, :] * jnp.abs(path)), 0.0).astype(jnp.float32)
+    re = (amp * jnp.cos(phase)) @ w.astype(jnp.float32)
+    im = (amp * jnp.sin(phase)) @ w.astype(jnp.float32)
+    return jnp.hypot(re, im)
+
+
+def _slip(speed, water: Water, k0, cos_t):
+    """|c_g(k₀) − U cos θ|, m/s: how fast a stationary wave's energy leaves its phase pattern."""
+    cg = np.asarray(group_speed(jnp.asarray(np.where(k0 > 0, k0, 1.0)), water), np.float64)
+    return np.maximum(np.abs(cg - speed * cos_t), 1e-12)
 
 
 def steady_wake(grid: Grid, water: Water, speed: float, source, damping: float | None = None):
