@@ -8,6 +8,7 @@ from __future__ import annotations
 
 import argparse
 import json
+import statistics
 import sys
 from pathlib import Path
 
@@ -63,7 +64,8 @@ def run_boundaries(args) -> None:
 def run_optics(args) -> None:
     from bench import optics
 
-    rows = optics.fresnel_rows(_say) + optics.absorption_rows() + optics.caustics_rows(_say)
+    rows = optics.fresnel_rows(_say) + optics.absorption_rows()
+    rows += optics.caustics_rows(_say, count=3 if args.quick else 9)
     if not args.quick:
         rows += optics.speed_rows(_say)
     for r in rows:
@@ -71,12 +73,20 @@ def run_optics(args) -> None:
             print(f"fresnel {r['method']:<14}{r['side']:<6} worst {r['worst_error']:+.4f} at {r['worst_angle']:5.1f}°  "
                   f"weighted mean {r['weighted_mean_error']:.4f}  {r['seconds'] * 1e3:.2f} ms/1M "
                   f"(exact {r['baseline_seconds'] * 1e3:.2f})")
-        elif r["family"] == "caustics":
-            print(f"caustics {r['method']:<12}{r['label']:<10} error {r['error']:.4f}  {r['seconds'] * 1e3:.1f} ms")
+        elif r["family"] == "caustics reference":
+            print(f"case {r['case']} {r['spectrum']:<6} sun {r['elevation']:4.1f}° at {r['fraction']} of the first fold: "
+                  f"reference refine {r['refine']}, bound {r['bound']:.1e} of the peak {r['peak']:.2f}")
         elif r["family"] == "caustics speed":
             extra = f", {r['photons_per_second']:.3g} photons/s" if "photons_per_second" in r else ""
-            print(f"speed {r['method']}: {r['seconds'] * 1e3:.2f} ms vs step {r['baseline_seconds'] * 1e3:.2f} ms, "
-                  f"ratio {r['ratio']:.2f}{extra}")
+            print(f"speed {r['method']}: {r['seconds'] * 1e3:.1f} ms vs step {r['baseline_seconds'] * 1e3:.2f} ms, "
+                  f"ratio {r['ratio']:.1f}{extra}")
+    ca = [r for r in rows if r["family"] == "caustics"]
+    for key in sorted({(r["method"], r["label"]) for r in ca}):
+        sel = [r for r in ca if (r["method"], r["label"]) == key]
+        print(f"caustics {key[0]:<12}{key[1]:<18} max-norm error {min(r['error'] for r in sel):.2e}-"
+              f"{max(r['error'] for r in sel):.2e} of the peak, L2 {max(r['l2_error'] for r in sel):.2e}, "
+              f"cost ×{statistics.median(r['ratio'] for r in sel):.1f} a step (128²), min value "
+              f"{min(r['min_value'] for r in sel):.3g}")
     ab = [r for r in rows if r["family"] == "absorption"]
     print("rgb vs spectral: " + ", ".join(f"{r['distance']:.2g} m: {r['error']:.3f}" for r in ab[::6]))
     _write(rows, optics.figures(rows), Path(args.json or "bench/results/optics.json"))

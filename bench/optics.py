@@ -14,6 +14,7 @@ import numpy as np
 
 from bench.timing import interleaved, median_seconds
 from optics.caustics import floor_irradiance
+from optics.rendering.gl import RendererUnavailable
 from optics.light.attenuation import fit_rgb_coefficients, rgb_error
 from optics.light.fresnel import N_AIR, N_WATER, approximation_errors, reflectance
 from wavephys import Grid, Simulation, Stones, Water
@@ -50,54 +51,99 @@ def absorption_rows() -> list[dict]:
                  coefficients=coeffs.tolist()) for a, b in zip(d, err)]
 
 
-def caustics_rows(progress=print) -> list[dict]:
+CAUSTICS_CONFIGS = ([("beam", dict(refine=r), f"refine={r}") for r in (1, 2, 3, 4)]
+                    + [("beam", dict(refine=r, normals="central"), f"refine={r} central") for r in (1, 3)]
+                    + [("gl", dict(supersample=s), f"supersample={s}") for s in (1, 4, 8)]
+                    + [("gl", dict(refine=3, supersample=s), f"refine=3 ss={s}") for s in (4, 8)]
+                    + [("photon", dict(photons_per_texel=p), f"{p}/texel") for p in (1, 4, 16, 64)]
+                    + [("blinn_phong", {}, "tr=20")])
+"""Caustics methods and settings measured over the surface family."""
+
+
+def _family(count: int, seed: int = 2024):
+    """``count`` cases nobody picked: a spectrum, a steepness, a sun, a depth (fraction of the
+    first fold), a 90° turn, on Grid(128, 2 m)."""
+    from optics.caustics import SURFACE_SPECTRA, first_fold_depth, random_surface
+
+    rng = np.random.default_rng(seed)
     grid = Grid(128, 2.0)
-    x, y = grid.mesh()
-    w = 2 * math.pi / 2.0
-    eta = (0.004 * jnp.cos(3 * w * x) * jnp.sin(2 * w * y) + 0.002 * jnp.sin(5 * w * (x + y))
-           + 0.0015 * jnp.cos(7 * w * x - 3 * w * y))
-    depth = 1.0
-    progress("caustics reference (oversample 16)")
-    ref = np.asarray(floor_irradiance(eta, grid, depth, method="reference", oversample=16))
-    configs = [("beam", dict(samples=s), f"s={s}") for s in (1, 2, 4, 8)]
-    configs += [("beam", dict(samples=1, blur=True), "s=1+blur"), ("beam", dict(samples=1, normals="central"), "s=1 central"),
-                ("beam", dict(samples=4, normals="central"), "s=4 central")]
-    configs += [("photon", dict(photons_per_texel=p), f"{p}/texel") for p in (1, 4, 16, 64)]
-    configs += [("blinn_phong", {}, "tr=20"), ("reference", dict(oversample=4), "o=4")]
+    for i in range(count):
+        spectrum = SURFACE_SPECTRA[i % len(SURFACE_SPECTRA)]
+        eta = random_surface(grid, spectrum, float(rng.uniform(0.03, 0.15)), int(rng.integers(1 << 30)))
+        if rng.random() < 0.5:
+            eta = jnp.rot90(eta)
+        elevation, azimuth = math.radians(rng.uniform(40.0, 90.0)), rng.uniform(0.0, 2 * math.pi)
+        sun = (math.cos(elevation) * math.cos(azimuth), math.cos(elevation) * math.sin(azimuth), math.sin(elevation))
+        fraction = (0.3, 0.6, 0.9)[i % 3]
+        depth = fraction * first_fold_depth(eta, grid, sun)
+        yield dict(case=i, spectrum=spectrum, elevation=math.degrees(elevation), fraction=fraction, depth=depth), \
+            grid, eta, sun
+
+
+def caustics_rows(progress=print, count: int = 9) -> list[dict]:
+    """Every method and setting against the converged reference over ``count`` generated 2-D
+    surfaces: max-norm and L2 error (relative to the peak and to the map), seconds per map
+    and that cost relative to one simulation step on the same 128² grid."""
+    from optics.caustics import converged_floor_irradiance
+
+    sim = Simulation(Grid(128, 2.0), Water(), dt=1 / 30, margin=16)
+    state = sim.drop(sim.initial_state(), Stones(0.0, 0.0, 0.1, 0.005))
+    step = median_seconds(lambda: sim.step(state), 9)
     rows = []
-    for method, kw, label in configs:
-        progress(f"caustics {method} {label}")
-        f = lambda: floor_irradiance(eta, grid, depth, method=method, **kw)
-        seconds = median_seconds(f, 5)
-        out = np.asarray(f())
-        rows.append(dict(family="caustics", method=method, label=label, n=128, dtype="float32", seconds=seconds,
-                         baseline_seconds=None, error=float(np.linalg.norm(out - ref) / np.linalg.norm(ref))))
+    for info, grid, eta, sun in _family(count):
+        progress(f"caustics case {info['case']}: {info['spectrum']}, sun {info['elevation']:.0f} deg, "
+                 f"{info['fraction']} of the first fold")
+        ref = converged_floor_irradiance(eta, grid, info["depth"], sun, tolerance=1e-3, max_refine=32)
+        peak = float(ref.irradiance.max())
+        rows.append(dict(family="caustics reference", **info, bound=ref.bound, refine=ref.refine,
+                         converged=ref.converged, peak=peak))
+        for method, kw, label in CAUSTICS_CONFIGS:
+            f = lambda: floor_irradiance(eta, grid, info["depth"], sun, method=method, **kw)
+            try:
+                seconds = median_seconds(f, 3)
+            except RendererUnavailable as exc:
+                progress(f"  {method}: {exc}")
+                continue
+            out = np.asarray(f(), np.float64)
+            diff = out - ref.irradiance
+            rows.append(dict(family="caustics", method=method, label=label, **info, n=128, dtype="float32",
+                             seconds=seconds, baseline_seconds=step, ratio=seconds / step,
+                             error=float(np.max(np.abs(diff)) / peak),
+                             l2_error=float(np.linalg.norm(diff) / np.linalg.norm(ref.irradiance)),
+                             min_value=float(out.min()), reference_bound=ref.bound))
     return rows
 
 
 def speed_rows(progress=print) -> list[dict]:
-    """Beam tracing 512² → 512² against one N = 512 simulation step (interleaved); photon rate."""
+    """The caustics methods on 512² → 512² against one N = 512 simulation step (interleaved)."""
     progress("caustics speed at 512²")
     grid = Grid(512, 16.0)
     sim = Simulation(grid, Water(), dt=1 / 30, margin=64)
     state, _ = sim.run(sim.drop(sim.initial_state(), Stones(0.0, 0.0, 0.3, 0.05)), 30)
     eta = sim.surface(state).eta
-    fns = {"step": lambda: sim.step(state),
-           "beam": lambda: floor_irradiance(eta, grid, 2.0, method="beam", samples=1),
-           "beam central": lambda: floor_irradiance(eta, grid, 2.0, method="beam", samples=1, normals="central"),
-           "photon": lambda: floor_irradiance(eta, grid, 2.0, method="photon", photons_per_texel=4)}
-    times = interleaved(fns, repeats=15, block=3)
+    configs = {"beam (refine=1)": dict(method="beam", refine=1), "beam (refine=3, default)": dict(method="beam"),
+               "gl (supersample=4, llvmpipe)": dict(method="gl", supersample=4),
+               "photon (4/texel, bilateral)": dict(method="photon", photons_per_texel=4)}
+    fns = {"step": lambda: sim.step(state)}
+    for name, kw in configs.items():
+        fns[name] = lambda kw=kw: floor_irradiance(eta, grid, 2.0, **kw)
+    try:
+        floor_irradiance(eta, grid, 2.0, method="gl", supersample=1)
+    except RendererUnavailable:
+        fns.pop("gl (supersample=4, llvmpipe)")
+    times = interleaved(fns, repeats=3, block=3)
     med = {k: statistics.median(v) for k, v in times.items()}
-    ratio = lambda k: statistics.median(b / s for b, s in zip(times[k], times["step"]))
-    return [dict(family="caustics speed", method="beam (samples=1, spectral normals)", n=512, dtype="float32",
-                 seconds=med["beam"], baseline_seconds=med["step"], baseline="simulation step n=512",
-                 ratio=ratio("beam"), error=None),
-            dict(family="caustics speed", method="beam (samples=1, central normals)", n=512, dtype="float32",
-                 seconds=med["beam central"], baseline_seconds=med["step"], baseline="simulation step n=512",
-                 ratio=ratio("beam central"), error=None),
-            dict(family="caustics speed", method="photon (4/texel, bilateral)", n=512, dtype="float32",
-                 seconds=med["photon"], baseline_seconds=med["step"], ratio=ratio("photon"),
-                 photons_per_second=4 * 512 * 512 / med["photon"], error=None)]
+    rows = []
+    for name in fns:
+        if name == "step":
+            continue
+        ratio = statistics.median(b / s for b, s in zip(times[name], times["step"]))
+        row = dict(family="caustics speed", method=name, n=512, dtype="float32", seconds=med[name],
+                   baseline_seconds=med["step"], baseline="simulation step n=512", ratio=ratio, error=None)
+        if name.startswith("photon"):
+            row["photons_per_second"] = 4 * 512 * 512 / med[name]
+        rows.append(row)
+    return rows
 
 
 def figures(rows) -> dict:
@@ -112,6 +158,37 @@ def figures(rows) -> dict:
                                      "path length in pure water (m)", "max |RGB − spectral| (linear sRGB)",
                                      "RGB Beer–Lambert against the spectral reference", logx=True)
     ca = [r for r in rows if r.get("family") == "caustics"]
-    figs["caustics"] = plot_error_vs_time(ca, "caustics on a 128² surface: error vs time (reference: 16× rays)",
-                                          ylabel="relative L2 error of the irradiance")
+    if ca:
+        figs["caustics"] = _caustics_figure(ca)
     return figs
+
+
+def _caustics_figure(rows):
+    """Error (max norm and L2, worst over the family) against cost relative to a step."""
+    import matplotlib.pyplot as plt  # figures only
+
+    fig, axes = plt.subplots(1, 2, figsize=(11.0, 4.4), layout="constrained")
+    series = lambda r: (f"{r['method']} (central normals)" if "central" in r["label"] else
+                        f"{r['method']} refine=3" if r["method"] == "gl" and "refine=3" in r["label"] else r["method"])
+    keys = sorted({(series(r), r["label"]) for r in rows})
+    for ax, (field, title) in zip(axes, (("error", "max |E - E_ref| / peak (worst case)"),
+                                         ("l2_error", "||E - E_ref|| / ||E_ref|| (worst case)"))):
+        for method in sorted({k[0] for k in keys}):
+            pts = []
+            for m, label in keys:
+                if m != method:
+                    continue
+                sel = [r for r in rows if series(r) == m and r["label"] == label]
+                pts.append((statistics.median(r["ratio"] for r in sel), max(r[field] for r in sel), label))
+            pts.sort()
+            ax.loglog([p[0] for p in pts], [p[1] for p in pts], "o-", label=method)
+            for x, y, label in pts:
+                ax.annotate(label, (x, y), fontsize=6, xytext=(3, 3), textcoords="offset points")
+        ax.axhline(0.01, color="0.5", lw=0.8, ls="--")
+        ax.set_xlabel("cost, in simulation steps on the same 128² grid (median over the family)")
+        ax.set_ylabel(title)
+        ax.grid(True, which="both", alpha=0.3)
+    axes[0].legend(fontsize=8)
+    fig.suptitle(f"Caustics on {len({r['case'] for r in rows})} generated 2-D surfaces (3 spectra, suns 40-90 deg, "
+                 "0.3-0.9 of the first fold) against the converged reference", fontsize=9)
+    return fig

@@ -103,8 +103,8 @@ def texture_rows(sizes=(512, 1024), progress=print) -> list[dict]:
             work = {
                 "simulation step": lambda: sim.step(state)[0].fields,
                 "normals (spectral)": lambda: normal_map(eta_np, grid),
-                "caustics (beam, central normals)": lambda: floor_irradiance(eta, grid, 2.0, (0.3, -0.4, 0.87),
-                                                                             normals="central"),
+                "caustics (beam, refine=1)": lambda: floor_irradiance(eta, grid, 2.0, (0.3, -0.4, 0.87), refine=1),
+                "caustics (beam, default refine=3)": lambda: floor_irradiance(eta, grid, 2.0, (0.3, -0.4, 0.87)),
                 "16-bit encode": lambda: encode_height(eta_np, grid, 16).data,
                 "upload (float32)": lambda: r.texture("water", eta_np) and r.ctx.finish(),
             }

@@ -9,9 +9,13 @@ grid convention of docs/physics.md §0).
 
 The methods (:data:`FLOOR_IRRADIANCE_METHODS`), one module each:
 
-* ``"beam"`` — :func:`floor_irradiance_beam`, beam tracing with area ratios;
+* ``"beam"`` — :func:`floor_irradiance_beam`, beam tracing by exact rasterization: every
+  surface cell's two triangles spread their flux over their exact landed footprints;
+* ``"gl"`` — :func:`floor_irradiance_gl`, the same beams drawn by OpenGL (moderngl) into a
+  float target with additive blending, the way Loviscach and WebGL Water do it in hardware;
 * ``"photon"`` — :func:`floor_irradiance_photon`, photon splatting with a bilateral filter;
-* ``"reference"`` — :func:`floor_irradiance_reference`, brute force on a refined surface;
+* ``"reference"`` — :func:`floor_irradiance_reference`, the beam refined until two levels
+  agree, with its error bound (:func:`converged_floor_irradiance`);
 * ``"blinn_phong"`` — :func:`floor_irradiance_blinn_phong`, a shading trick, not a flux.
 
 Exact facts the tests check (:mod:`optics.caustics.analytic`): flux conservation (floor
@@ -24,16 +28,21 @@ from optics.caustics.analytic import first_fold_depth, focal_depth, sinusoid_irr
 from optics.caustics.beam import floor_irradiance_beam
 from optics.caustics.blinn_phong import floor_irradiance_blinn_phong
 from optics.caustics.common import bilateral_filter, blur_121, surface_fields
-from optics.caustics.rays import floor_irradiance_photon, floor_irradiance_reference
+from optics.caustics.gl import floor_irradiance_gl
+from optics.caustics.rays import floor_irradiance_photon
+from optics.caustics.surfaces import SURFACE_SPECTRA, random_surface
+from optics.caustics.reference import ConvergedIrradiance, converged_floor_irradiance, floor_irradiance_reference
 from optics.light.fresnel import N_WATER
 from wavephys.core.methods import Methods
 
-__all__ = ["FLOOR_IRRADIANCE_METHODS", "floor_irradiance", "floor_irradiance_beam", "floor_irradiance_photon",
-           "floor_irradiance_reference", "floor_irradiance_blinn_phong", "first_fold_depth", "focal_depth",
+__all__ = ["FLOOR_IRRADIANCE_METHODS", "floor_irradiance", "floor_irradiance_beam", "floor_irradiance_gl",
+           "floor_irradiance_photon", "floor_irradiance_reference", "converged_floor_irradiance", "ConvergedIrradiance",
+           "floor_irradiance_blinn_phong", "random_surface", "SURFACE_SPECTRA", "first_fold_depth", "focal_depth",
            "sinusoid_irradiance", "bilateral_filter", "blur_121"]
 
-FLOOR_IRRADIANCE_METHODS = Methods("floor irradiance", beam=floor_irradiance_beam, photon=floor_irradiance_photon,
-                                   reference=floor_irradiance_reference, blinn_phong=floor_irradiance_blinn_phong)
+FLOOR_IRRADIANCE_METHODS = Methods("floor irradiance", beam=floor_irradiance_beam, gl=floor_irradiance_gl,
+                                   photon=floor_irradiance_photon, reference=floor_irradiance_reference,
+                                   blinn_phong=floor_irradiance_blinn_phong)
 """Caustics methods by name."""
 
 
@@ -59,8 +68,9 @@ def floor_irradiance(eta, grid, depth, sun=(0.0, 0.0, 1.0), method: str = "beam"
         Refractive index of water, ≥ 1.
     options
         The method's own options (each method takes only its own): ``fresnel``;
-        ``samples``, ``blur``, ``normals`` (beam); ``photons_per_texel``, ``filter_radius``,
-        ``seed`` (photon); ``oversample`` (reference); ``exponent`` (blinn_phong).
+        ``refine``, ``blur``, ``normals`` (beam); ``refine``, ``supersample`` (gl);
+        ``photons_per_texel``, ``filter_radius``, ``seed`` (photon); ``tolerance``,
+        ``max_refine`` (reference); ``exponent`` (blinn_phong).
 
     Returns
     -------

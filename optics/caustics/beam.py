@@ -1,11 +1,17 @@
-"""Beam tracing with area ratios (Loviscach 2003; Watt 1990): every surface cell is a beam.
+"""Beam tracing by exact rasterization (Watt 1990; Loviscach 2003): every surface cell is a beam.
 
-The four corner rays of each cell (between four adjacent samples) are refracted exactly
-and landed on the floor; the cell's flux E0·T·A₀ (A₀: the area where its rays cross
-z = 0) is spread over its bilinear floor footprint by ``samples``² sub-beams deposited
-cloud-in-cell. Flux is conserved exactly; irradiance = source area / projected area;
-second order in the mesh spacing where the map has no fold. With ``samples=1`` each
-sample's ray carries the flux of its dual cell.
+The rays through the samples of the surface are refracted exactly and landed on the floor;
+each cell between four samples is split into two triangles, and each triangle carries the
+flux E0·T·A₀ of the sunlight that crosses z = 0 over its area A₀ there (T: the mean
+Fresnel transmittance of its corners, 0 where the sun cannot reach). That flux is spread
+uniformly over the triangle's landed footprint and every floor texel receives exactly the
+share of the footprint that covers it (:func:`wavephys.core.sampling.deposit_triangles`:
+coverage computed, not sampled at points). Irradiance = flux / texel area, so flux is
+conserved exactly; where the map folds (past the first focus) the sheets of light simply
+add, each triangle with its own area: the total stays exact, and texels at a fold collect
+the tip of a very bright, very thin triangle. Where it does not fold, the error comes only
+from replacing the curved map inside a cell by a linear one: second order in the cell size
+(``refine`` Fourier-interpolates the surface that many times finer first).
 """
 
 from __future__ import annotations
@@ -14,105 +20,121 @@ from functools import partial
 
 import jax
 import jax.numpy as jnp
+import numpy as np
 
 from optics.caustics.common import blur_121, land, prepare, shadow_steps, sunlit
 from optics.light.fresnel import N_WATER
 from wavephys.core.grid import Grid
 from wavephys.core.inputs import check_bool, check_choice, check_int
+from wavephys.core.sampling import rasterize_triangles
 from wavephys.core.spectral import central_gradient
 
 __all__ = ["floor_irradiance_beam"]
 
-_CORNERS = ((0, 0), (0, 1), (1, 0), (1, 1))  # (row = y, column = x) offsets
-
-
-def _cell_corners(field, a, b):
-    """``field`` at the corner (row + a, col + b) of every cell (periodic)."""
-    return jnp.roll(field, (-a, -b), (0, 1))
+_CELL = ((0, 0), (0, 1), (1, 1), (1, 0))  # (row = y, column = x) offsets of a cell's corners, counter-clockwise
+_TRIANGLES = ((0, 1, 2), (0, 2, 3))
 
 
 @jax.jit
-def _slope_spectra(eta, length):
-    """First program: the FFT of η and its slope spectra (the XLA CPU note in wavephys.core.spectral)."""
+def _slopes_spectral(eta, length):
+    """First program: the FFT of η and its slopes (the XLA CPU note in wavephys.core.spectral)."""
     n = eta.shape[-1]
     ky, kx = Grid(n, length).wavenumbers(real=True)
     spec = jnp.fft.rfft2(eta)
-    return jnp.stack([1j * kx * spec, 1j * ky * spec])
+    return jnp.fft.irfft2(jnp.stack([1j * kx * spec, 1j * ky * spec]), s=(n, n))
 
 
-def _sub_beams(grid, xv, yv, eta, X, Y, T, d, samples, vertical):
-    """Sub-beam positions on the floor and their flux, ``samples``² per cell."""
-    h = grid.dx
-    # work with displacements so that corners across the periodic seam stay adjacent
-    disp = [X - xv, Y - yv, -eta * d[0] / d[2], -eta * d[1] / d[2]]  # floor, and z = 0 crossing
-    q = (jnp.arange(samples) + 0.5) / samples
-    su, sv = (g.ravel()[:, None, None] for g in jnp.meshgrid(q, q))
-    weights = [(1 - su) * (1 - sv), su * (1 - sv), (1 - su) * sv, su * sv]
-    bilinear = lambda F: sum(w * _cell_corners(F, a, b) for w, (a, b) in zip(weights, _CORNERS))
-    px, py = xv + su * h + bilinear(disp[0]), yv + sv * h + bilinear(disp[1])
-    # flux of a cell: E0 × the area of its four rays' z = 0 crossings × transmittance
-    if vertical:  # the crossings are the samples themselves: area h² exactly
-        area = h * h
-    else:
-        cx = [xv + b * h + _cell_corners(disp[2], a, b) for a, b in _CORNERS]
-        cy = [yv + a * h + _cell_corners(disp[3], a, b) for a, b in _CORNERS]
-        area = 0.5 * jnp.abs((cx[3] - cx[0]) * (cy[2] - cy[1]) - (cx[2] - cx[1]) * (cy[3] - cy[0]))
-    t_cell = 0.25 * sum(_cell_corners(T, a, b) for a, b in _CORNERS)
-    return px, py, jnp.broadcast_to(area * t_cell / (samples * samples), px.shape)
+def _corners(field, a, b):
+    """``field`` at the corner (row + a, column + b) of every cell (periodic)."""
+    return jnp.roll(field, (-a, -b), (0, 1))
 
 
-@partial(jax.jit, static_argnames=("m", "samples", "blur", "fresnel", "ground", "vertical", "shadow"))
-def _beam(slope_spectra, eta, length, d, floor, n_water, m, samples, blur, fresnel, ground, vertical, shadow):
+@partial(jax.jit, static_argnames=("m", "fresnel", "ground", "shadow", "coarse"))
+def _vertices(eta, gx, gy, length, d, floor, n_water, m, fresnel, ground, shadow, coarse):
+    """Landed triangle vertices in floor texel units, ``(3, 2, n, n)`` (vertex, the two
+    triangles of each cell) relative to each cell's integer texel ``origin``, and each
+    triangle's flux E0·T·A₀ (m²), ``(2, n, n)``; ``eta``, ``gx``, ``gy`` on the (refined)
+    tracing grid."""
     n = eta.shape[-1]
     grid, floor_map = Grid(n, length), Grid(m, length)
-    h = grid.dx
-    if slope_spectra is None:
-        gx, gy = central_gradient(eta, h)
-    else:
-        gx, gy = jnp.fft.irfft2(slope_spectra, s=(n, n))
     xv, yv = grid.mesh()
-    floor_fn = (lambda x, y: grid.sample(floor, x, y)) if ground else floor
+    floor_fn = (lambda x, y: Grid(coarse, length).sample(floor, x, y)) if ground else floor
     X, Y, T = land(xv, yv, eta, gx, gy, d, floor_fn, n_water, fresnel)
-    T = T * sunlit(eta, grid, d, shadow)  # shadowed samples send nothing (0 steps: high sun, no work)
+    T = T * sunlit(eta, grid, d, shadow)  # shadowed samples send nothing (0 steps: a high sun, no work)
+    h = grid.dx
+    # displacements keep a cell's corners adjacent across the periodic seam
+    land_dx, land_dy = X - xv, Y - yv
+    cross_dx, cross_dy = -eta * d[0] / d[2], -eta * d[1] / d[2]  # where each ray crossed z = 0
+    p = floor_map.dx
+    # each sample's floor texel coordinate ((2j + 1)m − n)/(2n), as an integer and a fraction
+    # (float32 then keeps its digits for the coverage on any map size)
+    num = (2 * jnp.arange(n, dtype=jnp.int32) + 1) * m - n
+    base = num // (2 * n)
+    frac = (num - base * 2 * n).astype(eta.dtype) / (2 * n)
+    u0, v0 = frac[None, :], frac[:, None]
+    origin = (jnp.broadcast_to(base[None, :], (n, n)), jnp.broadcast_to(base[:, None], (n, n)))
+    u, v, cu, cv, t = [], [], [], [], []
+    for a, b in _CELL:
+        u.append(u0 + (b * h + _corners(land_dx, a, b)) / p)
+        v.append(v0 + (a * h + _corners(land_dy, a, b)) / p)
+        cu.append(b * h + _corners(cross_dx, a, b))
+        cv.append(a * h + _corners(cross_dy, a, b))
+        t.append(_corners(T, a, b))
+    tri_u, tri_v, flux = [], [], []
+    for i, j, k in _TRIANGLES:
+        tri_u.append(jnp.stack([u[i], u[j], u[k]]))
+        tri_v.append(jnp.stack([v[i], v[j], v[k]]))
+        source = 0.5 * jnp.abs((cu[j] - cu[i]) * (cv[k] - cv[i]) - (cu[k] - cu[i]) * (cv[j] - cv[i]))
+        flux.append(source * (t[i] + t[j] + t[k]) / 3.0)
     finite = jnp.isfinite(eta).all()  # checked here, raised by the caller: no extra pass
-    if samples == 1:
-        # one ray per sample carrying the flux of its dual cell: E0·T·(x0-area), with the
-        # x0-area h²·det(∂x0/∂x) = h²·(1 − gx·dx/dz − gy·dy/dz)
-        area = h * h if vertical else h * h * jnp.abs(1.0 - (gx * d[0] + gy * d[1]) / d[2])
-        px, py, flux = X, Y, area * T
-    else:
-        px, py, flux = _sub_beams(grid, xv, yv, eta, X, Y, T, d, samples, vertical)
-    out = floor_map.deposit(px, py, flux) / (floor_map.dx * floor_map.dx)
-    return (blur_121(out) if blur else out), finite
+    # the two triangles of a cell are one group (one window, one scatter)
+    return jnp.stack(tri_u, 1), jnp.stack(tri_v, 1), jnp.stack(flux), origin, finite
+
+
+@partial(jax.jit, static_argnames=("blur",))
+def _irradiance(deposited, texel, blur):
+    out = deposited / (texel * texel)
+    return blur_121(out) if blur else out
 
 
 def floor_irradiance_beam(eta, grid: Grid, depth, sun=(0.0, 0.0, 1.0), *, resolution: int | None = None,
-                          n_water: float = N_WATER, fresnel: bool = True, samples: int = 2, blur: bool = False,
+                          n_water: float = N_WATER, fresnel: bool = True, refine: int = 3, blur: bool = False,
                           normals: str = "spectral"):
-    """Floor irradiance E/E0 by beam tracing (module doc), shape (m, m) on ``Grid(m, L)``.
+    """Floor irradiance E/E0 by exact beam rasterization (module doc), shape (m, m) on ``Grid(m, L)``.
 
     Parameters
     ----------
     eta, grid, depth, sun, resolution, n_water, fresnel
         As :func:`optics.caustics.floor_irradiance`.
-    samples : int
-        Sub-beams per cell edge (samples² per cell), ≥ 1.
+    refine : int
+        Trace the surface Fourier-interpolated ``refine`` times finer (1 to 32, n·refine at
+        most 8192): smaller beams, error ∝ 1/refine² where the map does not fold. The
+        default, 3, keeps the max-norm error within 0.6 % of the peak on random smooth
+        surfaces down to 0.9 of the depth of the first fold (``python -m bench optics``);
+        1 costs a ninth and errs up to 4.7 % there.
     blur : bool
-        Apply the 1-2-1 blur.
+        Apply Loviscach's 1-2-1 blur afterwards (not needed: the footprints are exact).
     normals : {"spectral", "central"}
         Surface slopes exact (FFT) or by central differences (second order, no transforms).
     """
     light = prepare(eta, grid, depth, sun, resolution, n_water, fresnel, check_values=False)
-    samples = check_int("samples", samples, lo=1)
+    refine = check_int("refine", refine, lo=1, hi=32)
+    if grid.n * refine > 8192:
+        raise ValueError(f"refine {refine} traces {grid.n * refine}² cells: n·refine must be at most 8192")
     check_bool("blur", blur)
     check_choice("normals", normals, ("spectral", "central"))
-    d = light.direction
-    vertical = bool(d[0] == 0 and d[1] == 0)
     length = float(grid.length)
-    spectra = None if normals == "central" else _slope_spectra(light.eta, length)
-    shadow = shadow_steps(light.eta, grid, d)
-    out, finite = _beam(spectra, light.eta, length, jnp.asarray(d, jnp.float32), light.floor, light.n_water,
-                        light.resolution, samples, blur, fresnel, light.ground, vertical, shadow)
+    fine = Grid(grid.n * refine, grid.length)
+    if refine > 1 and not bool(jnp.isfinite(light.eta).all()):
+        raise ValueError("eta must be finite everywhere; it contains NaN or inf")
+    surface = grid.refine(light.eta, refine) if refine > 1 else light.eta
+    gx, gy = (_slopes_spectral(surface, length) if normals == "spectral"
+              else central_gradient(surface, float(fine.dx)))
+    d = light.direction
+    tri_u, tri_v, flux, origin, finite = _vertices(surface, gx, gy, length, jnp.asarray(d, jnp.float32), light.floor,
+                                           light.n_water, light.resolution, fresnel, light.ground,
+                                           shadow_steps(surface, fine, d), grid.n)
     if not bool(finite):
         raise ValueError("eta must be finite everywhere; it contains NaN or inf")
-    return out
+    m = light.resolution
+    return _irradiance(rasterize_triangles(tri_u, tri_v, flux, (m, m), origin), length / m, blur)

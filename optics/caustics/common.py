@@ -22,6 +22,10 @@ __internal__ = True  # tooling for the library's own modules: not fuzzed as publ
 __all__ = ["Lighting", "prepare", "surface_fields", "land", "blur_121", "bilateral_filter"]
 
 
+MAX_DEPTH = 1e4
+"""Deepest floor, m: light lands within float32's digits of a floor texel below that."""
+
+
 class Lighting(NamedTuple):
     """Checked inputs of a caustics method."""
 
@@ -48,12 +52,12 @@ def prepare(eta, grid: Grid, depth, sun, resolution, n_water, fresnel, check_val
         raise ValueError(f"eta must have shape ({n}, {n}), got {np.shape(eta)}")
     ground = np.ndim(depth) == 2
     if ground:
-        check_array("depth", depth, ndim=2, shape_tail=(n, n))
+        check_array("depth", depth, ndim=2, shape_tail=(n, n), lo=-MAX_DEPTH)
         if float(jnp.max(jnp.asarray(depth) - jnp.asarray(eta))) >= 0:
             raise ValueError("depth (a ground height field) must lie below the water surface everywhere")
         floor = jnp.asarray(depth, jnp.float32)
     else:
-        check_scalar("depth", depth, lo=0.0, lo_open=True)
+        check_scalar("depth", depth, lo=0.0, hi=MAX_DEPTH, lo_open=True)
         floor = float(depth)
     check_array("sun", sun, ndim=1, shape_tail=(3,))
     sun = np.asarray(sun, float)

@@ -1,15 +1,15 @@
-"""Caustics by rays through the exact surface: photon splatting (Baboud & Décoret 2006) and the
-brute-force reference.
+"""Caustics by photon splatting (Baboud & Décoret 2006): rays through the exact surface.
 
-Both shoot rays that cross z = 0 at given points (each carrying E0 × its share of the
-area), find where they meet the Fourier-interpolated surface, refract them exactly and
-deposit them cloud-in-cell on the floor map.
+Photons cross z = 0 at jittered points of a light-view texture (each carrying E0 × its
+share of the area), meet the Fourier-interpolated surface at their first hit, are
+refracted exactly and deposited cloud-in-cell on the floor map; an edge-preserving
+(bilateral) filter then smooths the histogram. Noise falls as 1/sqrt(photons per texel).
 
-* :func:`floor_irradiance_photon` — one photon per jittered texel of a light-view
-  texture, a 2-D histogram on the floor, then an edge-preserving (bilateral) filter.
-  Noise falls as 1/sqrt(photons per texel).
-* :func:`floor_irradiance_reference` — one ray per cell of a surface ``oversample`` times
-  finer: used to measure the others.
+The first hit: while the sun stands higher than the steepest slope, the fixed point
+x = x0 + η(x)·d_h/d_z has one solution and four iterations find it; below that angle a
+ray can meet the surface several times, and each photon marches down its ray from above
+the highest crest in half-cell steps to the first crossing, then bisects it (a photon that
+would land on a facet hidden from the sun lands on the crest that hides it instead).
 """
 
 from __future__ import annotations
@@ -19,29 +19,56 @@ from functools import partial
 import jax
 import jax.numpy as jnp
 
-from optics.caustics.common import bilateral_filter, land, prepare, surface_fields
+from optics.caustics.common import bilateral_filter, land, prepare, shadow_steps, surface_fields
 from optics.light.fresnel import N_WATER
 from wavephys.core.grid import Grid
 from wavephys.core.inputs import check_int
 
-__all__ = ["floor_irradiance_photon", "floor_irradiance_reference"]
+__all__ = ["floor_irradiance_photon"]
 
 
-@partial(jax.jit, static_argnames=("m", "oversample", "fresnel", "ground"))
-def _rays(eta, length, d, floor, n_water, x0, y0, m, oversample, fresnel, ground):
+@partial(jax.jit, static_argnames=("m", "oversample", "fresnel", "ground", "march"))
+def _rays(eta, length, d, floor, n_water, x0, y0, m, oversample, fresnel, ground, march):
     """Rays crossing z = 0 at (x0, y0), each with flux E0·(L²/count), through the exact
     (Fourier-interpolated) surface; deposited cloud-in-cell on an m × m floor map."""
     n = eta.shape[-1]
     grid, fine, floor_map = Grid(n, length), Grid(n * oversample, length), Grid(m, length)
-    surf = [lambda x, y, f=f: fine.sample(f, x, y) for f in surface_fields(eta, grid, oversample)]
-    xs, ys = x0, y0
-    for _ in range(4):  # surface hit: the ray through (x0, y0, 0) meets z = η(x, y)
-        e = surf[0](xs, ys)
-        xs, ys = x0 + e * d[0] / d[2], y0 + e * d[1] / d[2]
+    fields = surface_fields(eta, grid, oversample)
+    surf = [lambda x, y, f=f: fine.sample(f, x, y) for f in fields]
+    xs, ys = _first_hit(surf[0], fields[0], x0, y0, d, fine, march)
     floor_fn = (lambda x, y: grid.sample(floor, x, y)) if ground else floor
     X, Y, T = land(xs, ys, *(f(xs, ys) for f in surf), d, floor_fn, n_water, fresnel)
     flux = T * (length * length / x0.size)
     return floor_map.deposit(X, Y, flux) / (floor_map.dx * floor_map.dx)
+
+
+def _first_hit(height, eta, x0, y0, d, fine: Grid, march: int):
+    """Where each ray through (x0, y0, 0) along ``d`` first meets the surface (module doc)."""
+    ax, ay = d[0] / d[2], d[1] / d[2]  # horizontal travel per metre of height
+    if march == 0:  # the sun above every slope: one crossing, the fixed point finds it
+        xs, ys = x0, y0
+        for _ in range(4):
+            e = height(xs, ys)
+            xs, ys = x0 + e * ax, y0 + e * ay
+        return xs, ys
+    top = jnp.max(eta)
+    ds = 0.5 * fine.dx / jnp.hypot(ax, ay)  # height step of a half-cell horizontal step
+    above = lambda z: z - height(x0 + z * ax, y0 + z * ay)  # ray height over the surface at ray height z
+
+    def step(i, state):
+        lo, hi, found = state
+        z = top - i * ds
+        hit = (~found) & (above(z) <= 0)
+        return jnp.where(hit, z, lo), jnp.where(hit, z + ds, hi), found | hit
+
+    lo, hi, found = jax.lax.fori_loop(0, march, step, (jnp.full_like(x0, top), jnp.full_like(x0, top + ds),
+                                                      jnp.zeros(x0.shape, bool)))
+    for _ in range(12):  # bisect the first crossing between z = lo (below) and hi (above)
+        mid = 0.5 * (lo + hi)
+        below = above(mid) <= 0
+        lo, hi = jnp.where(below, mid, lo), jnp.where(below, hi, mid)
+    z = jnp.where(found, 0.5 * (lo + hi), height(x0, y0))
+    return x0 + z * ax, y0 + z * ay
 
 
 def floor_irradiance_photon(eta, grid: Grid, depth, sun=(0.0, 0.0, 1.0), *, resolution: int | None = None,
@@ -63,18 +90,7 @@ def floor_irradiance_photon(eta, grid: Grid, depth, sun=(0.0, 0.0, 1.0), *, reso
     x0, y0 = Grid(side, length).mesh()
     jitter = jax.random.uniform(jax.random.PRNGKey(seed), (2, side, side), minval=-0.5, maxval=0.5)
     x0, y0 = x0 + jitter[0] * length / side, y0 + jitter[1] * length / side
+    march = 2 * shadow_steps(light.eta, grid, light.direction)  # half-cell steps of the 2× refined surface
     out = _rays(light.eta, length, jnp.asarray(light.direction, jnp.float32), light.floor, light.n_water, x0, y0,
-                light.resolution, 2, fresnel, light.ground)
+                light.resolution, 2, fresnel, light.ground, march)
     return bilateral_filter(out, r) if r else out
-
-
-def floor_irradiance_reference(eta, grid: Grid, depth, sun=(0.0, 0.0, 1.0), *, resolution: int | None = None,
-                               n_water: float = N_WATER, fresnel: bool = True, oversample: int = 4):
-    """Floor irradiance E/E0 by brute force: one exact ray per cell of the surface refined
-    ``oversample`` times (≥ 1; rays per cell = oversample²), shape (m, m)."""
-    light = prepare(eta, grid, depth, sun, resolution, n_water, fresnel)
-    o = check_int("oversample", oversample, lo=1)
-    length = float(grid.length)
-    x0, y0 = Grid(grid.n * o, length).mesh()
-    return _rays(light.eta, length, jnp.asarray(light.direction, jnp.float32), light.floor, light.n_water, x0, y0,
-                 light.resolution, o, fresnel, light.ground)

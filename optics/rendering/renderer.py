@@ -30,6 +30,7 @@ from pathlib import Path
 import numpy as np
 
 from optics.light.fresnel import normal_reflectance, reflectance_exact
+from optics.rendering.gl import EGL_PACKAGES, GLSL_OPTICS, RendererUnavailable, gl_context
 from optics.rendering.scene import FAR_TILES, NEAR_TILES, SURROUNDINGS, Scene, sun_in_water, texture_sample
 from wavephys.core.files import atomic_path, output_file, output_folder
 from wavephys.core.progress import Progress
@@ -39,10 +40,6 @@ VIDEO_SUFFIXES = (".mp4", ".gif", ".webm", ".mov", ".mkv", ".avi")
 
 __all__ = ["Renderer", "RendererUnavailable", "EGL_PACKAGES", "to_srgb8", "save_png", "render_sequence"]
 
-EGL_PACKAGES = "libegl1 libegl-mesa0 libgl1-mesa-dri"
-"""Debian/Ubuntu packages that provide headless EGL with Mesa (llvmpipe on CPU-only machines)."""
-
-
 def _sky_uniforms(scene) -> dict:
     """The Preetham sky's constants for the shader (computed once per frame in float64)."""
     from optics.light.sky import preetham_constants
@@ -50,10 +47,6 @@ def _sky_uniforms(scene) -> dict:
     c = preetham_constants(scene.sun, scene.turbidity, scene.sky_brightness)
     return dict(perez_Y=tuple(c["coefficients"][0]), perez_x=tuple(c["coefficients"][1]),
                 perez_y=tuple(c["coefficients"][2]), sky_scale=tuple(c["scale"]))
-
-
-class RendererUnavailable(RuntimeError):
-    """No OpenGL 3.3 context could be created (headless EGL missing or broken)."""
 
 
 VERTEX = """
@@ -145,26 +138,13 @@ vec3 normal_of(sampler2D t, ivec2 size, vec2 xy) {
     return normalize(vec3(-gx, -gy, 1.0));
 }
 
-float fresnel_exact(float cos_i, float n1, float n2) {
-    float c = clamp(cos_i, 0.0, 1.0);
-    float sin_t2 = (n1 / n2) * (n1 / n2) * (1.0 - c * c);
-    if (sin_t2 >= 1.0) return 1.0;
-    float ct = sqrt(max(1.0 - sin_t2, 0.0));
-    float rs = (n1 * c - n2 * ct) / max(n1 * c + n2 * ct, 1e-30);
-    float rp = (n1 * ct - n2 * c) / max(n1 * ct + n2 * c, 1e-30);
-    return 0.5 * (rs * rs + rp * rp);
-}
+%OPTICS%
 float reflectance(float cos_i, float n1, float n2) {
     if (e_fresnel) return fresnel_exact(cos_i, n1, n2);
     float c = clamp(cos_i, 0.0, 1.0);
     if ((n1 / n2) * (n1 / n2) * (1.0 - c * c) >= 1.0) return 1.0;
     float f = (n1 - n2) / (n1 + n2);
     return f * f;
-}
-vec3 refract_dir(vec3 d, vec3 n, float eta) {  // n faces against d
-    float c = -dot(d, n);
-    float k = 1.0 - eta * eta * (1.0 - c * c);
-    return normalize(eta * d + (eta * c - sqrt(max(k, 0.0))) * n);
 }
 vec3 transmittance(float len) { return e_absorption ? exp(-len * absorption) : vec3(1.0); }
 
@@ -340,20 +320,7 @@ void main() {
     frag = vec4(c, 1.0);
 }
 """
-
-
-def _context():
-    try:
-        import moderngl
-    except ImportError as exc:  # pragma: no cover - moderngl is a dependency
-        raise RendererUnavailable(f"moderngl is not installed ({exc}); pip install moderngl") from exc
-    try:
-        return moderngl.create_context(standalone=True, backend="egl", require=330)
-    except Exception as exc:
-        raise RendererUnavailable(
-            f"no headless OpenGL 3.3 context through EGL ({type(exc).__name__}: {exc}). "
-            f"Install the EGL and Mesa packages: apt-get install {EGL_PACKAGES} "
-            f"(or your GPU driver's EGL library)") from exc
+FRAGMENT = FRAGMENT.replace("%OPTICS%", GLSL_OPTICS)
 
 
 class Renderer:
@@ -378,7 +345,7 @@ class Renderer:
         self.height = check_int("height", height, lo=1)
         self.steps = check_int("steps", steps, lo=1)
         self.refine = check_int("refine", refine, lo=0)
-        self.ctx = _context()
+        self.ctx = gl_context()
         self.max_texture_size = int(self.ctx.info["GL_MAX_TEXTURE_SIZE"])
         limit = int(self.ctx.info["GL_MAX_RENDERBUFFER_SIZE"])
         if max(self.width, self.height) > limit:

@@ -101,11 +101,11 @@ def _wake(quick: bool, say) -> str:
 
     say("steady wake ...")
     grid, water, speed = Grid(384 if quick else 1024, 40.0), Water(sigma=0.0), 1.0
-    eta = steady_wake(grid, water, speed, GaussianPressure(100.0, 0.1))
+    eta = steady_wake(grid, water, speed, GaussianPressure(100.0, 0.125))
     largest = wake_angle(eta, grid, near=2.0, far=16.0)
     edge = wake_angle(eta, grid, method="cusp", speed=speed, near=3.0, far=14.0)
     fig = plot_wake(eta, float(grid.dx), angle=[largest, edge], window=(-16, 2, -8, 8),
-                    title="steady wake, U = 1 m/s, σ = 0.1 m")
+                    title="steady wake, U = 1 m/s, σ = 0.125 m")
     return (f"<p>Angle of the largest waves {largest.angle:.2f}° ± {largest.uncertainty:.2f}°; outer edge "
             f"{edge.angle:.2f}° ± {edge.uncertainty:.2f}° (Kelvin {KELVIN_ANGLE:.2f}°), on {grid.n}² × "
             f"{float(grid.length):g} m.</p>" + _figure(_png(fig), "solid: maximum; dotted: outer edge"))

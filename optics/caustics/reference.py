@@ -1,0 +1,73 @@
+"""The reference caustics map: exact beam rasterization refined until two levels agree.
+
+Where the map does not fold, :func:`~optics.caustics.beam.floor_irradiance_beam` converges
+at second order in the cell size (its only error is the straight-edged footprint of a
+curved map). The reference traces the surface Fourier-interpolated r and 2r times finer and
+doubles r until the two maps agree to ``tolerance`` of the peak in the max norm; it returns
+the finer map with the bound |E_2r − E_r|. That bounds the finer map's own error as long as
+each doubling at least halves it (second order would quarter it; measured ratios are 3 to
+4.6, and the fourfold extrapolation is not used because the refined grids' samples shift
+and the ratio is not steady enough for it). Past a fold the irradiance is unbounded at the
+caustic lines and no refinement converges pointwise: the bound says so.
+"""
+
+from __future__ import annotations
+
+from typing import NamedTuple
+
+import numpy as np
+
+from optics.caustics.beam import floor_irradiance_beam
+from optics.caustics.common import prepare
+from optics.light.fresnel import N_WATER
+from wavephys.core.grid import Grid
+from wavephys.core.inputs import check_int, check_scalar
+
+__all__ = ["ConvergedIrradiance", "converged_floor_irradiance", "floor_irradiance_reference"]
+
+
+class ConvergedIrradiance(NamedTuple):
+    """A reference map and how far it can be trusted."""
+
+    irradiance: np.ndarray  # (m, m) floor irradiance E/E0, the finer level's
+    bound: float            # max |E_2r − E_r| / peak: the finer level's error bound
+    refine: int             # the finer level's refinement 2r
+    converged: bool         # bound <= tolerance
+
+
+def converged_floor_irradiance(eta, grid: Grid, depth, sun=(0.0, 0.0, 1.0), *, resolution: int | None = None,
+                               n_water: float = N_WATER, fresnel: bool = True, tolerance: float = 1e-3,
+                               start: int = 4, max_refine: int = 16) -> ConvergedIrradiance:
+    """The reference map with its error bound (module doc).
+
+    ``tolerance``: the bound to reach, relative to the peak (in (0, 0.1]); ``start``: the
+    first level r (1 to 8); ``max_refine``: the finest level 2r allowed (2 to 32; each
+    doubling costs four times the last). Other parameters as
+    :func:`optics.caustics.floor_irradiance`. Returns the last level reached, with
+    ``converged`` False when the bound stayed above ``tolerance`` (e.g. past a fold).
+    """
+    prepare(eta, grid, depth, sun, resolution, n_water, fresnel)  # every argument checked before any work
+    check_scalar("tolerance", tolerance, lo=0.0, hi=0.1, lo_open=True)
+    start = check_int("start", start, lo=1, hi=8)
+    max_refine = check_int("max_refine", max_refine, lo=2, hi=32)
+    if max_refine < 2 * start:
+        raise ValueError(f"max_refine must be at least 2 × start = {2 * start}, got {max_refine}")
+    trace = lambda r: np.asarray(floor_irradiance_beam(eta, grid, depth, sun, resolution=resolution, n_water=n_water,
+                                                        fresnel=fresnel, refine=r), np.float64)
+    r, coarse = start, trace(start)
+    while True:
+        fine = trace(2 * r)
+        peak = float(np.max(fine)) or 1.0
+        bound = float(np.max(np.abs(fine - coarse))) / peak
+        if bound <= tolerance or 4 * r > max_refine:
+            return ConvergedIrradiance(fine, bound, 2 * r, bound <= tolerance)
+        r, coarse = 2 * r, fine
+
+
+def floor_irradiance_reference(eta, grid: Grid, depth, sun=(0.0, 0.0, 1.0), *, resolution: int | None = None,
+                               n_water: float = N_WATER, fresnel: bool = True, tolerance: float = 1e-3,
+                               max_refine: int = 16):
+    """Floor irradiance E/E0 converged to ``tolerance`` of the peak (the map of
+    :func:`converged_floor_irradiance`, which also returns the bound), shape (m, m)."""
+    return converged_floor_irradiance(eta, grid, depth, sun, resolution=resolution, n_water=n_water, fresnel=fresnel,
+                                      tolerance=tolerance, max_refine=max_refine).irradiance
