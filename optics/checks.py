@@ -16,7 +16,7 @@ import jax
 import jax.numpy as jnp
 import numpy as np
 
-from optics.caustics import first_fold_depth, floor_irradiance, focal_depth
+from optics.caustics import converged_floor_irradiance, first_fold_depth, floor_irradiance, focal_depth, random_surface
 from optics.light.attenuation import cutoff_distance, pure_water_absorption, transmittance, water_srgb
 from optics.light.fresnel import (N_AIR, N_WATER, approximation_errors, normal_reflectance, reflectance,
                                   reflectance_sp)
@@ -119,6 +119,30 @@ def check_caustics() -> list[Check]:
             rows.append(compare(f"sinusoid {label}, z_f/2, {method}: trough E/E0", float(e.min()), 2 / 3, rtol=0.01))
         rows.append(compare(f"sinusoid {label}: focal depth (first fold of the beam mesh)", first_fold_depth(eta, g), zf,
                             rtol=0.01, unit="m"))
+    return rows + _generated_surface_rows()
+
+
+def _generated_surface_rows() -> list[Check]:
+    """A random 2-D sea (a band of directions, steepest slope 0.1, sun at 55 deg), floor at 0.6
+    of the first fold: the default beam and the GPU drawing against the converged reference."""
+    from optics.rendering.gl import RendererUnavailable
+
+    grid = Grid(64, 2.0)
+    eta = random_surface(grid, "band", 0.1, 7)
+    sun = (0.4 * math.cos(0.9), 0.4 * math.sin(0.9), math.sin(math.radians(55)))
+    depth = 0.6 * first_fold_depth(eta, grid, sun)
+    ref = converged_floor_irradiance(eta, grid, depth, sun, tolerance=2e-3)
+    peak = float(ref.irradiance.max())
+    beam = np.asarray(floor_irradiance(eta, grid, depth, sun), np.float64)
+    rows = [bound("converged reference on a generated 2-D sea: bound (max |E_2r - E_r| / peak)", ref.bound, 2e-3),
+            bound("default beam (refine 3) vs the reference, generated 2-D sea: max |error| / peak",
+                  float(np.max(np.abs(beam - ref.irradiance))) / peak, 0.01)]
+    try:
+        gl = floor_irradiance(eta, grid, depth, sun, method="gl", refine=3, supersample=8)
+        rows.append(bound("GPU drawing (refine 3, supersample 8) vs the reference, same sea: max |error| / peak",
+                          float(np.max(np.abs(gl - ref.irradiance))) / peak, 0.02))
+    except RendererUnavailable as exc:
+        rows.append(bound("GPU drawing available", 0.0, 1.0, relation=">=", note=str(exc)[:120]))
     return rows
 
 

@@ -109,9 +109,10 @@ def floor_irradiance_beam(eta, grid: Grid, depth, sun=(0.0, 0.0, 1.0), *, resolu
     refine : int
         Trace the surface Fourier-interpolated ``refine`` times finer (1 to 32, n·refine at
         most 8192): smaller beams, error ∝ 1/refine² where the map does not fold. The
-        default, 3, keeps the max-norm error within 0.6 % of the peak on random smooth
-        surfaces down to 0.9 of the depth of the first fold (``python -m bench optics``);
-        1 costs a ninth and errs up to 4.7 % there.
+        default, 3, keeps the max-norm error within 0.67 % of the peak on random smooth
+        surfaces whose shortest waves span ≥ 5 texels, down to 0.9 of the depth of the first
+        fold (``python -m bench optics``; 1.17 % at 2.7 texels per wave, docs/physics.md §2.4);
+        1 costs a ninth and errs up to 6.5 % there.
     blur : bool
         Apply Loviscach's 1-2-1 blur afterwards (not needed: the footprints are exact).
     normals : {"spectral", "central"}
