@@ -217,7 +217,7 @@ def run_scale(args) -> None:
 def run_calibrate(args) -> None:
     from bench.planner import CAL_PATH, calibrate
 
-    data = calibrate(_say)
+    data = calibrate(_say, only=args.only)
     print(f"kappa {data['kappa']:.3g}; step at n=128 {1e3 * data['step']['first'][6]:.3f} ms; wrote {CAL_PATH}")
 
 
@@ -253,6 +253,8 @@ def main(argv=None) -> int:
         s.add_argument("--quick", action="store_true", help="smaller sizes (for CI smoke runs)")
         if name == "scale":
             s.add_argument("--huge", action="store_true", help="a 16384² run on 1 and on 4 devices (20 GiB, minutes)")
+        if name == "calibrate":
+            s.add_argument("--only", choices=("caustics", "shade"), help="measure this table alone and update its entry")
         if name == "propagation":
             s.add_argument("--device", choices=("cpu", "gpu", "tpu"),
                            help="time the step on this device against its own FFT floor (N = 1024–8192)")

@@ -156,6 +156,53 @@ def optics_seconds(progress=print) -> tuple[dict, dict]:
     return fresnel, absorption
 
 
+CAUSTICS_CELLS = ((32, 1), (64, 1), (64, 2), (64, 3), (128, 2), (128, 3), (128, 4), (256, 4))
+"""(texels, refinement) pairs timed for the caustics table (traced cells per side = their product)."""
+
+
+def caustics_seconds(progress=print) -> dict:
+    """One frame's floor irradiance by beam rasterization (eager, as the planner's shading calls
+    it), by traced cells per side; the median of 3 after one compiling call."""
+    import jax.numpy as jnp
+
+    from optics.caustics import floor_irradiance_beam
+    from optics.caustics.surfaces import random_surface
+    from wavephys.core.grid import Grid
+
+    table = {}
+    for n, r in CAUSTICS_CELLS:
+        grid = Grid(n, 2.0)
+        eta = jnp.asarray(random_surface(grid, "band", 0.08, 1), jnp.float32)
+        seconds = _median(lambda: floor_irradiance_beam(eta, grid, 1.0, (-0.5, 0.0, 0.87), refine=r), repeats=3)
+        table[n * r] = min(seconds, table.get(n * r, math.inf))
+    cells = sorted(table)
+    progress("caustics per frame: " + ", ".join(f"{c}² cells {table[c] * 1e3:.1f} ms" for c in cells))
+    return dict(n=cells, seconds=[table[c] for c in cells])
+
+
+SHADE_SIZES = (32, 64, 128, 256)
+
+
+def shade_seconds(progress=print, cal: dict | None = None) -> dict:
+    """The planner's shading of one frame beyond its Fresnel and absorption per-pixel costs (the
+    normals, angles and paths: :func:`wavephys.planner.runner.shade`), by texels per side."""
+    from wavephys.planner.model import SceneModel
+    from wavephys.planner.runner import shade
+    from wavephys.planner.scene import Scene, StoneSpec
+
+    cal = cal or json.loads(CAL_PATH.read_text())
+    out = []
+    for n in SHADE_SIZES:
+        scene = Scene(4.0, 4.0 / n, depth=1.0, open_water=False, stones=(StoneSpec(0.0, 0.0, 0.5, 0.02),))
+        model = SceneModel(scene)
+        heights = 0.01 * np.random.default_rng(n).standard_normal((n, n))
+        seconds = _median(lambda: shade(scene, model, heights), repeats=5)
+        forms = n * n / 1e6 * (cal["fresnel"]["exact"] + cal["absorption"]["spectral"])
+        out.append(max(seconds - forms, 0.0))
+    progress("shading overhead per frame: " + ", ".join(f"{n}² {t * 1e3:.2f} ms" for n, t in zip(SHADE_SIZES, out)))
+    return dict(n=list(SHADE_SIZES), seconds=out)
+
+
 _KAPPA_CHILD = r"""
 import json, sys
 import jax
@@ -194,21 +241,34 @@ def kappa(progress=print, count: int = KAPPA_SCENES, seed: int = 99) -> dict:
     return dict(kappa=4.0 * worst, measured=ratios)
 
 
-def calibrate(progress=print) -> dict:
-    """Measure everything the cost model needs and write the calibration file (module doc)."""
+def calibrate(progress=print, only=None) -> dict:
+    """Measure everything the cost model needs and write the calibration file (module doc).
+    ``only="caustics"``: measure that table alone and update the shipped file's entry."""
     import platform
 
     from wavephys.core.files import atomic_path
 
+    if only is not None:
+        parts = {"caustics": caustics_seconds, "shade": shade_seconds}
+        if only not in parts:
+            raise ValueError(f"only must be None or one of {sorted(parts)}, got {only!r}")
+        data = json.loads(CAL_PATH.read_text())
+        data[only] = parts[only](progress)
+        data[f"{only}_date"] = time.strftime("%Y-%m-%d")
+        with atomic_path(CAL_PATH) as tmp:
+            tmp.write_text(json.dumps(data, indent=1))
+        return data
     step = step_seconds(progress)
     ship = ship_seconds(progress)
     frame, blend, refine = frame_seconds(progress)
     fresnel, absorption = optics_seconds(progress)
     overhead = overhead_seconds(progress)
+    caustics = caustics_seconds(progress)
+    shade = shade_seconds(progress, dict(fresnel=fresnel, absorption=absorption))
     k = kappa(progress)
     data = dict(machine=f"{platform.machine()} {os.cpu_count()} cores, {platform.python_version()}",
                 date=time.strftime("%Y-%m-%d"), step=step, ship=ship, frame=frame, blend=blend, refine=refine,
-                fresnel=fresnel, absorption=absorption, run_overhead=overhead, kappa=k["kappa"],
+                fresnel=fresnel, absorption=absorption, caustics=caustics, shade=shade, run_overhead=overhead, kappa=k["kappa"],
                 kappa_measured=k["measured"],
                 kappa_note="4 × the worst measured max|η32 − η64| / s0 over the scenes")
     with atomic_path(CAL_PATH) as tmp:
@@ -216,9 +276,11 @@ def calibrate(progress=print) -> dict:
     return data
 
 
-def _total(output) -> float:
-    """Wall seconds of one run: simulation and frames, and shading (the first run also compiles)."""
-    return output.seconds + output.shade_seconds
+def _total(output, frames: int = 1) -> float:
+    """Wall seconds of one run: simulation and frames, and the shading of the image (measured on
+    the last frame, counted ``frames`` times as the cost model counts it; the first run also
+    compiles)."""
+    return output.seconds + output.shade_seconds * frames
 
 
 def proof_rows(count: int = 50, seed: int = 2026, quanta: float = 1.0, progress=print,
@@ -240,8 +302,9 @@ def proof_rows(count: int = 50, seed: int = 2026, quanta: float = 1.0, progress=
             continue
         planning = time.perf_counter() - t
         full_m = full_model(scene)
-        ref = min((run(scene, full_m) for _ in range(5)), key=_total)  # the first compiles
-        out = min((run(scene, p.model) for _ in range(5)), key=_total)
+        cost = lambda o: _total(o, scene.frames)
+        ref = min((run(scene, full_m) for _ in range(5)), key=cost)  # the first compiles
+        out = min((run(scene, p.model) for _ in range(5)), key=cost)
         err = compare(out, ref)
         optics_only = float(np.abs(shade(scene, p.model, ref.heights[-1]) - ref.image).max())
         row = dict(scene=scene.name, kind=scene.name.split("-")[0], texels=scene.texels, frames=scene.frames,
@@ -250,7 +313,7 @@ def proof_rows(count: int = 50, seed: int = 2026, quanta: float = 1.0, progress=
                    predicted_colour=p.predicted_colour_error, measured_colour=err["colour_max"],
                    measured_colour_optics=optics_only,
                    colour_tolerance=p.colour_tolerance, predicted_cost=p.cost, predicted_full_cost=p.full_cost,
-                   measured_cost=out.seconds + out.shade_seconds, measured_full_cost=ref.seconds + ref.shade_seconds,
+                   measured_cost=cost(out), measured_full_cost=cost(ref), caustics=scene.caustics,
                    planning_seconds=planning, choices=p.model.choices.as_dict())
         row["measured_saving"] = row["measured_full_cost"] / row["measured_cost"]
         row["predicted_saving"] = p.saving
@@ -267,8 +330,8 @@ def figures(rows) -> dict:
     import matplotlib.figure
 
     ok = [r for r in rows if "measured_error" in r]
-    fig = matplotlib.figure.Figure(figsize=(11, 4.4))
-    ax1, ax2 = fig.subplots(1, 2)
+    fig = matplotlib.figure.Figure(figsize=(16, 4.6))
+    ax1, ax2, ax3 = fig.subplots(1, 3)
     kinds = sorted({r["kind"] for r in ok})
     for kind in kinds:
         sel = [r for r in ok if r["kind"] == kind]
@@ -291,5 +354,21 @@ def figures(rows) -> dict:
     ax2.set(xscale="log", yscale="log", xlabel="predicted saving (full cost / plan cost)",
             ylabel="measured saving", title="cost saving of the plan")
     ax2.legend(fontsize=7)
+    floor = 1e-4
+    for caustics, marker in ((False, "o"), (True, "s")):
+        sel = [r for r in ok if r.get("caustics", False) == caustics]
+        if not sel:
+            continue
+        ax3.scatter([max(r["predicted_colour"] / r["colour_tolerance"], floor) for r in sel],
+                    [max(r["measured_colour_optics"] / r["colour_tolerance"], floor) for r in sel], marker=marker,
+                    s=18, label=f"optics terms{' and caustics' if caustics else ''} ({len(sel)} scenes)")
+        ax3.scatter([max(r["predicted_colour"] / r["colour_tolerance"], floor) for r in sel],
+                    [max(r["measured_colour"] / r["colour_tolerance"], floor) for r in sel], marker=marker,
+                    s=18, facecolors="none", edgecolors="grey", label="whole image (heights too)" if caustics else None)
+    ax3.plot([floor, 1], [floor, 1], "k--", lw=0.8)
+    ax3.axhline(1.0, color="r", lw=0.8, label="colour tolerance")
+    ax3.set(xscale="log", yscale="log", xlabel="predicted colour error / tolerance (floored at 1e-4)",
+            ylabel="measured / tolerance", title="colour (image quanta)")
+    ax3.legend(fontsize=7)
     fig.tight_layout()
     return {"proof": fig}

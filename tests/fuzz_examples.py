@@ -201,6 +201,7 @@ OVERRIDES = {
     "wavephys.planner.plan.colour_errors": {"scene": _plan_scene},
     "wavephys.planner.runner.run": _PLANNER,
     "wavephys.planner.runner.shade": {**_PLANNER, "heights": lambda: np.zeros((32, 32))},
+    "wavephys.planner.runner.floor_light": {**_PLANNER, "heights": lambda: np.zeros((32, 32))},
     "wavephys.planner.runner.compare": {"output": _plan_output, "reference": _plan_output},
     "wavephys.planner.plan.Plan.to_json": {"path": lambda: TMP / "plan.json"},
     "wavephys.planner.charts.plot_plan": {"p": _plan, "measured": lambda: None},

@@ -170,6 +170,50 @@ def test_eight_bit_image_picks_a_cheap_fresnel_form_and_sixteen_bits_do_not():
     assert _choices("lake", view_elevation=25.0).fresnel == "exact"
 
 
+# -- caustics ---------------------------------------------------------------------------------
+def test_caustics_term_on_pools_with_and_without_light_to_show():
+    """A clear pool with ripples (stones, 8-bit image) keeps the caustics and, traced at each
+    refinement, stays within the error the planner evaluated; the same pool with waves a
+    hundred times lower drops them (E/E₀ within a quantum of 1); a 16-bit image traces at
+    least as finely as an 8-bit one."""
+    from wavephys.planner.caustics import caustics_errors
+    from wavephys.planner.runner import floor_light
+
+    scene = _pool(depth=0.4, caustics=True)
+    p = plan(scene, scene.height_quantum)
+    assert p.model.choices.caustics >= 1, p.card()
+    row = {t.term: t for t in p.terms}["caustics"]
+    assert row.error <= p.colour_tolerance and "refine" in row.reason
+    errors = caustics_errors(scene)
+    ref = run(scene, full_model(scene))
+    light = {r: floor_light(scene, SceneModel(scene, replace(full_model(scene).choices, caustics=r)),
+                            ref.heights[-1]) for r in (0, 1, 2, 3, 4)}
+    for r in (0, 1, 2, 3):  # the run's last frame against the traces of the closed-form surface
+        measured = float(np.abs(light[r] - light[4]).max())
+        assert measured <= errors.delta[r], (r, measured, errors.delta[r])
+        assert measured >= 0.3 * errors.delta[r] or r == 0, (r, measured, errors.delta[r])  # a close estimate
+    assert errors.delta[1] > errors.delta[2] > errors.delta[3] > 0  # finer traces err less
+    err = compare(run(scene, p.model), ref)
+    assert err["colour_max"] <= p.colour_tolerance, (err, p.card())
+
+    calm = replace(scene, stones=tuple(replace(s, depth=s.depth / 100) for s in scene.stones), height_range=0.0002)
+    assert plan(calm, calm.height_quantum).model.choices.caustics == 0
+    fine = replace(scene, image_bits=16)
+    assert plan(fine, fine.height_quantum).model.choices.caustics >= p.model.choices.caustics
+
+
+def test_caustics_need_a_floor_and_a_periodic_scene():
+    with pytest.raises(ValueError, match="caustics.*finite depth"):
+        _pool(depth=math.inf, caustics=True)
+    stones = (StoneSpec(0.0, 0.0, 0.2, 0.01),)
+    with pytest.raises(ValueError, match="caustics.*periodic"):
+        Scene(4.0, 0.0625, depth=1.0, open_water=True, stones=stones, caustics=True)
+    with pytest.raises(TypeError, match="caustics"):
+        _pool(caustics="yes")
+    with pytest.raises(ValueError, match="caustics"):
+        Choices(caustics=5)
+
+
 # -- bad input -------------------------------------------------------------------------------
 def test_tolerance_is_checked_and_an_unreachable_one_says_so():
     scene = _pool()

@@ -9,6 +9,9 @@ holds wall times of the pieces a scene's run is made of, each measured after com
 * ``blend``: the extra of a Hermite frame between steps, by the simulated n;
 * ``refine``: the extra of Fourier interpolation of a frame from a grid 2× coarser, by the fine n;
 * ``fresnel``, ``absorption``: seconds per million pixels of each form;
+* ``caustics``: one frame's floor irradiance by beam rasterization, by traced cells per side
+  (texels × refinement);
+* ``shade``: the rest of shading one frame (normals, angles, paths), by texels per side;
 * ``run_overhead``: the fixed seconds of one run (state, sources, dispatch, host copies);
 * ``kappa``: float32 rounding of a full run, max |η₃₂ − η₆₄| / (Σ|C|/n²).
 
@@ -29,7 +32,7 @@ import numpy as np
 
 from wavephys.planner.model import SceneModel
 
-__all__ = ["calibration", "interpolate", "height_cost", "colour_cost", "CALIBRATION_FILE"]
+__all__ = ["calibration", "interpolate", "height_cost", "colour_cost", "caustics_cost", "CALIBRATION_FILE"]
 
 CALIBRATION_FILE = "calibration.json"
 
@@ -71,7 +74,18 @@ def height_cost(model: SceneModel, cal: dict | None = None) -> dict:
 
 
 def colour_cost(scene, fresnel: str, absorption: str, cal: dict | None = None) -> float:
-    """Predicted seconds of shading every output frame with these optics forms."""
+    """Predicted seconds of shading every output frame with these optics forms (the caustics
+    apart: :func:`caustics_cost`)."""
     cal = cal or calibration()
-    pixels = scene.texels**2 * scene.frames / 1e6
-    return pixels * (cal["fresnel"][fresnel] + cal["absorption"][absorption])
+    pixels = scene.texels**2 / 1e6
+    per_frame = interpolate(cal["shade"], scene.texels) + pixels * (cal["fresnel"][fresnel] + cal["absorption"][absorption])
+    return per_frame * scene.frames
+
+
+def caustics_cost(scene, refine: int, cal: dict | None = None) -> float:
+    """Predicted seconds of the floor irradiance of every output frame at tracing refinement
+    ``refine`` (0: off, free; scenes without caustics: 0)."""
+    if not refine or not scene.caustics:
+        return 0.0
+    cal = cal or calibration()
+    return interpolate(cal["caustics"], scene.texels * refine) * scene.frames

@@ -2,8 +2,9 @@
 
 Kinds (drawn in turn, parameters drawn at random within each kind's range):
 
-``pool``      a periodic tank 2–12 m, 0.3–2 m deep, 1–4 stones;
-``shore``     open shallow water 8–40 m, 0.3–3 m deep, a light wind sea, sometimes a stone;
+``pool``      a periodic tank 2–12 m, 0.3–2 m deep, 1–4 stones, its floor's caustics shown;
+``shore``     open shallow water 8–40 m, 0.3–3 m deep, a light wind sea, sometimes a stone,
+              its floor's caustics shown;
 ``open_sea``  open deep water 32–400 m at coarse pixels (0.25–2 m), a wind sea;
 ``ship``      open water with a ship at 0.2–10 m/s (hull 4–6 pixels wide), 1–20 m deep or deep;
 ``ripples``   a small tank 0.2–0.8 m at fine pixels (1–4 mm): capillary waves resolved.
@@ -87,7 +88,7 @@ def _draw(kind, rng, n, name):
         stones = _stones(rng, extent, pixel, int(rng.integers(1, 5)), 1.0)
         peak = max(s.depth for s in stones)
         return Scene(extent, pixel, depth=float(rng.uniform(0.3, 2.0)), open_water=False, stones=stones,
-                     height_range=2 * peak, name=name, **c)
+                     height_range=2 * peak, caustics=True, name=name, **c)
     if kind == "shore":
         extent = float(rng.uniform(8, 40))
         pixel = extent / n
@@ -95,7 +96,7 @@ def _draw(kind, rng, n, name):
                         int(rng.integers(0, 1000)))
         stones = _stones(rng, extent, pixel, int(rng.integers(0, 2)), 0.5)
         return Scene(extent, pixel, depth=float(rng.uniform(0.3, 3.0)), open_water=True, wind=wind, stones=stones,
-                     height_range=0.05, name=name, **c)
+                     height_range=0.05, caustics=True, name=name, **c)
     if kind == "open_sea":
         pixel = float(rng.choice([0.25, 0.5, 1.0, 2.0]))
         extent = pixel * n

@@ -26,7 +26,7 @@ from wavephys.core.water import Water
 from wavephys.planner.scene import Scene
 
 __all__ = ["Choices", "SceneModel", "TERMS", "COARSEN", "STEPS_PER_FRAME", "FRESNEL_FORMS", "ABSORPTION_METHODS",
-           "full_choices"]
+           "CAUSTICS_REFINE", "FULL_REFINE", "full_choices"]
 
 COARSEN = (1, 2, 4)
 """Simulation grid spacings the planner considers, in output texels."""
@@ -37,7 +37,13 @@ FRESNEL_FORMS = ("exact", "lut", "schlick", "jensen_golias", "loviscach")
 ABSORPTION_METHODS = ("spectral", "rgb")
 """Beer–Lambert absorption: integrated over the spectrum (colour-science) or three fitted RGB
 coefficients (:func:`optics.light.attenuation.fit_rgb_coefficients`)."""
-TERMS = ("surface_tension", "finite_depth", "coarsen", "steps_per_frame", "second_order", "fresnel", "absorption")
+CAUSTICS_REFINE = (0, 1, 2, 3, 4)
+"""Caustics tracing refinements the planner considers (0: off, the floor lit as under flat water;
+r: beam rasterization of the surface refined r times, :func:`optics.caustics.floor_irradiance_beam`)."""
+FULL_REFINE = 4
+"""The full model's caustics refinement."""
+TERMS = ("surface_tension", "finite_depth", "coarsen", "steps_per_frame", "second_order", "fresnel", "absorption",
+         "caustics")
 """The switchable terms, in the order model cards list them."""
 
 
@@ -62,6 +68,9 @@ class Choices:
         Fresnel reflectance form (:data:`FRESNEL_FORMS`).
     absorption : str
         ``"spectral"`` or ``"rgb"`` (:data:`ABSORPTION_METHODS`).
+    caustics : int
+        Caustics tracing refinement (:data:`CAUSTICS_REFINE`; 0 off). Only scenes with
+        ``caustics = true`` show them; the others run with 0.
     """
 
     surface_tension: bool = True
@@ -71,6 +80,7 @@ class Choices:
     second_order: bool = True
     fresnel: str = "exact"
     absorption: str = "spectral"
+    caustics: int = FULL_REFINE
 
     def __post_init__(self):
         for k in ("surface_tension", "finite_depth", "second_order"):
@@ -81,6 +91,8 @@ class Choices:
         check_choice("steps_per_frame", self.steps_per_frame, STEPS_PER_FRAME)
         check_choice("fresnel", self.fresnel, FRESNEL_FORMS)
         check_choice("absorption", self.absorption, ABSORPTION_METHODS)
+        object.__setattr__(self, "caustics", check_int("caustics", self.caustics, lo=0))
+        check_choice("caustics", self.caustics, CAUSTICS_REFINE)
 
     def simpler(self) -> int:
         """How many terms are dropped or cheapened against the full model (tie-breaker: with equal
@@ -92,8 +104,13 @@ class Choices:
         return {f.name: getattr(self, f.name) for f in fields(self)}
 
 
-def full_choices() -> Choices:
-    """The most complete configuration (the reference every plan is measured against)."""
+def full_choices(scene: Scene | None = None) -> Choices:
+    """The most complete configuration (the reference every plan is measured against); for a
+    ``scene`` that shows no caustics, with the caustics term 0 (nothing to trace)."""
+    if scene is not None:
+        check_instance("scene", scene, Scene, "wavephys.planner.Scene")
+        if not scene.caustics:
+            return Choices(caustics=0)
     return Choices()
 
 
@@ -223,6 +240,8 @@ class SceneModel:
         parts = [f"grid {self.grid.n}² (dx {self.grid.dx:.3g} m)", f"Δt {self.dt:.4g} s",
                  "σ" if c.surface_tension else "no σ", "tanh kh" if c.finite_depth else "deep",
                  "2nd order" if c.second_order else "linear", f"Fresnel {c.fresnel}", f"absorption {c.absorption}"]
+        if self.scene.caustics:
+            parts.append(f"caustics refine {c.caustics}" if c.caustics else "caustics off (flat-water light)")
         return ", ".join(parts)
 
 

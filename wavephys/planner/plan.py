@@ -8,10 +8,15 @@ different units and their terms do not interact in the planner's models:
   :func:`wavephys.planner.predict.height_bounds` (one per-mode bound for all linear terms;
   the second-order and float32 terms added by the triangle inequality);
 * colour ([0, 1] image scale, compared with the image's quantum): each Fresnel form
-  and absorption method, bounded over the scene's own incidence angles and water paths
-  (ΔC ≤ ΔR + albedo·ΔT, the shading of :func:`wavephys.planner.runner.shade`).
+  and absorption method, bounded over the scene's own incidence angles and water paths,
+  and for scenes that show caustics the floor light E/E₀ at each tracing refinement
+  (traced on the full model's own surface, :mod:`wavephys.planner.caustics`; such scenes
+  keep the full model's heights, since a height change moves the light by amounts no term
+  bounds):
+  ΔC ≤ ΔR·max(1, T·albedo·E_max) + albedo·ΔT·E_max + T·albedo·ΔE (the shading of
+  :func:`wavephys.planner.runner.shade`).
 
-Among the candidates within tolerance the cheapest by the calibrated cost
+Among the combinations within both tolerances the cheapest by the calibrated cost
 (:mod:`wavephys.planner.cost`) wins; at equal cost, the one with fewer terms.
 """
 
@@ -26,8 +31,10 @@ from typing import Optional
 import numpy as np
 
 from wavephys.core.inputs import check_instance, check_scalar
-from wavephys.planner.cost import calibration, colour_cost, height_cost
-from wavephys.planner.model import (ABSORPTION_METHODS, FRESNEL_FORMS, TERMS, Choices, SceneModel, full_choices)
+from wavephys.planner.caustics import MARGIN, caustics_errors
+from wavephys.planner.cost import calibration, caustics_cost, colour_cost, height_cost
+from wavephys.planner.model import (ABSORPTION_METHODS, CAUSTICS_REFINE, FRESNEL_FORMS, FULL_REFINE,
+                                    TERMS, Choices, SceneModel, full_choices)
 from wavephys.planner.predict import HeightBounds, height_bounds, scene_spectrum
 from wavephys.planner.scene import Scene
 
@@ -141,7 +148,7 @@ def _quanta(x: float) -> str:
 def full_model(scene: Scene) -> SceneModel:
     """The most complete configuration of ``scene``: the reference every plan is measured against."""
     check_instance("scene", scene, Scene, "wavephys.planner.Scene")
-    return SceneModel(scene, full_choices())
+    return SceneModel(scene, full_choices(scene))
 
 
 def candidates(scene: Scene) -> list:
@@ -177,8 +184,8 @@ def _incidence_range(scene: Scene) -> tuple[float, float]:
 
 def colour_errors(scene: Scene) -> dict:
     """Bounds on the colour error ([0, 1] scale) of each Fresnel form and absorption method:
-    {"fresnel": {form: max ΔR}, "absorption": {method: albedo · max ΔT}} over the scene's
-    incidence range and water paths."""
+    {"fresnel": {form: max ΔR}, "absorption": {method: albedo · max ΔT}, "floor": the largest
+    albedo · T} over the scene's incidence range and water paths."""
     check_instance("scene", scene, Scene, "wavephys.planner.Scene")
     import jax.numpy as jnp
 
@@ -187,6 +194,7 @@ def colour_errors(scene: Scene) -> dict:
 
     lo, hi = _incidence_range(scene)
     cos = jnp.asarray(np.cos(np.radians(np.linspace(lo, hi, 4001))), jnp.float32)
+    floor = 0.0
     exact = np.asarray(reflectance(cos, method="exact"), np.float64)
     fresnel = {f: float(np.abs(np.asarray(reflectance(cos, method=f), np.float64) - exact).max())
                for f in FRESNEL_FORMS}
@@ -195,7 +203,8 @@ def colour_errors(scene: Scene) -> dict:
         d = np.linspace(*path_range(scene), 512)
         delta = np.abs(transmittance(scene, "rgb", d) - transmittance(scene, "spectral", d)).max()
         absorption["rgb"] = float(FLOOR_ALBEDO * delta)
-    return dict(fresnel=fresnel, absorption=absorption)
+        floor = FLOOR_ALBEDO * float(max(transmittance(scene, m, d[:1]).max() for m in ABSORPTION_METHODS))
+    return dict(fresnel=fresnel, absorption=absorption, floor=floor)
 
 
 def _pick(items, key_cost, key_simpler):
@@ -229,28 +238,63 @@ def plan(scene: Scene, tolerance: float, colour_tolerance: Optional[float] = Non
         raise Infeasible(f"no model meets {tolerance:.3g} m: the full model's own float32 floor is "
                          f"{full.bounds.total:.3g} m (run in float64 for less), and the best candidate reaches "
                          f"{min(c.bounds.total for c in cands):.3g} m")
-    best = _pick(ok, lambda c: c.cost, lambda c: c.choices.simpler())
+    if scene.caustics:  # the light moves with the heights, which no term bounds: keep the full model's heights
+        ok = [c for c in ok if _same_heights(c)]
     colour = colour_errors(scene)
-    options = []
-    for f in FRESNEL_FORMS:
-        for a in ABSORPTION_METHODS:
-            err = colour["fresnel"][f] + colour["absorption"][a]
-            options.append((f, a, err, colour_cost(scene, f, a)))
-    ok_c = [o for o in options if o[2] <= colour_tolerance]
-    if not ok_c:
-        raise Infeasible(f"no optics form meets the colour tolerance {colour_tolerance:.3g}")
-    simpler = lambda o: (o[0] != "exact") + (o[1] != "spectral")
-    f, a, colour_err, c_cost = _pick(ok_c, lambda o: o[3], simpler)
-    exact_cost = colour_cost(scene, "exact", "spectral")
-    choices = replace(best.choices, fresnel=f, absorption=a)
-    cost, full_cost = best.cost + c_cost, full.cost + exact_cost
+    caustics = caustics_errors(scene)  # traced on the scene's own surface (None: no caustics shown)
+    refines = CAUSTICS_REFINE if scene.caustics else (0,)
+    full_refine = FULL_REFINE if scene.caustics else 0
+    best, best_key = None, None
+    for cand in ok:
+        for r in refines:
+            delta, e_max = _caustics_delta(caustics, r)
+            if not math.isfinite(delta):
+                continue
+            for f in FRESNEL_FORMS:
+                for a in ABSORPTION_METHODS:
+                    err = _colour_total(colour, f, a, delta, e_max)
+                    if not err <= colour_tolerance:
+                        continue
+                    cost = cand.cost + colour_cost(scene, f, a) + caustics_cost(scene, r)
+                    choices = replace(cand.choices, fresnel=f, absorption=a, caustics=r)
+                    key = (round(cost, 12), -choices.simpler())
+                    if best_key is None or key < best_key:
+                        best, best_key = (cand, choices, err, cost), key
+    if best is None:
+        raise Infeasible(f"no optics form{' or caustics refinement' if scene.caustics else ''} meets the colour "
+                         f"tolerance {colour_tolerance:.3g}")
+    cand, choices, colour_err, cost = best
+    full_cost = full.cost + colour_cost(scene, "exact", "spectral") + caustics_cost(scene, full_refine)
     if budget is not None and cost > budget:
         raise Infeasible(f"the cheapest model within {tolerance:.3g} m costs {cost:.3g} s, over the budget "
                          f"{budget:.3g} s")
-    terms = _card(scene, cands, full, choices, colour)
+    terms = _card(scene, cands, full, choices, colour, caustics)
     front = _pareto(cands)
-    return Plan(scene, tolerance, colour_tolerance, SceneModel(scene, choices), best.bounds, colour_err, cost,
-                full_cost, tuple(terms), best.cost, tuple(front))
+    return Plan(scene, tolerance, colour_tolerance, SceneModel(scene, choices), cand.bounds, colour_err, cost,
+                full_cost, tuple(terms), cand.cost, tuple(front))
+
+
+def _same_heights(cand: Candidate) -> bool:
+    """The candidate computes the full model's heights (e.g. tanh kh off in deep water)."""
+    return cand.bounds.linear == 0.0 and cand.bounds.second_order == 0.0
+
+
+def _caustics_delta(caustics, refine: int) -> tuple:
+    """(|E_plan − E_full|/E₀, largest E/E₀) of tracing at ``refine`` (evaluated on the full
+    model's surface, :mod:`wavephys.planner.caustics`); (0, 1) for a scene without caustics.
+    Scenes with caustics keep the full model's heights, so this is the whole change."""
+    if caustics is None:
+        return 0.0, 1.0
+    return caustics.delta[refine], caustics.e_max
+
+
+def _colour_total(colour: dict, fresnel: str, absorption: str, delta: float, e_max: float) -> float:
+    """ΔC ≤ ΔR·max(1, T·albedo·E_max) + albedo·ΔT·E_max + T·albedo·ΔE (module doc)."""
+    dr, dt = colour["fresnel"][fresnel], colour["absorption"][absorption]
+    floor = colour["floor"]  # the largest T·albedo
+    out = dr * max(1.0, floor * e_max) if dr else 0.0
+    out += dt * e_max if dt else 0.0
+    return out + (floor * delta if delta else 0.0)
 
 
 def _height_part(choices: Choices) -> Choices:
@@ -268,7 +312,7 @@ def _pareto(cands) -> list:
     return front
 
 
-def _card(scene: Scene, cands, full: Candidate, choices: Choices, colour: dict) -> list:
+def _card(scene: Scene, cands, full: Candidate, choices: Choices, colour: dict, caustics) -> list:
     """One row per term: the effect of the plan's choice for that term alone (all others full)."""
     by = {c.choices: c for c in cands}
     spectrum = scene_spectrum(scene)
@@ -278,7 +322,10 @@ def _card(scene: Scene, cands, full: Candidate, choices: Choices, colour: dict) 
         alone = by.get(replace(full.choices, **{term: value}))
         err = (alone.bounds.total - full.bounds.total) if alone else math.nan
         saving = (full.cost - alone.cost) if alone else math.nan
-        rows.append(Term(term, value, max(err, 0.0), saving, _reason(scene, spectrum, term, value, err)))
+        reason = _reason(scene, spectrum, term, value, err)
+        if scene.caustics:
+            reason += "; heights kept as the full model's: the image shows caustics, which a height change moves"
+        rows.append(Term(term, value, max(err, 0.0), saving, reason))
     for term, table in (("fresnel", "fresnel"), ("absorption", "absorption")):
         value = getattr(choices, term)
         err = colour[table][value]
@@ -286,7 +333,23 @@ def _card(scene: Scene, cands, full: Candidate, choices: Choices, colour: dict) 
         saving = (colour_cost(scene, ref, "spectral") - colour_cost(scene, value, "spectral")) if term == "fresnel" \
             else (colour_cost(scene, "exact", ref) - colour_cost(scene, "exact", value))
         rows.append(Term(term, value, err, saving, _colour_reason(scene, term, value, err), unit="colour"))
+    value = choices.caustics
+    if caustics is None:
+        rows.append(Term("caustics", value, 0.0, 0.0, "the scene shows no caustics", unit="colour"))
+    else:
+        delta, e_max = _caustics_delta(caustics, value)
+        err = _colour_total(colour, "exact", "spectral", delta, e_max)
+        saving = caustics_cost(scene, FULL_REFINE) - caustics_cost(scene, value)
+        rows.append(Term("caustics", value, err, saving, _caustics_reason(scene, caustics, value, err), unit="colour"))
     return rows
+
+
+def _caustics_reason(scene, caustics, value, err) -> str:
+    q = scene.image_quantum
+    light = f"E/E₀ up to {caustics.e_max / MARGIN:.3g} at the traced frames {', '.join(map(str, caustics.frames))}"
+    if value == 0:
+        return f"off: {light}; ≤ {err / q:.2g} image quanta"
+    return f"refine {value}: {light}; tracing ≤ {err / q:.2g} image quanta"
 
 
 def _reason(scene, spectrum, term, value, err) -> str:

@@ -21,7 +21,7 @@ from wavephys.core.inputs import check_instance
 from wavephys.planner.model import SceneModel, interior, texel_shift_phase
 from wavephys.planner.scene import Scene
 
-__all__ = ["Output", "run", "shade", "compare", "FLOOR_ALBEDO"]
+__all__ = ["Output", "run", "shade", "floor_light", "compare", "FLOOR_ALBEDO"]
 
 FLOOR_ALBEDO = 0.6
 """Reflectance of the floor seen through the water in :func:`shade` (pale sand)."""
@@ -154,10 +154,12 @@ def _frames(model: SceneModel, eta, eta_dot):
 
 
 def shade(scene: Scene, model: SceneModel, heights):
-    """The colour the planner's optics terms are judged on: C = R + (1 − R)·T(d)·albedo per
-    channel, seen along the scene's view elevation (from −x), with R the configuration's
-    Fresnel form at the facet's incidence angle and T the absorption over the path d down
-    to the floor and straight back up (0 in deep water). [0, 1] scale, shape (n, n, 3)."""
+    """The colour the planner's optics terms are judged on: C = R + (1 − R)·T(d)·albedo·E/E₀ per
+    channel, clipped to [0, 1], seen along the scene's view elevation (from −x), with R the
+    configuration's Fresnel form at the facet's incidence angle, T the absorption over the path
+    d down to the floor and straight back up (0 in deep water), and E/E₀ the floor's
+    irradiance relative to flat water's (:func:`floor_light`; 1 where the scene shows no
+    caustics). [0, 1] scale, shape (n, n, 3)."""
     from optics.light.fresnel import N_WATER, reflectance
     from wavephys.core.inputs import check_array
 
@@ -175,12 +177,28 @@ def shade(scene: Scene, model: SceneModel, heights):
     cos_i = np.clip(normal @ to_eye, 0.0, 1.0)
     r = np.asarray(reflectance(jnp.asarray(cos_i, jnp.float32), method=model.choices.fresnel), np.float64)
     if math.isinf(scene.depth):
-        trans = np.zeros(cos_i.shape + (3,))
-    else:
-        sin_t = np.sqrt(1.0 - cos_i**2) / N_WATER
-        path = scene.depth * (1.0 / np.sqrt(1.0 - sin_t**2) + 1.0)
-        trans = transmittance(scene, model.choices.absorption, path)
-    return r[..., None] + (1.0 - r[..., None]) * trans * FLOOR_ALBEDO
+        return np.broadcast_to(r[..., None], cos_i.shape + (3,)).copy()
+    sin_t = np.sqrt(1.0 - cos_i**2) / N_WATER
+    path = scene.depth * (1.0 / np.sqrt(1.0 - sin_t**2) + 1.0)
+    trans = transmittance(scene, model.choices.absorption, path)
+    light = floor_light(scene, model, heights)[..., None]
+    return np.clip(r[..., None] + (1.0 - r[..., None]) * trans * FLOOR_ALBEDO * light, 0.0, 1.0)
+
+
+def floor_light(scene: Scene, model: SceneModel, heights) -> np.ndarray:
+    """E/E₀ on the output texels: the floor irradiance under ``heights`` relative to flat water's
+    (:func:`optics.caustics.floor_irradiance_beam` at the configuration's ``caustics`` refinement,
+    the sun at the scene's elevation behind the viewer); 1 where the scene shows no caustics or
+    the term is off."""
+    refine = model.choices.caustics
+    if not scene.caustics or not refine:
+        return np.ones((scene.texels, scene.texels))
+    from optics.caustics import floor_irradiance_beam
+    from wavephys.planner.caustics import flat_irradiance, sun_vector
+
+    e = floor_irradiance_beam(jnp.asarray(heights, jnp.float32), model.output_grid, scene.depth,
+                              sun_vector(scene.sun_elevation), refine=refine)
+    return np.asarray(e, np.float64) / flat_irradiance(scene.sun_elevation)
 
 
 def transmittance(scene: Scene, method: str, path):

@@ -23,6 +23,7 @@ TOML layout (every key optional except ``extent`` and one of ``pixel`` /
     image_bits = 8
     sun_elevation = 40.0     # degrees above the horizon
     view_elevation = 35.0    # degrees above the horizon of the camera's line of sight
+    caustics = false         # the image shows the floor lit through the waves (periodic scenes with a floor)
     [water]                  # wavephys.Water fields (SI), depth comes from the top level
     sigma = 0.074
     [[stones]]               # dropped at t = 0: x, y (m), radius (m), depth (m)
@@ -169,6 +170,11 @@ class Scene:
         Water properties; its ``depth`` is replaced by ``depth``.
     stones, ships, wind :
         The sources (:class:`StoneSpec`, :class:`ShipSpec`, :class:`WindSpec` or None).
+    caustics : bool
+        The image shows the floor lit through the waves (the sun's light focused by them,
+        :mod:`wavephys.planner.caustics`). Needs a floor (finite ``depth``) and a periodic
+        scene (a tank, or a wind sea: :attr:`margin` 0), because the light is traced
+        through the visible square alone.
     """
 
     extent: float
@@ -186,6 +192,7 @@ class Scene:
     stones: tuple = ()
     ships: tuple = ()
     wind: Optional[WindSpec] = None
+    caustics: bool = False
     name: str = "scene"
 
     def __post_init__(self):
@@ -229,6 +236,12 @@ class Scene:
         if not (self.stones or self.ships or self.wind):
             raise ValueError("a scene needs at least one source: stones, ships or wind")
         self._check_sources()
+        set_("caustics", check_bool("caustics", self.caustics))
+        if self.caustics and math.isinf(self.depth):
+            raise ValueError("caustics = true needs a floor: give a finite depth (m), not inf")
+        if self.caustics and self.margin:
+            raise ValueError("caustics = true needs a periodic scene (open_water = false, or a wind sea): the light "
+                             "is traced through the visible square alone, which an open-water cutoff margin surrounds")
 
     def _check_sources(self):
         half = self.extent / 2

@@ -1,0 +1,132 @@
+r"""The caustics term: how much each tracing refinement changes the floor's light, on the scene's own surface.
+
+A scene with ``caustics = true`` shows its floor lit through the waves: the shading
+(:func:`wavephys.planner.runner.shade`) multiplies the floor's colour by E/E₀, the floor
+irradiance (:func:`optics.caustics.floor_irradiance_beam`, exact beam rasterization of the
+surface refined r times) over E₀, the irradiance under flat water; with the term off
+(r = 0) E/E₀ = 1.
+
+This term is *evaluated*, not bounded. The full model's surface is known in closed form at
+any frame (every Fourier mode of the linear surface, :mod:`wavephys.planner.predict`, and
+η₂ = ½ Re(η_c Λη_c) computed from it on the grid, as the simulation does), so the planner
+traces it at a few frames (:data:`SAMPLED_FRAMES`: the first, middle and last) at every
+refinement and takes the largest difference from the full model's refinement,
+:data:`FULL_REFINE`, times :data:`MARGIN` for the frames it did not trace. Tracing one frame
+at all refinements costs about 30 traces of the plain surface, once per plan; the plan
+saves it on every frame it renders.
+"""
+
+from __future__ import annotations
+
+__internal__ = True  # the planner's own models: used through plan(), not fuzzed as public API
+
+import math
+from dataclasses import dataclass
+from functools import lru_cache
+
+import numpy as np
+
+from wavephys.planner.model import CAUSTICS_REFINE, FULL_REFINE, SceneModel
+
+__all__ = ["sun_vector", "flat_irradiance", "full_surfaces", "CausticsErrors", "caustics_errors", "MARGIN",
+           "SAMPLED_FRAMES"]
+
+MARGIN = 1.25
+"""Factor on the largest difference traced at the sampled frames (for the frames between them)."""
+SAMPLED_FRAMES = 3
+"""Frames traced per scene: the first, the middle and the last (fewer for shorter scenes)."""
+
+
+def sun_vector(sun_elevation: float) -> tuple:
+    """Direction towards the sun at ``sun_elevation`` degrees, behind the viewer (who looks
+    along +x, :func:`wavephys.planner.runner.shade`)."""
+    e = math.radians(sun_elevation)
+    return (-math.cos(e), 0.0, math.sin(e))
+
+
+def flat_irradiance(sun_elevation: float) -> float:
+    """E₀: the floor irradiance under flat water, relative to the sun's horizontal irradiance:
+    the Fresnel transmittance at the sun's incidence (90° − elevation)."""
+    from optics.light.fresnel import N_AIR, N_WATER, reflectance_exact
+
+    return 1.0 - float(reflectance_exact(math.sin(math.radians(sun_elevation)), N_AIR, N_WATER))
+
+
+def _sampled_frames(frames: int) -> tuple:
+    return tuple(sorted({1, (frames + 1) // 2, frames}))[-SAMPLED_FRAMES:]
+
+
+def full_surfaces(scene) -> tuple:
+    """(frame numbers, heights (F, n, n) float64 m): the full model's surface at the sampled
+    frames on the output texels, from its closed form (linear modes at time t, then
+    η + ½ Re(η_c Λη_c) on the grid). Needs a periodic scene (no margin)."""
+    from wavephys.planner.predict import _C, _dispersion, _waters, scene_spectrum
+
+    spec = scene_spectrum(scene)
+    n = spec.n
+    omega, m = _dispersion(spec.k, _waters(scene)[0])
+    frames = _sampled_frames(scene.frames)
+    t = (np.asarray(frames, np.float64) / scene.fps)[:, None]
+    c = _C(spec, omega, m, t)
+    if np.any(spec.W):
+        c = c + _C(spec, omega, m, t, wind=True)
+    rows, cols = spec.index
+    k = np.zeros((n, n))
+    k[rows, cols] = spec.k
+    out = []
+    for row in c:
+        full = np.zeros((n, n), np.complex128)
+        full[rows, cols] = row
+        eta_c = np.fft.ifft2(full)
+        lam = np.fft.ifft2(k * full)
+        out.append(eta_c.real + 0.5 * (eta_c.real * lam.real - eta_c.imag * lam.imag))
+    return frames, np.stack(out)
+
+
+@dataclass(frozen=True)
+class CausticsErrors:
+    """What the caustics term's choices do to one scene's floor light (module doc):
+    ``delta`` r ↦ MARGIN × max |E_r − E_full|/E₀ over the sampled frames (r = 0: the term off,
+    E/E₀ = 1), ``e_max`` MARGIN × the largest E_full/E₀ seen, ``flat`` E₀, ``frames`` the
+    frames traced, ``seconds`` the time the tracing took."""
+
+    delta: dict
+    e_max: float
+    flat: float
+    frames: tuple
+    seconds: float
+
+
+def caustics_errors(scene) -> CausticsErrors | None:
+    """:class:`CausticsErrors` of ``scene`` (None if it shows no caustics); cached per scene."""
+    if not scene.caustics:
+        return None
+    return _caustics_errors(scene)
+
+
+@lru_cache(maxsize=32)
+def _caustics_errors(scene) -> CausticsErrors:
+    import time
+
+    import jax.numpy as jnp
+
+    from optics.caustics import floor_irradiance_beam
+
+    start = time.perf_counter()
+    grid = SceneModel(scene).output_grid
+    sun = sun_vector(scene.sun_elevation)
+    e0 = flat_irradiance(scene.sun_elevation)
+    frames, heights = full_surfaces(scene)
+    delta = {r: 0.0 for r in CAUSTICS_REFINE}
+    e_max = 0.0
+    for eta in heights:
+        eta = jnp.asarray(eta, jnp.float32)
+        light = {r: np.asarray(floor_irradiance_beam(eta, grid, scene.depth, sun, refine=r), np.float64) / e0
+                 for r in CAUSTICS_REFINE if r}
+        light[0] = np.ones_like(light[FULL_REFINE])
+        ref = light[FULL_REFINE]
+        e_max = max(e_max, float(ref.max()))
+        for r in CAUSTICS_REFINE:
+            delta[r] = max(delta[r], float(np.abs(light[r] - ref).max()))
+    return CausticsErrors({r: MARGIN * v for r, v in delta.items()}, MARGIN * e_max, e0, frames,
+                          time.perf_counter() - start)
