@@ -218,7 +218,10 @@ def run_calibrate(args) -> None:
     from bench.planner import CAL_PATH, calibrate
 
     data = calibrate(_say, only=args.only)
-    print(f"kappa {data['kappa']:.3g}; step at n=128 {1e3 * data['step']['first'][6]:.3f} ms; wrote {CAL_PATH}")
+    if args.only:
+        print(f"updated {args.only} in {CAL_PATH}")
+    else:
+        print(f"kappa {data['kappa']:.3g}; step at n=128 {1e3 * data['step']['first'][6]:.3f} ms; wrote {CAL_PATH}")
 
 
 def run_planner(args) -> None:

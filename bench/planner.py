@@ -243,7 +243,7 @@ def kappa(progress=print, count: int = KAPPA_SCENES, seed: int = 99) -> dict:
 
 def calibrate(progress=print, only=None) -> dict:
     """Measure everything the cost model needs and write the calibration file (module doc).
-    ``only="caustics"``: measure that table alone and update the shipped file's entry."""
+    ``only="caustics"`` or ``"shade"``: measure that table alone and update the shipped file's entry."""
     import platform
 
     from wavephys.core.files import atomic_path

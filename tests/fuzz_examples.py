@@ -234,7 +234,7 @@ OVERRIDES = {
     "wavephys.app.registry.run": {"names": lambda: ["dispersion-minima"]},
     "wavephys.physics.heights.second_order_breakdown": {"steepness": lambda: (0.26, 0.30)},
     "wavephys.app.scenes.default_scene": {"n": lambda: 128, "steps": lambda: 2},
-    "wavephys.app.scenes.builtin_scene": {"n": lambda: 64},
+    "wavephys.app.scenes.builtin_scene": {"n": lambda: 64, "caustics": lambda: False},
     "wavephys.app.scenes.scene_water": {"n": lambda: 64},
     "wavephys.app.scenes.scene_frames": {"n": lambda: 64},
     "wavephys.app.scenes.scene_grid": {"n": lambda: 64},
@@ -263,6 +263,9 @@ OVERRIDES = {
     "optics.rendering.reference.shade_ground": {"p": lambda: np.array([[0.0, 0.0, -1.0]])},
     "optics.rendering.reference.sample": {"field": _field, "xy": lambda: np.zeros((3, 2))},
     "optics.rendering.scene.texture_sample": {"field": _field},
+    # the reference refines until two levels agree: a loose tolerance keeps the valid call short
+    "optics.caustics.reference.floor_irradiance_reference": {"tolerance": lambda: 0.05, "max_refine": lambda: 8},
+    "optics.caustics.reference.converged_floor_irradiance": {"tolerance": lambda: 0.05, "max_refine": lambda: 8},
     "optics.caustics.common.bilateral_filter": {"image": _field},
     "optics.caustics.common.blur_121": {"image": _field},
     "optics.rendering.renderer.to_srgb8": {"image": lambda: RNG.random((4, 4, 3))},

@@ -120,40 +120,56 @@ class TestExactCoverage:
     """The rasterization primitive: each triangle's value spread over its exact footprint."""
 
     @staticmethod
-    def _brute(tri, w, m, s=128):
-        """Texel shares of each triangle by point-in-triangle tests on s² points per texel (over
-        the triangle's bounding box, wrapped onto the periodic map)."""
-        out = np.zeros((m, m))
-        for t in range(tri.shape[0]):
-            a, b, c = tri[t]
-            lo, hi = np.floor(tri[t].min(0) + 0.5) - 0.5, np.ceil(tri[t].max(0) + 0.5) - 0.5  # texel edges
-            gx = lo[0] + (np.arange(int(round((hi[0] - lo[0]) * s))) + 0.5) / s
-            gy = lo[1] + (np.arange(int(round((hi[1] - lo[1]) * s))) + 0.5) / s
-            X, Y = np.meshgrid(gx, gy)
-            d1 = (X - b[0]) * (a[1] - b[1]) - (a[0] - b[0]) * (Y - b[1])
-            d2 = (X - c[0]) * (b[1] - c[1]) - (b[0] - c[0]) * (Y - c[1])
-            d3 = (X - a[0]) * (c[1] - a[1]) - (c[0] - a[0]) * (Y - a[1])
-            inside = ~(((d1 < 0) | (d2 < 0) | (d3 < 0)) & ((d1 > 0) | (d2 > 0) | (d3 > 0)))
-            cols = np.floor(X[inside] + 0.5).astype(int) % m
-            rows = np.floor(Y[inside] + 0.5).astype(int) % m
-            np.add.at(out, (rows, cols), w[t] / max(int(inside.sum()), 1))
+    def _clip(poly, axis, bound, keep_below):
+        """Sutherland–Hodgman: the part of polygon ``poly`` (list of (x, y)) on one side of a line."""
+        out = []
+        inside = (lambda p: p[axis] <= bound) if keep_below else (lambda p: p[axis] >= bound)
+        for i, p in enumerate(poly):
+            q = poly[(i + 1) % len(poly)]
+            if inside(p):
+                out.append(p)
+            if inside(p) != inside(q):
+                t = (bound - p[axis]) / (q[axis] - p[axis])
+                out.append((p[0] + t * (q[0] - p[0]), p[1] + t * (q[1] - p[1])))
         return out
 
-    @settings(max_examples=4, deadline=None, derandomize=True)
+    @classmethod
+    def _exact(cls, tri, w, m):
+        """Texel shares of each triangle by clipping it against every texel square of its bounding
+        box (exact areas, float64), wrapped onto the periodic map: an independent reference."""
+        out = np.zeros((m, m))
+        for t in range(tri.shape[0]):
+            pts = [tuple(p) for p in tri[t]]
+            area = 0.5 * abs((pts[1][0] - pts[0][0]) * (pts[2][1] - pts[0][1])
+                             - (pts[2][0] - pts[0][0]) * (pts[1][1] - pts[0][1]))
+            lo, hi = np.floor(tri[t].min(0) + 0.5).astype(int), np.floor(tri[t].max(0) + 0.5).astype(int)
+            for col in range(lo[0], hi[0] + 1):
+                for row in range(lo[1], hi[1] + 1):
+                    poly = pts
+                    for axis, bound, below in ((0, col - 0.5, False), (0, col + 0.5, True),
+                                               (1, row - 0.5, False), (1, row + 0.5, True)):
+                        poly = cls._clip(poly, axis, bound, below) if poly else poly
+                    if len(poly) >= 3:
+                        x, y = np.array(poly).T
+                        a = 0.5 * abs(np.dot(x, np.roll(y, -1)) - np.dot(y, np.roll(x, -1)))
+                        out[row % m, col % m] += w[t] * a / area
+        return out
+
+    @settings(max_examples=8, deadline=None, derandomize=True)
     @given(seed=st.integers(0, 2**31 - 1), size=st.floats(0.4, 3.0))
-    def test_random_triangles_against_point_counts(self, seed, size):
+    def test_random_triangles_against_exact_clipping(self, seed, size):
         rng = np.random.default_rng(seed)
         m, T = 8, 6
         tri = rng.uniform(0, m, (T, 1, 2)) + rng.normal(0, size, (T, 3, 2))
         w = rng.uniform(0.5, 2.0, T)
         u, v = np.moveaxis(tri[..., 0], -1, 0)[:, None], np.moveaxis(tri[..., 1], -1, 0)[:, None]
         with jax.enable_x64(True):
-            out = np.asarray(deposit_triangles(jnp.asarray(u), jnp.asarray(v), jnp.asarray(w[None]), (m, m),
-                                               triangle_window(u, v)))
+            window = 8 * -(-triangle_window(u, v) // 8)  # a wider window is exact too; fewer compiles
+            out = np.asarray(deposit_triangles(jnp.asarray(u), jnp.asarray(v), jnp.asarray(w[None]), (m, m), window))
         assert out.sum() == pytest.approx(w.sum(), rel=1e-12)  # conserved exactly
         assert out.min() >= 0.0
-        brute = self._brute(tri, w, m)  # 128² points a texel: measured differences below 0.8 % of the largest value
-        assert np.max(np.abs(out - brute)) < 0.02 * w.max()
+        exact = self._exact(tri, w, m)  # slivers included (point counts missed them by up to 9 %)
+        assert np.max(np.abs(out - exact)) < 1e-9 * w.max()
 
     def test_known_shares_and_orientation(self):
         # a right triangle covering exactly half of texel (1, 1) and half of texel (1, 2)... in texel units
@@ -263,10 +279,10 @@ class TestLowSun:
 
     @pytest.mark.parametrize("seed", range(4))
     def test_beam_conserves_flux_below_the_steepest_slope(self, seed):
-        grid, eta = self._surface(seed, n=64, length=2.0)
+        grid, eta = self._surface(seed)  # at 64² (λ/26 per sample) seed 3 at 10° loses 1.2e-3 of the flux
         rng = np.random.default_rng(seed)
-        # the steepest slope stands at 21.8°; every elevation on seed 0, one each on the others
-        for elevation in (20.0, 15.0, 10.0) if seed == 0 else ((20.0, 15.0, 10.0)[seed % 3],):
+        # the steepest slope stands at 21.8°; one elevation per seed (each is its own compile)
+        for elevation in ((10.0, 20.0, 15.0, 10.0)[seed],):
             az, e = rng.uniform(0, 2 * math.pi), math.radians(elevation)
             sun = (math.cos(e) * math.cos(az), math.cos(e) * math.sin(az), math.sin(e))
             refine = 3 if seed == 0 else 1  # the shadows do not depend on the refinement

@@ -208,6 +208,8 @@ def test_caustics_need_a_floor_and_a_periodic_scene():
     stones = (StoneSpec(0.0, 0.0, 0.2, 0.01),)
     with pytest.raises(ValueError, match="caustics.*periodic"):
         Scene(4.0, 0.0625, depth=1.0, open_water=True, stones=stones, caustics=True)
+    with pytest.raises(ValueError, match="caustics.*512 texels"):
+        Scene(10.24, 0.01, depth=1.0, open_water=False, stones=(StoneSpec(0.0, 0.0, 0.05, 0.001),), caustics=True)
     with pytest.raises(TypeError, match="caustics"):
         _pool(caustics="yes")
     with pytest.raises(ValueError, match="caustics"):

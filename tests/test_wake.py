@@ -96,12 +96,15 @@ def test_maximum_amplitude_angle_is_not_the_outer_edge_for_larger_sources():
         wake_angle(eta, grid, method="max", near=2.0, far=16.0, exclude=0.3)
 
 
-def _froude_wake(froude, n=1024, lengths=100.0, speed=1.0):
+def _froude_wake(froude, n=1024, lengths=100.0, speed=1.0, simulate=True):
     """The steady wake of a Gaussian source at ``froude`` on a grid ``lengths`` source lengths b
-    wide (b/10 per sample), lightly damped (ε = 2U/L moves the angle < 0.3°; 8U/L up to 4.6°)."""
+    wide (b/10 per sample), lightly damped (ε = 2U/L moves the angle < 0.3°; 8U/L up to 4.6°);
+    ``simulate=False``: the grid and source alone (eta None)."""
     size = gaussian_size(froude, speed)
     b = math.pi * math.sqrt(2) * size
     grid = Grid(n, lengths * b)
+    if not simulate:
+        return grid, None, GaussianPressure(100.0, size), b
     eta = steady_wake(grid, DEEP, speed, GaussianPressure(100.0, size), damping=2 * speed / float(grid.length))
     return grid, np.asarray(eta), GaussianPressure(100.0, size), b
 
@@ -133,11 +136,13 @@ def test_wake_envelope_is_the_steady_wake_s(froude):
 
 @pytest.mark.slow
 def test_max_amplitude_angle_across_froude_numbers():
-    """Gaussian sources from Fr = 0.3 to 4 (fixed points and seeded random ones): the measured
-    angle of maximum amplitude is linear theory's (undamped, same sections) within max(1°, 10 %),
-    or the stated uncertainties cover the difference; and theory has the published shape."""
+    """Gaussian sources from Fr = 0.3 to 4 (Fr = 0.3 and seeded random ones; 0.5, 1.5 and 4 are
+    the registry's rows): the measured angle of maximum amplitude is linear theory's (undamped,
+    same sections) within max(1°, 10 %), or the stated uncertainties cover the difference; and
+    theory has the published shape."""
     rng = np.random.default_rng(2014)
-    froudes = [0.3, 0.5, 1.5, 4.0] + [float(f) for f in rng.uniform(0.3, 4.0, 2)]
+    # Fr = 0.5, 1.5 and 4 are measured by the registry's rows (tests/test_registry.py)
+    froudes = [0.3] + [float(f) for f in rng.uniform(0.3, 4.0, 2)]
     strict, theory = 0, {}
     for fr in froudes:
         grid, eta, source, b = _froude_wake(fr)
@@ -150,9 +155,11 @@ def test_max_amplitude_angle_across_froude_numbers():
         strict += diff <= max(1.0, 0.1 * t.angle)
     assert strict >= len(froudes) - 1  # the uncertainty rule is for the jump near Fr = 0.35 only
     assert abs(theory[0.3]) < 0.5                       # slow and broad: the transverse waves on the track
-    assert abs(theory[0.5] - KELVIN_ANGLE) < 1.0        # near Kelvin's angle
-    scaled = [theory[f] * f for f in (1.5, 4.0)]        # beyond: roughly 1/Fr, Rabaud & Moisy's law
-    assert all(abs(v / (mach_like_angle(1.0)) - 1) < 0.2 for v in scaled), scaled
+    # near Kelvin's angle at Fr = 0.5 and the 1/Fr law at Fr = 4 are registry rows; Fr = 1.5 here, theory alone
+    grid, _, source, b = _froude_wake(1.5, simulate=False)
+    theory[1.5] = max_amplitude_angle_theory(1.0, source, near=10 * b, far=40 * b, spacing=float(grid.dx)).angle
+    scaled = theory[1.5] * 1.5                           # beyond: roughly 1/Fr, Rabaud & Moisy's law
+    assert abs(scaled / mach_like_angle(1.0) - 1) < 0.2, scaled
 
 
 @pytest.mark.slow

@@ -9,11 +9,12 @@ surface refined r times) over E₀, the irradiance under flat water; with the te
 This term is *evaluated*, not bounded. The full model's surface is known in closed form at
 any frame (every Fourier mode of the linear surface, :mod:`wavephys.planner.predict`, and
 η₂ = ½ Re(η_c Λη_c) computed from it on the grid, as the simulation does), so the planner
-traces it at a few frames (:data:`SAMPLED_FRAMES`: the first, middle and last) at every
-refinement and takes the largest difference from the full model's refinement,
+traces it at a few frames (:data:`SAMPLED_FRAMES`: the first, the last and three between)
+at every refinement and takes the largest difference from the full model's refinement,
 :data:`FULL_REFINE`, times :data:`MARGIN` for the frames it did not trace. Tracing one frame
 at all refinements costs about 30 traces of the plain surface, once per plan; the plan
-saves it on every frame it renders.
+saves it on every frame it renders. Scenes with caustics are planned up to
+:data:`MAX_CAUSTICS_TEXELS` texels per side (the planner traces 4× finer).
 """
 
 from __future__ import annotations
@@ -21,20 +22,26 @@ from __future__ import annotations
 __internal__ = True  # the planner's own models: used through plan(), not fuzzed as public API
 
 import math
+from collections.abc import Mapping
 from dataclasses import dataclass
 from functools import lru_cache
+from types import MappingProxyType
 
 import numpy as np
 
 from wavephys.planner.model import CAUSTICS_REFINE, FULL_REFINE, SceneModel
 
 __all__ = ["sun_vector", "flat_irradiance", "full_surfaces", "CausticsErrors", "caustics_errors", "MARGIN",
-           "SAMPLED_FRAMES"]
+           "SAMPLED_FRAMES", "MAX_CAUSTICS_TEXELS"]
+
+MAX_CAUSTICS_TEXELS = 512
+"""Largest texels per side of a scene that shows caustics (the full model traces 2048² cells)."""
 
 MARGIN = 1.25
 """Factor on the largest difference traced at the sampled frames (for the frames between them)."""
-SAMPLED_FRAMES = 3
-"""Frames traced per scene: the first, the middle and the last (fewer for shorter scenes)."""
+SAMPLED_FRAMES = 5
+"""Frames traced per scene: the first, the last and three evenly between (fewer for shorter
+scenes). A sampled estimate: focusing can peak between them (hence :data:`MARGIN`)."""
 
 
 def sun_vector(sun_elevation: float) -> tuple:
@@ -53,7 +60,7 @@ def flat_irradiance(sun_elevation: float) -> float:
 
 
 def _sampled_frames(frames: int) -> tuple:
-    return tuple(sorted({1, (frames + 1) // 2, frames}))[-SAMPLED_FRAMES:]
+    return tuple(sorted({int(round(v)) for v in np.linspace(1, frames, min(SAMPLED_FRAMES, frames))}))
 
 
 def full_surfaces(scene) -> tuple:
@@ -87,11 +94,13 @@ def full_surfaces(scene) -> tuple:
 class CausticsErrors:
     """What the caustics term's choices do to one scene's floor light (module doc):
     ``delta`` r ↦ MARGIN × max |E_r − E_full|/E₀ over the sampled frames (r = 0: the term off,
-    E/E₀ = 1), ``e_max`` MARGIN × the largest E_full/E₀ seen, ``flat`` E₀, ``frames`` the
-    frames traced, ``seconds`` the time the tracing took."""
+    E/E₀ = 1), ``e_max`` r ↦ MARGIN × the largest E_r/E₀ seen (read-only mappings), ``flat``
+    E₀, ``frames`` the frames traced, ``seconds`` the time the first evaluation took (later
+    calls return the cached result). A trace that is not finite everywhere makes its
+    entries ∞ (that choice is never taken)."""
 
-    delta: dict
-    e_max: float
+    delta: Mapping
+    e_max: Mapping
     flat: float
     frames: tuple
     seconds: float
@@ -118,15 +127,17 @@ def _caustics_errors(scene) -> CausticsErrors:
     e0 = flat_irradiance(scene.sun_elevation)
     frames, heights = full_surfaces(scene)
     delta = {r: 0.0 for r in CAUSTICS_REFINE}
-    e_max = 0.0
+    e_max = {r: 0.0 for r in CAUSTICS_REFINE}
     for eta in heights:
         eta = jnp.asarray(eta, jnp.float32)
         light = {r: np.asarray(floor_irradiance_beam(eta, grid, scene.depth, sun, refine=r), np.float64) / e0
                  for r in CAUSTICS_REFINE if r}
         light[0] = np.ones_like(light[FULL_REFINE])
         ref = light[FULL_REFINE]
-        e_max = max(e_max, float(ref.max()))
         for r in CAUSTICS_REFINE:
-            delta[r] = max(delta[r], float(np.abs(light[r] - ref).max()))
-    return CausticsErrors({r: MARGIN * v for r, v in delta.items()}, MARGIN * e_max, e0, frames,
+            finite = bool(np.isfinite(light[r]).all() and np.isfinite(ref).all())
+            delta[r] = max(delta[r], float(np.abs(light[r] - ref).max()) if finite else math.inf)
+            e_max[r] = max(e_max[r], float(light[r].max()) if finite else math.inf)
+    return CausticsErrors(MappingProxyType({r: MARGIN * v for r, v in delta.items()}),
+                          MappingProxyType({r: MARGIN * v for r, v in e_max.items()}), e0, frames,
                           time.perf_counter() - start)

@@ -1,7 +1,7 @@
 """The planner: the cheapest configuration whose predicted error stays within the tolerance.
 
-Heights and colour are planned separately, because their errors are measured in
-different units and their terms do not interact in the planner's models:
+Heights and colour have their own tolerances and error models (in different units); the
+choice is made jointly over both, cheapest first:
 
 * heights (m, max norm over every frame and texel): every combination of σ, tanh kh,
   grid coarsening, steps per frame and the second-order term is bounded jointly by
@@ -275,7 +275,8 @@ def plan(scene: Scene, tolerance: float, colour_tolerance: Optional[float] = Non
 
 
 def _same_heights(cand: Candidate) -> bool:
-    """The candidate computes the full model's heights (e.g. tanh kh off in deep water)."""
+    """The candidate computes the full model's heights (e.g. σ off in a scene whose water has
+    σ = 0 already)."""
     return cand.bounds.linear == 0.0 and cand.bounds.second_order == 0.0
 
 
@@ -285,7 +286,7 @@ def _caustics_delta(caustics, refine: int) -> tuple:
     Scenes with caustics keep the full model's heights, so this is the whole change."""
     if caustics is None:
         return 0.0, 1.0
-    return caustics.delta[refine], caustics.e_max
+    return caustics.delta[refine], max(caustics.e_max[FULL_REFINE], caustics.e_max[refine])
 
 
 def _colour_total(colour: dict, fresnel: str, absorption: str, delta: float, e_max: float) -> float:
@@ -326,9 +327,11 @@ def _card(scene: Scene, cands, full: Candidate, choices: Choices, colour: dict, 
         if scene.caustics:
             reason += "; heights kept as the full model's: the image shows caustics, which a height change moves"
         rows.append(Term(term, value, max(err, 0.0), saving, reason))
+    _, e_max = _caustics_delta(caustics, choices.caustics)
     for term, table in (("fresnel", "fresnel"), ("absorption", "absorption")):
         value = getattr(choices, term)
-        err = colour[table][value]
+        err = (_colour_total(colour, value, "spectral", 0.0, e_max) if term == "fresnel"
+               else _colour_total(colour, "exact", value, 0.0, e_max))  # × the floor light where caustics show
         ref = "exact" if term == "fresnel" else "spectral"
         saving = (colour_cost(scene, ref, "spectral") - colour_cost(scene, value, "spectral")) if term == "fresnel" \
             else (colour_cost(scene, "exact", ref) - colour_cost(scene, "exact", value))
@@ -346,7 +349,8 @@ def _card(scene: Scene, cands, full: Candidate, choices: Choices, colour: dict, 
 
 def _caustics_reason(scene, caustics, value, err) -> str:
     q = scene.image_quantum
-    light = f"E/E₀ up to {caustics.e_max / MARGIN:.3g} at the traced frames {', '.join(map(str, caustics.frames))}"
+    light = (f"E/E₀ up to {caustics.e_max[FULL_REFINE] / MARGIN:.3g} at the traced frames "
+             f"{', '.join(map(str, caustics.frames))}")
     if value == 0:
         return f"off: {light}; ≤ {err / q:.2g} image quanta"
     return f"refine {value}: {light}; tracing ≤ {err / q:.2g} image quanta"

@@ -167,6 +167,8 @@ def shade(scene: Scene, model: SceneModel, heights):
     check_instance("model", model, SceneModel, "wavephys.planner.SceneModel")
     n = scene.texels
     check_array("heights", heights, ndim=2, shape_tail=(n, n))
+    if model.scene != scene:
+        raise ValueError("model was made for another scene: SceneModel(scene, choices)")
 
     grid = model.output_grid
     gx, gy = (np.asarray(g, np.float64) for g in grid.gradient(jnp.asarray(heights)))
@@ -190,6 +192,13 @@ def floor_light(scene: Scene, model: SceneModel, heights) -> np.ndarray:
     (:func:`optics.caustics.floor_irradiance_beam` at the configuration's ``caustics`` refinement,
     the sun at the scene's elevation behind the viewer); 1 where the scene shows no caustics or
     the term is off."""
+    from wavephys.core.inputs import check_array
+
+    check_instance("scene", scene, Scene, "wavephys.planner.Scene")
+    check_instance("model", model, SceneModel, "wavephys.planner.SceneModel")
+    check_array("heights", heights, ndim=2, shape_tail=(scene.texels, scene.texels))
+    if model.scene != scene:
+        raise ValueError("model was made for another scene: SceneModel(scene, choices)")
     refine = model.choices.caustics
     if not scene.caustics or not refine:
         return np.ones((scene.texels, scene.texels))

@@ -239,6 +239,9 @@ class Scene:
         set_("caustics", check_bool("caustics", self.caustics))
         if self.caustics and math.isinf(self.depth):
             raise ValueError("caustics = true needs a floor: give a finite depth (m), not inf")
+        if self.caustics and self.texels > 512:
+            raise ValueError(f"caustics = true is planned up to 512 texels per side (the planner traces the floor "
+                             f"light 4x finer), got {self.texels}")
         if self.caustics and self.margin:
             raise ValueError("caustics = true needs a periodic scene (open_water = false, or a wind sea): the light "
                              "is traced through the visible square alone, which an open-water cutoff margin surrounds")
