@@ -64,8 +64,9 @@ def step_seconds(progress=print) -> dict:
     return out
 
 
-def ship_seconds(progress=print) -> dict:
-    """Extra seconds per step of one ship, by patch side (step with ship − step without)."""
+def ship_seconds(progress=print, method: str = "kernels") -> dict:
+    """Extra seconds per step of one ship, by patch side (step with ship − step without), its
+    waves made by ``method`` (``"kernels"`` or ``"impulses"``)."""
     import wavephys.simulation.stepping as st
     from wavephys import Grid, Water
     from wavephys.physics.ship_waves import Hull, Ship, straight_path
@@ -74,7 +75,8 @@ def ship_seconds(progress=print) -> dict:
     out = {"n": [], "seconds": []}
     for patch in (16, 32, 64, 128, 256):
         n = max(64, 2 * patch)
-        model = Model(Grid(n, float(n)), Water(depth=5.0), 1 / 30, margin=n // 8, ship_patch=patch)
+        model = Model(Grid(n, float(n)), Water(depth=5.0), 1 / 30, margin=n // 8, ship_patch=patch,
+                      ship_method=method)
         ship = Ship(Hull("gaussian", 0.1 * patch, 0.04 * patch), straight_path((0.0, 0.0), (0.5, 0.0)), 0.01)
         state = st.initial_state(model)
 
@@ -89,7 +91,7 @@ def ship_seconds(progress=print) -> dict:
         extra = _median(with_ship, repeats=9, warmup=2) - _median(without, repeats=9, warmup=2)
         out["n"].append(patch)
         out["seconds"].append(max(extra, 1e-6))
-        progress(f"ship patch {patch}: +{extra * 1e3:.3f} ms per step")
+        progress(f"ship patch {patch} ({method}): +{extra * 1e3:.3f} ms per step")
     return out
 
 
@@ -180,6 +182,42 @@ def caustics_seconds(progress=print) -> dict:
     return dict(n=cells, seconds=[table[c] for c in cells])
 
 
+def texture_seconds(progress=print) -> dict:
+    """Seconds per million texels of storing frames in each height texture format
+    (:func:`wavephys.planner.runner.encode_texture`, as a run does), over 64 frames of 128²."""
+    from wavephys.core.grid import Grid
+    from wavephys.planner.model import TEXTURES
+    from wavephys.planner.runner import encode_texture
+
+    grid = Grid(128, 4.0)
+    frames = (0.01 * np.random.default_rng(7).standard_normal((64, 128, 128))).astype(np.float32)
+    out = {f: _median(lambda: encode_texture(frames, f, grid), repeats=7) / (frames.size / 1e6) for f in TEXTURES}
+    progress("height texture per 1M texels: " + ", ".join(f"{f} {t * 1e3:.2f} ms" for f, t in out.items()))
+    return out
+
+
+SURFACE_SIZES = (32, 64, 128, 256)
+
+
+def surface_seconds(progress=print) -> dict:
+    """Seconds per output frame of each surface model other than the spectral step
+    (:func:`wavephys.planner.runner.surface_frames`, host copy included), by texels per side:
+    a wind sea of 8 frames, the median of 3 runs after one compiling run."""
+    from wavephys.planner.model import SURFACES, Choices, SceneModel
+    from wavephys.planner.runner import surface_frames
+    from wavephys.planner.scene import Scene, WindSpec
+
+    out = {name: {"n": list(SURFACE_SIZES), "seconds": []} for name in SURFACES[1:]}
+    for n in SURFACE_SIZES:
+        scene = Scene(float(n), 1.0, open_water=False, duration=8 / 30, fps=30.0, wind=WindSpec(6.0, seed=n))
+        for name in SURFACES[1:]:
+            model = SceneModel(scene, Choices(surface=name, second_order=False))
+            out[name]["seconds"].append(_median(lambda: surface_frames(model), repeats=3) / scene.frames)
+        progress(f"surface models per frame at {n}²: " + ", ".join(f"{k} {v['seconds'][-1] * 1e3:.2f} ms"
+                                                                 for k, v in out.items()))
+    return out
+
+
 SHADE_SIZES = (32, 64, 128, 256)
 
 
@@ -243,13 +281,15 @@ def kappa(progress=print, count: int = KAPPA_SCENES, seed: int = 99) -> dict:
 
 def calibrate(progress=print, only=None) -> dict:
     """Measure everything the cost model needs and write the calibration file (module doc).
-    ``only="caustics"`` or ``"shade"``: measure that table alone and update the shipped file's entry."""
+    ``only="caustics"``, ``"shade"``, ``"texture"``, ``"surface"``, ``"ship"`` or ``"ship_impulses"``: measure that table alone and update the shipped file's entry."""
     import platform
 
     from wavephys.core.files import atomic_path
 
     if only is not None:
-        parts = {"caustics": caustics_seconds, "shade": shade_seconds}
+        parts = {"caustics": caustics_seconds, "shade": shade_seconds, "texture": texture_seconds,
+                 "surface": surface_seconds, "ship": ship_seconds,
+                 "ship_impulses": lambda p: ship_seconds(p, "impulses")}
         if only not in parts:
             raise ValueError(f"only must be None or one of {sorted(parts)}, got {only!r}")
         data = json.loads(CAL_PATH.read_text())
@@ -260,15 +300,18 @@ def calibrate(progress=print, only=None) -> dict:
         return data
     step = step_seconds(progress)
     ship = ship_seconds(progress)
+    ship_impulses = ship_seconds(progress, "impulses")
     frame, blend, refine = frame_seconds(progress)
     fresnel, absorption = optics_seconds(progress)
     overhead = overhead_seconds(progress)
     caustics = caustics_seconds(progress)
     shade = shade_seconds(progress, dict(fresnel=fresnel, absorption=absorption))
+    texture = texture_seconds(progress)
+    surface = surface_seconds(progress)
     k = kappa(progress)
     data = dict(machine=f"{platform.machine()} {os.cpu_count()} cores, {platform.python_version()}",
-                date=time.strftime("%Y-%m-%d"), step=step, ship=ship, frame=frame, blend=blend, refine=refine,
-                fresnel=fresnel, absorption=absorption, caustics=caustics, shade=shade, run_overhead=overhead, kappa=k["kappa"],
+                date=time.strftime("%Y-%m-%d"), step=step, ship=ship, ship_impulses=ship_impulses, frame=frame, blend=blend, refine=refine,
+                fresnel=fresnel, absorption=absorption, caustics=caustics, shade=shade, texture=texture, surface=surface, run_overhead=overhead, kappa=k["kappa"],
                 kappa_measured=k["measured"],
                 kappa_note="4 × the worst measured max|η32 − η64| / s0 over the scenes")
     with atomic_path(CAL_PATH) as tmp:
@@ -309,7 +352,7 @@ def proof_rows(count: int = 50, seed: int = 2026, quanta: float = 1.0, progress=
         optics_only = float(np.abs(shade(scene, p.model, ref.heights[-1]) - ref.image).max())
         row = dict(scene=scene.name, kind=scene.name.split("-")[0], texels=scene.texels, frames=scene.frames,
                    tolerance=tol, predicted_error=p.predicted_error, measured_error=err["height_max"],
-                   measured_rms=err["height_rms"], predicted_rms=p.bounds.rms,
+                   measured_rms=err["height_rms"], predicted_rms=p.predicted_rms,
                    predicted_colour=p.predicted_colour_error, measured_colour=err["colour_max"],
                    measured_colour_optics=optics_only,
                    colour_tolerance=p.colour_tolerance, predicted_cost=p.cost, predicted_full_cost=p.full_cost,

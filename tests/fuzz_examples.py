@@ -137,6 +137,13 @@ def _plan():
     return plan(_plan_scene(), 1e-3)
 
 
+def _wind_model():
+    from wavephys.planner import Choices, Scene, SceneModel, WindSpec
+
+    scene = Scene(8.0, 0.25, open_water=False, duration=2 / 30, fps=30.0, wind=WindSpec(5.0), name="fuzz-sea")
+    return SceneModel(scene, Choices(surface="noise", second_order=False))
+
+
 def _plan_output():
     from wavephys.planner import run
 
@@ -196,13 +203,18 @@ OVERRIDES = {
     "wavephys.planner.model.SceneModel": {"scene": _plan_scene, "choices": lambda: __import__(
         "wavephys.planner", fromlist=["Choices"]).Choices(), "dtype": lambda: "float32"},
     "wavephys.planner.plan.plan": {"scene": _plan_scene, "tolerance": lambda: 1e-3, "colour_tolerance": lambda: 0.01,
-                                   "budget": lambda: 100.0},
+                                   "budget": lambda: 100.0, "texture_slack": lambda: 0.05},
     "wavephys.planner.plan.full_model": {"scene": _plan_scene}, "wavephys.planner.plan.candidates": {"scene": _plan_scene},
     "wavephys.planner.plan.colour_errors": {"scene": _plan_scene},
     "wavephys.planner.runner.run": _PLANNER,
     "wavephys.planner.runner.shade": {**_PLANNER, "heights": lambda: np.zeros((32, 32))},
     "wavephys.planner.runner.floor_light": {**_PLANNER, "heights": lambda: np.zeros((32, 32))},
     "wavephys.planner.runner.compare": {"output": _plan_output, "reference": _plan_output},
+    "wavephys.planner.runner.surface_frames": {"model": _wind_model},
+    "wavephys.planner.runner.encode_texture": {"heights": lambda: np.zeros((2, 32, 32), np.float32),
+                                               "fmt": lambda: "u8", "grid": lambda: __import__(
+                                                   "wavephys", fromlist=["Grid"]).Grid(32, 1.0)},
+    "wavephys.planner.runner.decode_texture": {"stored": lambda: np.zeros((2, 32, 32), np.float32)},
     "wavephys.planner.plan.Plan.to_json": {"path": lambda: TMP / "plan.json"},
     "wavephys.planner.charts.plot_plan": {"p": _plan, "measured": lambda: None},
     "wavephys.planner.generate.generate_scenes": {"count": lambda: 2, "seed": lambda: 0},

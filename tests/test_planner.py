@@ -77,7 +77,8 @@ def test_missing_scene_file_names_the_path(tmp_path):
 # -- predictions bound measurements ----------------------------------------------------------
 VARIANTS = [Choices(surface_tension=False), Choices(finite_depth=False), Choices(coarsen=2),
             Choices(steps_per_frame=2), Choices(steps_per_frame=4), Choices(second_order=False),
-            Choices(surface_tension=False, finite_depth=False, coarsen=2, steps_per_frame=2, second_order=False)]
+            Choices(surface_tension=False, finite_depth=False, coarsen=2, steps_per_frame=2, second_order=False),
+            Choices(ship_method="impulses"), Choices(ship_method="impulses", steps_per_frame=4, second_order=False)]
 
 
 @pytest.fixture(scope="module")
@@ -93,7 +94,8 @@ def measured_pool():
         ref = run(scene, full_model(scene))
         for c in VARIANTS:
             got = run(scene, SceneModel(scene, c))
-            key = (c.surface_tension, c.finite_depth, c.coarsen, c.steps_per_frame, c.second_order)
+            key = (c.surface_tension, c.finite_depth, c.coarsen, c.steps_per_frame, c.second_order,
+                   c.ship_method if scene.ships else "kernels")  # without ships the method changes nothing
             out[(scene.name, c)] = (compare(got, ref), bounds[key])
     return out
 

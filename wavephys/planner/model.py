@@ -26,7 +26,7 @@ from wavephys.core.water import Water
 from wavephys.planner.scene import Scene
 
 __all__ = ["Choices", "SceneModel", "TERMS", "COARSEN", "STEPS_PER_FRAME", "FRESNEL_FORMS", "ABSORPTION_METHODS",
-           "CAUSTICS_REFINE", "FULL_REFINE", "full_choices"]
+           "CAUSTICS_REFINE", "FULL_REFINE", "TEXTURES", "TEXTURE_BYTES", "SURFACES", "SHIP_METHODS", "full_choices"]
 
 COARSEN = (1, 2, 4)
 """Simulation grid spacings the planner considers, in output texels."""
@@ -42,8 +42,27 @@ CAUSTICS_REFINE = (0, 1, 2, 3, 4)
 r: beam rasterization of the surface refined r times, :func:`optics.caustics.floor_irradiance_beam`)."""
 FULL_REFINE = 4
 """The full model's caustics refinement."""
-TERMS = ("surface_tension", "finite_depth", "coarsen", "steps_per_frame", "second_order", "fresnel", "absorption",
-         "caustics")
+SURFACES = ("spectral", "gerstner-16", "gerstner-64", "gerstner-256", "choppy", "noise")
+"""Surface models the planner considers for a wind sea (a scene whose only source is the wind):
+the spectral step (the full model); the K strongest of the sea's own waves summed directly at
+every frame (:class:`wavephys.surfaces.gerstner.GerstnerWaves`, steepness 0: no horizontal
+motion); the sea in closed form with Tessendorf's horizontal displacement (choppiness 1,
+resampled onto the texels: :mod:`wavephys.surfaces.choppy`); a procedural fBm of the sea's
+RMS height (:class:`wavephys.surfaces.noise.NoiseSea`). The alternatives have no second-order
+term and are evaluated on the output texels at every frame."""
+SHIP_METHODS = ("kernels", "impulses")
+"""How a ship makes its waves each step (:data:`wavephys.physics.ship_waves.SHIP_METHODS`): the
+Φ1/Φ2 kernels (exact for straight motion within a step; the full model) or the naive row of
+impulses (the hull's change added at once)."""
+TEXTURES = ("f32", "f16", "u16", "u8")
+"""Height texture formats the planner considers: float32 (the full model), half float, and
+16- or 8-bit normalized integers spanning each frame's own minimum to maximum
+(:func:`optics.rendering.textures.encode_height`)."""
+TEXTURE_BYTES = {"f32": 4, "f16": 2, "u16": 2, "u8": 1}
+"""Bytes per texel of each height texture format."""
+TERMS = ("surface", "surface_tension", "finite_depth", "coarsen", "steps_per_frame", "second_order", "ship_method",
+         "texture", "fresnel",
+         "absorption", "caustics")
 """The switchable terms, in the order model cards list them."""
 
 
@@ -71,6 +90,15 @@ class Choices:
     caustics : int
         Caustics tracing refinement (:data:`CAUSTICS_REFINE`; 0 off). Only scenes with
         ``caustics = true`` show them; the others run with 0.
+    ship_method : str
+        How ships make waves (:data:`SHIP_METHODS`); scenes without ships ignore it.
+    surface : str
+        The surface model (:data:`SURFACES`); other than ``"spectral"`` only for scenes
+        whose one source is a wind sea, with ``coarsen`` 1, ``steps_per_frame`` 1 and
+        ``second_order`` False (they are evaluated at every frame and have no η₂).
+    texture : str
+        Format of the height texture handed to the renderer (:data:`TEXTURES`): the frames
+        are stored in it and read back, so its rounding is part of the output.
     """
 
     surface_tension: bool = True
@@ -81,6 +109,9 @@ class Choices:
     fresnel: str = "exact"
     absorption: str = "spectral"
     caustics: int = FULL_REFINE
+    texture: str = "f32"
+    surface: str = "spectral"
+    ship_method: str = "kernels"
 
     def __post_init__(self):
         for k in ("surface_tension", "finite_depth", "second_order"):
@@ -93,6 +124,13 @@ class Choices:
         check_choice("absorption", self.absorption, ABSORPTION_METHODS)
         object.__setattr__(self, "caustics", check_int("caustics", self.caustics, lo=0))
         check_choice("caustics", self.caustics, CAUSTICS_REFINE)
+        check_choice("texture", self.texture, TEXTURES)
+        check_choice("surface", self.surface, SURFACES)
+        check_choice("ship_method", self.ship_method, SHIP_METHODS)
+        if self.surface != "spectral" and (self.coarsen != 1 or self.steps_per_frame != 1 or self.second_order):
+            raise ValueError(f"surface = {self.surface!r} is evaluated on the output texels at every frame and has no "
+                             f"second-order term: it needs coarsen = 1, steps_per_frame = 1 and second_order = False, "
+                             f"got {self.coarsen}, {self.steps_per_frame}, {self.second_order}")
 
     def simpler(self) -> int:
         """How many terms are dropped or cheapened against the full model (tie-breaker: with equal
@@ -131,6 +169,10 @@ class SceneModel:
         check_instance("scene", self.scene, Scene, "wavephys.planner.Scene")
         check_instance("choices", self.choices, Choices, "wavephys.planner.Choices")
         check_choice("dtype", self.dtype, ("float32", "float64"))
+        if self.choices.surface != "spectral" and (self.scene.stones or self.scene.ships or self.scene.wind is None):
+            raise ValueError(f"surface = {self.choices.surface!r} models a wind sea: it needs a scene whose only source "
+                             f"is the wind (this one has {len(self.scene.stones)} stones, {len(self.scene.ships)} ships"
+                             f"{'' if self.scene.wind is not None else ', no wind'})")
         n_total = self.scene.texels + 2 * self.scene.margin
         c = self.choices.coarsen
         if n_total % (2 * c) or self.scene.margin % c or n_total // c < 16:
@@ -198,7 +240,8 @@ class SceneModel:
         from wavephys.simulation.model import Model
 
         return Model(self.grid, self.water, self.dt, margin=self.scene.margin // self.choices.coarsen,
-                     second_order=self.choices.second_order, dtype=self.dtype, ship_patch=self.ship_patch)
+                     second_order=self.choices.second_order, dtype=self.dtype, ship_patch=self.ship_patch,
+                     ship_method=self.choices.ship_method)
 
     # -- sources ----------------------------------------------------------------------
     def stones(self):
@@ -237,9 +280,16 @@ class SceneModel:
 
     def describe(self) -> str:
         c = self.choices
+        if c.surface != "spectral":
+            parts = [f"surface {c.surface} on {self.scene.texels}² texels", "σ" if c.surface_tension else "no σ",
+                     "tanh kh" if c.finite_depth else "deep", f"texture {c.texture}", f"Fresnel {c.fresnel}",
+                     f"absorption {c.absorption}"]
+            return ", ".join(parts)
         parts = [f"grid {self.grid.n}² (dx {self.grid.dx:.3g} m)", f"Δt {self.dt:.4g} s",
                  "σ" if c.surface_tension else "no σ", "tanh kh" if c.finite_depth else "deep",
-                 "2nd order" if c.second_order else "linear", f"Fresnel {c.fresnel}", f"absorption {c.absorption}"]
+                 "2nd order" if c.second_order else "linear"] + (
+                    [f"ship {c.ship_method}"] if self.scene.ships else []) + [f"texture {c.texture}", f"Fresnel {c.fresnel}",
+                 f"absorption {c.absorption}"]
         if self.scene.caustics:
             parts.append(f"caustics refine {c.caustics}" if c.caustics else "caustics off (flat-water light)")
         return ", ".join(parts)

@@ -6,7 +6,9 @@ choice is made jointly over both, cheapest first:
 * heights (m, max norm over every frame and texel): every combination of σ, tanh kh,
   grid coarsening, steps per frame and the second-order term is bounded jointly by
   :func:`wavephys.planner.predict.height_bounds` (one per-mode bound for all linear terms;
-  the second-order and float32 terms added by the triangle inequality);
+  the second-order and float32 terms added by the triangle inequality); a wind sea's other
+  surface models by :func:`wavephys.planner.predict.surface_bounds`; the height texture's
+  rounding (:func:`wavephys.planner.predict.texture_error`) adds to each;
 * colour ([0, 1] image scale, compared with the image's quantum): each Fresnel form
   and absorption method, bounded over the scene's own incidence angles and water paths,
   and for scenes that show caustics the floor light E/E₀ at each tracing refinement
@@ -32,10 +34,11 @@ import numpy as np
 
 from wavephys.core.inputs import check_instance, check_scalar
 from wavephys.planner.caustics import MARGIN, caustics_errors
-from wavephys.planner.cost import calibration, caustics_cost, colour_cost, height_cost
+from wavephys.planner.cost import calibration, caustics_cost, colour_cost, height_cost, texture_cost
 from wavephys.planner.model import (ABSORPTION_METHODS, CAUSTICS_REFINE, FRESNEL_FORMS, FULL_REFINE,
-                                    TERMS, Choices, SceneModel, full_choices)
-from wavephys.planner.predict import HeightBounds, height_bounds, scene_spectrum
+                                    TERMS, TEXTURE_BYTES, TEXTURES, Choices, SceneModel, full_choices)
+from wavephys.planner.predict import (HeightBounds, height_bounds, height_peak, scene_spectrum, surface_bounds,
+                                      texture_error)
 from wavephys.planner.scene import Scene
 
 __all__ = ["plan", "Plan", "Term", "Candidate", "Infeasible", "full_model", "candidates", "colour_errors"]
@@ -85,10 +88,18 @@ class Plan:
     terms: tuple
     height_cost: float = 0.0
     front: tuple = field(repr=False, default=())
+    texture_error: float = 0.0
 
     @property
     def predicted_error(self) -> float:
-        return self.bounds.total
+        """The height bound, m: the configuration's (``bounds.total``) plus the texture's rounding."""
+        return self.bounds.total + self.texture_error
+
+    @property
+    def predicted_rms(self) -> float:
+        """A bound on the RMS height error over the visible square, m (``bounds.rms`` plus the
+        texture's rounding, a max-norm bound)."""
+        return self.bounds.rms + self.texture_error
 
     @property
     def saving(self) -> float:
@@ -106,7 +117,7 @@ class Plan:
                  f"model: {self.model.describe()}",
                  f"predicted error {self.predicted_error:.3g} m ({self.predicted_error / q:.3g} quanta; linear "
                  f"{self.bounds.linear:.2g}, second order {self.bounds.second_order:.2g}, float32 "
-                 f"{self.bounds.rounding:.2g}), colour {self.predicted_colour_error / s.image_quantum:.3g} quanta",
+                 f"{self.bounds.rounding:.2g}, texture {self.texture_error:.2g}), colour {self.predicted_colour_error / s.image_quantum:.3g} quanta",
                  f"predicted cost {self.cost:.3g} s against {self.full_cost:.3g} s for the full model "
                  f"(×{self.saving:.3g} cheaper)", ""]
         head = ("term", "choice", "error alone", "saves [s]", "reason")
@@ -124,7 +135,7 @@ class Plan:
                                                                           steps=self.model.steps),
                     predicted_error=self.predicted_error,
                     bounds=dict(linear=self.bounds.linear, second_order=self.bounds.second_order,
-                                rounding=self.bounds.rounding, rms=self.bounds.rms),
+                                rounding=self.bounds.rounding, rms=self.bounds.rms, texture=self.texture_error),
                     predicted_colour_error=self.predicted_colour_error, cost=self.cost, full_cost=self.full_cost,
                     height_cost=self.height_cost,
                     terms=[dict(term=t.term, choice=t.choice, error=t.error, unit=t.unit, saving=t.saving,
@@ -163,13 +174,16 @@ def _candidates(scene: Scene) -> tuple:
     cal = calibration()
     bounds = height_bounds(scene, cal["kappa"])
     out = []
-    for (st, fd, c, spf, so), b in bounds.items():
+    for (st, fd, c, spf, so, method), b in bounds.items():
         try:
-            model = SceneModel(scene, Choices(st, fd, c, spf, so))
+            model = SceneModel(scene, Choices(st, fd, c, spf, so, ship_method=method))
             if scene.ships:
                 model.check_ships()
         except ValueError:
             continue
+        out.append(Candidate(model.choices, b, height_cost(model, cal)["total"]))
+    for name, b in surface_bounds(scene, cal["kappa"]).items():  # wind seas: the other surface models
+        model = SceneModel(scene, Choices(second_order=False, surface=name))
         out.append(Candidate(model.choices, b, height_cost(model, cal)["total"]))
     return tuple(out)
 
@@ -211,11 +225,20 @@ def _pick(items, key_cost, key_simpler):
     return min(items, key=lambda it: (round(key_cost(it), 12), -key_simpler(it)))
 
 
+TEXTURE_SLACK = 0.05
+"""A smaller height texture is taken when its model costs at most this much more (relative)
+than the cheapest model with any format: a texture half the bytes is worth 5 % more compute."""
+
+
 def plan(scene: Scene, tolerance: float, colour_tolerance: Optional[float] = None,
-         budget: Optional[float] = None) -> Plan:
+         budget: Optional[float] = None, texture_slack: float = TEXTURE_SLACK) -> Plan:
     """The cheapest configuration of ``scene`` whose predicted height error is ≤ ``tolerance``
     (m, max norm over all frames and texels) and colour error ≤ ``colour_tolerance`` (on the
     image's [0, 1] scale, so at most 1; default one image quantum).
+
+    The height texture format (``f32``, ``f16``, ``u16``, ``u8``) is the one of fewest bytes
+    per texel whose cheapest model costs at most ``texture_slack`` (relative) more than the
+    cheapest model with any format; its rounding adds to the height bound.
 
     ``budget``: largest acceptable predicted cost, s (None: any). Raises :class:`Infeasible`
     (a ValueError) when nothing meets the tolerance, saying what the full model reaches.
@@ -227,6 +250,7 @@ def plan(scene: Scene, tolerance: float, colour_tolerance: Optional[float] = Non
     check_scalar("colour_tolerance", colour_tolerance, lo=0.0, lo_open=True, hi=1.0)
     if budget is not None:
         check_scalar("budget", budget, lo=0.0, lo_open=True)
+    texture_slack = check_scalar("texture_slack", texture_slack, lo=0.0, hi=10.0)
     tolerance, colour_tolerance = float(tolerance), float(colour_tolerance)
     cands = candidates(scene)
     full = next((c for c in cands if c.choices == _height_part(full_choices())), None)
@@ -242,10 +266,41 @@ def plan(scene: Scene, tolerance: float, colour_tolerance: Optional[float] = Non
         ok = [c for c in ok if _same_heights(c)]
     colour = colour_errors(scene)
     caustics = caustics_errors(scene)  # traced on the scene's own surface (None: no caustics shown)
-    refines = CAUSTICS_REFINE if scene.caustics else (0,)
+    best = {}
+    # caustics scenes keep the full model's heights, the texture's among them (§3 of docs/planner.md)
+    for fmt in (("f32",) if scene.caustics else TEXTURES):  # the cheapest model for each texture format
+        fits = [(c, e) for c in ok for e in (texture_error(fmt, height_peak(scene, c.bounds)),)
+                if c.bounds.total + e <= tolerance]
+        found = _search(scene, fits, fmt, colour, caustics, colour_tolerance)
+        if found is not None:
+            best[fmt] = found
+    if not best:
+        raise Infeasible(f"no optics form{' or caustics refinement' if scene.caustics else ''} meets the colour "
+                         f"tolerance {colour_tolerance:.3g}")
+    cheapest = min(b[4] for b in best.values())
+    fmt = min((f for f in best if best[f][4] <= (1.0 + texture_slack) * cheapest),
+              key=lambda f: (TEXTURE_BYTES[f], best[f][4]))
+    cand, tex_err, choices, colour_err, cost = best[fmt]
     full_refine = FULL_REFINE if scene.caustics else 0
+    full_cost = (full.cost + colour_cost(scene, "exact", "spectral") + caustics_cost(scene, full_refine)
+                 + texture_cost(scene, "f32"))
+    if budget is not None and cost > budget:
+        raise Infeasible(f"the cheapest model within {tolerance:.3g} m costs {cost:.3g} s, over the budget "
+                         f"{budget:.3g} s")
+    terms = _card(scene, cands, full, choices, colour, caustics, cand)
+    front = _pareto(cands)
+    return Plan(scene, tolerance, colour_tolerance, SceneModel(scene, choices), cand.bounds, colour_err, cost,
+                full_cost, tuple(terms), cand.cost, tuple(front), tex_err)
+
+
+def _search(scene, fits, fmt, colour, caustics, colour_tolerance):
+    """The cheapest (candidate, texture error, choices, colour error, cost) among height
+    candidates ``fits`` ((candidate, texture error) pairs within the tolerance) with the texture
+    format ``fmt`` and every optics form and caustics refinement within the colour tolerance;
+    None if there is none."""
+    refines = CAUSTICS_REFINE if scene.caustics else (0,)
     best, best_key = None, None
-    for cand in ok:
+    for cand, tex_err in fits:
         for r in refines:
             delta, e_max = _caustics_delta(caustics, r)
             if not math.isfinite(delta):
@@ -255,23 +310,13 @@ def plan(scene: Scene, tolerance: float, colour_tolerance: Optional[float] = Non
                     err = _colour_total(colour, f, a, delta, e_max)
                     if not err <= colour_tolerance:
                         continue
-                    cost = cand.cost + colour_cost(scene, f, a) + caustics_cost(scene, r)
-                    choices = replace(cand.choices, fresnel=f, absorption=a, caustics=r)
+                    cost = (cand.cost + colour_cost(scene, f, a) + caustics_cost(scene, r)
+                            + texture_cost(scene, fmt))
+                    choices = replace(cand.choices, fresnel=f, absorption=a, caustics=r, texture=fmt)
                     key = (round(cost, 12), -choices.simpler())
                     if best_key is None or key < best_key:
-                        best, best_key = (cand, choices, err, cost), key
-    if best is None:
-        raise Infeasible(f"no optics form{' or caustics refinement' if scene.caustics else ''} meets the colour "
-                         f"tolerance {colour_tolerance:.3g}")
-    cand, choices, colour_err, cost = best
-    full_cost = full.cost + colour_cost(scene, "exact", "spectral") + caustics_cost(scene, full_refine)
-    if budget is not None and cost > budget:
-        raise Infeasible(f"the cheapest model within {tolerance:.3g} m costs {cost:.3g} s, over the budget "
-                         f"{budget:.3g} s")
-    terms = _card(scene, cands, full, choices, colour, caustics)
-    front = _pareto(cands)
-    return Plan(scene, tolerance, colour_tolerance, SceneModel(scene, choices), cand.bounds, colour_err, cost,
-                full_cost, tuple(terms), cand.cost, tuple(front))
+                        best, best_key = (cand, tex_err, choices, err, cost), key
+    return best
 
 
 def _same_heights(cand: Candidate) -> bool:
@@ -313,12 +358,13 @@ def _pareto(cands) -> list:
     return front
 
 
-def _card(scene: Scene, cands, full: Candidate, choices: Choices, colour: dict, caustics) -> list:
+def _card(scene: Scene, cands, full: Candidate, choices: Choices, colour: dict, caustics, cand: Candidate) -> list:
     """One row per term: the effect of the plan's choice for that term alone (all others full)."""
     by = {c.choices: c for c in cands}
     spectrum = scene_spectrum(scene)
     rows = []
-    for term in TERMS[:5]:
+    rows.append(_surface_row(scene, cands, full, choices))
+    for term in HEIGHT_TERMS:
         value = getattr(choices, term)
         alone = by.get(replace(full.choices, **{term: value}))
         err = (alone.bounds.total - full.bounds.total) if alone else math.nan
@@ -327,6 +373,10 @@ def _card(scene: Scene, cands, full: Candidate, choices: Choices, colour: dict, 
         if scene.caustics:
             reason += "; heights kept as the full model's: the image shows caustics, which a height change moves"
         rows.append(Term(term, value, max(err, 0.0), saving, reason))
+    fmt = choices.texture
+    err = texture_error(fmt, height_peak(scene, full.bounds))
+    saving = texture_cost(scene, "f32") - texture_cost(scene, fmt)
+    rows.append(Term("texture", fmt, err, saving, _texture_reason(scene, fmt, err, cand)))
     _, e_max = _caustics_delta(caustics, choices.caustics)
     for term, table in (("fresnel", "fresnel"), ("absorption", "absorption")):
         value = getattr(choices, term)
@@ -345,6 +395,39 @@ def _card(scene: Scene, cands, full: Candidate, choices: Choices, colour: dict, 
         saving = caustics_cost(scene, FULL_REFINE) - caustics_cost(scene, value)
         rows.append(Term("caustics", value, err, saving, _caustics_reason(scene, caustics, value, err), unit="colour"))
     return rows
+
+
+HEIGHT_TERMS = ("surface_tension", "finite_depth", "coarsen", "steps_per_frame", "second_order", "ship_method")
+"""The terms of the spectral step's configuration (card rows, each alone against the full model)."""
+
+
+def _surface_row(scene, cands, full, choices) -> Term:
+    """The surface model's card row: the plan's model, and why not the others."""
+    others = sorted((c for c in cands if c.choices.surface != "spectral"), key=lambda c: c.bounds.total)
+    value = choices.surface
+    if not others:
+        return Term("surface", value, 0.0, 0.0, "spectral step: the scene has stones or ships (the other surface "
+                    "models stand for a wind sea alone)")
+    q = scene.height_quantum
+    listing = "; ".join(f"{c.choices.surface} ≤ {c.bounds.total / q:.3g} quanta at {c.cost / full.cost:.3g}× the "
+                        f"step's cost" for c in others)
+    if value == "spectral":
+        return Term("surface", value, 0.0, 0.0, f"spectral step: {listing}")
+    mine = next(c for c in others if c.choices.surface == value)
+    return Term("surface", value, mine.bounds.total - full.bounds.total, full.cost - mine.cost,
+                f"{value} within the tolerance and cheaper; {listing}")
+
+
+def _texture_reason(scene, fmt, err, cand) -> str:
+    kib = scene.texels**2 * TEXTURE_BYTES[fmt] / 1024
+    size = f"{kib:.3g} KiB a frame (float32: {scene.texels**2 * 4 / 1024:.3g} KiB)"
+    if fmt == "f32":
+        why = ("the image shows caustics: heights kept" if scene.caustics else
+               "no smaller format fits the tolerance at a cost within the slack")
+        return f"float32: {size}; {why}"
+    q = scene.height_quantum
+    what = {"f16": "half float", "u16": "16-bit codes over each frame's span", "u8": "8-bit codes over each frame's span"}
+    return f"{what[fmt]}: {size}; rounding ≤ {err:.2g} m ({err / q:.2g} quanta)"
 
 
 def _caustics_reason(scene, caustics, value, err) -> str:
@@ -379,6 +462,12 @@ def _reason(scene, spectrum, term, value, err) -> str:
                 f"Δt = {dt:.3g} s, ω_top·Δt = {spectrum.omega_top * dt:.2g}: Hermite frames {effect}")
     if term == "second_order":
         return (f"kept: η₂ up to {spectrum.s0 * spectrum.s1 / 2:.2g} m" if value else f"dropped: {effect}")
+    if term == "ship_method":
+        if not scene.ships:
+            return "no ships"
+        if value == "kernels":
+            return "Φ1/Φ2 kernels: exact for straight motion within a step"
+        return f"impulses (the hull's change added at each step's end): {effect}"
     return ""
 
 

@@ -39,10 +39,11 @@ import jax.numpy as jnp
 import numpy as np
 
 from wavephys.core.water import Water
-from wavephys.planner.model import COARSEN, STEPS_PER_FRAME, Choices, SceneModel
+from wavephys.planner.model import COARSEN, SHIP_METHODS, STEPS_PER_FRAME, Choices, SceneModel
 from wavephys.planner.scene import Scene
 
-__all__ = ["HeightBounds", "scene_spectrum", "height_bounds", "hermite_blend_error"]
+__all__ = ["HeightBounds", "scene_spectrum", "height_bounds", "hermite_blend_error", "texture_error", "height_peak",
+           "surface_bounds", "gerstner_modes", "sea_rms", "noise_sea", "CHOPPINESS", "RESAMPLE_ERROR"]
 
 SUPPORT_FRACTION = 1e-6
 """Modes are dropped from the per-mode sums in ascending order of their largest possible
@@ -124,6 +125,7 @@ def _scene_spectrum(scene: Scene) -> _Spectrum:
     variants = [_dispersion(k, v) for v in _waters(scene)]
     m_max = np.max([m for _, m in variants], axis=0)
     sup = np.abs(A)
+    reach_all = np.abs(A)  # with the ships' impulse method too (for the support alone)
     ships = []
     T = scene.duration
     for spec, ship in zip(scene.ships, model.ships()):
@@ -133,10 +135,18 @@ def _scene_spectrum(scene: Scene) -> _Spectrum:
         B = spec.strength * kv * f_hat
         ships.append((B, (ux, uy)))
         a_min = np.min([np.abs(om - kv) for om, _ in variants], axis=0)
-        sup = sup + m_max * np.abs(B) * np.minimum(T, 2.0 / np.maximum(a_min, 1e-300))
+        reach = np.minimum(T, 2.0 / np.maximum(a_min, 1e-300))  # |t·φ₁(iat)| of the kernels
+        sup = sup + m_max * np.abs(B) * reach
+        for om, _ in variants:  # the impulse method: |Δt·φ₁·Σ e^{iajΔt}| ≤ Δt·min(N, 1/|sin(aΔt/2)|)
+            for spf in STEPS_PER_FRAME:
+                dt = spf / scene.fps
+                sin = np.abs(np.sin(0.5 * (om - kv) * dt))
+                reach = np.maximum(reach, dt * np.minimum(math.ceil(T / dt), 1.0 / np.maximum(sin, 1e-300)))
+        reach_all = reach_all + m_max * np.abs(B) * reach
     sup[0, 0] = 0.0
-    det = sup.copy()  # the deterministic sources' largest |C| per mode
-    sup = sup + np.abs(W)
+    reach_all[0, 0] = 0.0
+    det = sup.copy()  # the deterministic sources' largest |C| per mode (the full model's)
+    sup = np.maximum(sup, reach_all) + np.abs(W)  # what any configuration can put in a mode
     total = float(sup.sum())
     if total == 0.0:
         raise ValueError(f"scene {scene.name!r}: its sources make no waves on a {n}² grid")
@@ -289,27 +299,53 @@ def _evaluated_frames(frames: int) -> np.ndarray:
     return np.concatenate([spread, last])
 
 
-def _C(spec: _Spectrum, omega, m, t, wind: bool = False):
+def _C(spec: _Spectrum, omega, m, t, wind: bool = False, impulse_dt=None):
     """C_k(t) on the support for times t (shape (T, 1)): the deterministic sources (stones and
-    ships), or with ``wind`` the wind sea alone."""
+    ships), or with ``wind`` the wind sea alone. ``impulse_dt``: the ships make their waves by
+    impulses with this step (s), and t are step times (:func:`_impulse_factor`)."""
     phase = np.exp(-1j * omega[None, :] * t)
     if wind:
         return spec.W[None, :] * phase
     out = spec.A[None, :] * phase
     for B, (ux, uy) in spec.ships:
-        a = omega - (spec.kx * ux + spec.ky * uy)
-        out = out + (m * B)[None, :] * phase * t * _phi1(1j * a[None, :] * t)
+        b = spec.kx * ux + spec.ky * uy
+        a = omega - b
+        if impulse_dt is None:
+            out = out + (m * B)[None, :] * phase * t * _phi1(1j * a[None, :] * t)
+        else:
+            out = out + (m * B)[None, :] * phase * _impulse_factor(a, b, t, impulse_dt, omega)
     return out
 
 
-def _hermite_C(spec, omega, m, t_frames, dt, wind: bool = False):
-    """The simulation's frames: C at the steps around each frame, Hermite-blended with η̇ = −iωC."""
+def _impulse_factor(a, b, t, dt, omega):
+    r"""The ships' impulse method against the exact source, per mode: where the kernels give
+    t·φ₁(iat), the hull's change f̂(t_{j+1}) − f̂(t_j) added at each step's end gives, after
+    N = t/Δt steps,
+
+    .. math:: Δt\,φ₁(−ibΔt)\,e^{iωΔt}\sum_{j<N} e^{iajΔt}
+              = Δt\,φ₁(−ibΔt)\,e^{iωΔt}\,e^{ia(N−1)Δt/2}\,\frac{\sin(NaΔt/2)}{\sin(aΔt/2)}
+
+    (b = k·U, a = ω − b; the same limit t·φ₁(iat) as Δt → 0)."""
+    steps = np.rint(t / dt)
+    theta = 0.5 * a[None, :] * dt
+    sin = np.sin(theta)
+    tiny = np.abs(sin) < 1e-12
+    dirichlet = np.where(tiny, steps * np.cos(steps * theta) / np.where(tiny, np.cos(theta), 1.0),
+                         np.sin(steps * theta) / np.where(tiny, 1.0, sin))
+    return (dt * _phi1(-1j * b[None, :] * dt) * np.exp(1j * omega[None, :] * dt)
+            * np.exp(1j * theta * (steps - 1)) * dirichlet)
+
+
+def _hermite_C(spec, omega, m, t_frames, dt, wind: bool = False, impulses: bool = False):
+    """The simulation's frames: C at the steps around each frame, Hermite-blended with η̇ = −iωC
+    (``impulses``: ships by the impulse method at step Δt)."""
     from wavephys.physics.interpolation import hermite_weights
 
     step = np.floor(t_frames / dt + 1e-9)
     s = t_frames / dt - step
     t0, t1 = step * dt, (step + 1) * dt
-    c0, c1 = _C(spec, omega, m, t0, wind), _C(spec, omega, m, t1, wind)
+    imp = dt if impulses else None
+    c0, c1 = _C(spec, omega, m, t0, wind, imp), _C(spec, omega, m, t1, wind, imp)
     h00, h01, h10, h11 = (np.asarray(h, np.float64) for h in hermite_weights(np.clip(s, 0.0, 1.0)))
     d0, d1 = -1j * omega[None, :] * c0, -1j * omega[None, :] * c1
     blend = h00 * c0 + h01 * c1 + dt * (h10 * d0 + h11 * d1)
@@ -367,7 +403,8 @@ class HeightBounds:
 
 def height_bounds(scene: Scene, kappa: float) -> dict:
     """:class:`HeightBounds` of every height configuration of ``scene`` (a dict keyed by
-    (surface_tension, finite_depth, coarsen, steps_per_frame, second_order)).
+    (surface_tension, finite_depth, coarsen, steps_per_frame, second_order, ship_method); the
+    impulse method only where the scene has ships).
 
     Stones and ships are bounded by the triangle inequality (rigorous for the linear
     surface); the wind sea by z × its RMS (:func:`gaussian_factor`). ``kappa``: the float32
@@ -395,15 +432,21 @@ def height_bounds(scene: Scene, kappa: float) -> dict:
     z, root2 = spec.z, math.sqrt(2.0)
     kk = spec.k
     out = {}
-    for vi, (st, fd) in enumerate(((True, True), (False, True), (True, False), (False, False))):
+    methods = SHIP_METHODS if spec.ships else SHIP_METHODS[:1]
+    for vi, (st, fd), method in ((vi, v, sm) for vi, v in enumerate(((True, True), (False, True), (True, False),
+                                                                      (False, False))) for sm in methods):
         omega, m = disp[vi]
+        impulses = method == "impulses"
         for spf in STEPS_PER_FRAME:
             if spf > scene.frames:
                 continue
             dt = spf / scene.fps
             diffs = {}
             for w in kinds:
-                cfg = _C(spec, omega, m, t, w) if spf == 1 else _hermite_C(spec, omega, m, t, dt, w)
+                if spf == 1:
+                    cfg = _C(spec, omega, m, t, w, dt if impulses and not w else None)
+                else:
+                    cfg = _hermite_C(spec, omega, m, t, dt, w, impulses and not w)
                 x = full[w] - cfg
                 diffs[w] = (x, 0.5 * (x + np.conj(x[:, spec.mirror])))
             for c in COARSEN:
@@ -424,9 +467,9 @@ def height_bounds(scene: Scene, kappa: float) -> dict:
                         e_lin += float(np.max(np.sum(ah, axis=1))) / n**2
                         d0 += float(np.max(np.sum(ax, axis=1))) / n**2
                         d1 += float(np.max(np.sum(kk * ax, axis=1))) / n**2
-                same = waters[vi] == waters[0] and c == 1 and spf == 1  # e.g. tanh off in deep water
+                same = waters[vi] == waters[0] and c == 1 and spf == 1 and not impulses  # e.g. no tanh, deep
                 for so in (True, False):
-                    key = (st, fd, c, spf, so)
+                    key = (st, fd, c, spf, so, method)
                     floor = float(kappa * spec.s0)
                     if same and so:  # the full model itself (or one that computes the same numbers)
                         out[key] = HeightBounds(0.0, 0.0, floor, floor)
@@ -445,4 +488,133 @@ def height_bounds(scene: Scene, kappa: float) -> dict:
                     dropped = 2 * spec.dropped
                     out[key] = HeightBounds(e_lin + dropped, float(e2), float(kappa * spec.s0),
                                             rms * area + float(e2) + float(kappa * spec.s0))
+    return out
+
+
+def height_peak(scene: Scene, bounds: HeightBounds) -> float:
+    """A bound on max |η| of a configuration's heights, m: the full model's (|η_c| ≤ s0, |η₂| ≤
+    ½·s0·s1) plus that configuration's error bound ``bounds``."""
+    spec = scene_spectrum(scene)
+    return spec.s0 + 0.5 * spec.s0 * spec.s1 + bounds.total
+
+
+HALF_RELATIVE, HALF_SUBNORMAL = 2.0**-11, 2.0**-25
+"""Round to nearest half float: half an ulp, at most 2⁻¹¹ of the value for normal numbers and
+2⁻²⁵ absolute (half the subnormal spacing 2⁻²⁴) below 2⁻¹⁴."""
+HALF_MAX = 65504.0
+
+
+def texture_error(fmt: str, peak: float) -> float:
+    """Bound on what storing heights with |η| ≤ ``peak`` (m) in the height texture format ``fmt``
+    (:data:`wavephys.planner.model.TEXTURES`) adds, m, in the max norm.
+
+    * ``f32``: 0 (the frames are float32 already: the full model's own texture);
+    * ``f16``: max(2⁻¹¹·peak, 2⁻²⁵) (round to nearest half float); inf past the largest
+      half float, 65504;
+    * ``u16`` / ``u8``: each frame is mapped from its own minimum to its maximum (a span of at
+      most 2·peak) onto 2^b codes and rounded to the nearest: half a code, peak / (2^b − 1).
+    """
+    from wavephys.core.inputs import check_choice, check_scalar
+    from wavephys.planner.model import TEXTURES
+
+    check_choice("fmt", fmt, TEXTURES)
+    peak = check_scalar("peak", peak, lo=0.0)
+    if fmt == "f32":
+        return 0.0
+    if fmt == "f16":
+        return math.inf if peak > HALF_MAX else max(HALF_RELATIVE * peak, HALF_SUBNORMAL)
+    levels = 2.0 ** (16 if fmt == "u16" else 8) - 1.0
+    return peak / levels
+
+
+CHOPPINESS = 1.0
+"""λ of the ``choppy`` surface model: the linear (Airy) particle orbit, as Gerstner's Q = 1."""
+RESAMPLE_ERROR = 0.01
+"""Error of resampling displaced heights onto the texels, as a fraction of the height range:
+:func:`wavephys.surfaces.resample.resample_heights` at refine 2 stays below 1 % of it for
+choppiness up to 0.9 of the folding value (measured by its tests)."""
+NOISE_OCTAVES, NOISE_HURST = 2, 1.0
+"""The ``noise`` surface model's fBm: two octaves (Schneider & Westermann), H = 1 (a k⁻⁴ tail)."""
+
+
+def gerstner_modes(scene: Scene, count: int) -> np.ndarray:
+    """Indices into the scene's support (:func:`scene_spectrum`) of the ``count`` strongest modes
+    of its wind sea (largest |ĥ_k|; each wavevector one wave) among those the texels resolve
+    (both components below the Nyquist wavenumber)."""
+    spec = scene_spectrum(scene)
+    k_nyq = math.pi / scene.pixel
+    held = np.maximum(np.abs(spec.kx), np.abs(spec.ky)) < k_nyq * (1 - 1e-9)  # a wave the texels resolve
+    order = np.argsort(-np.where(held, np.abs(spec.W), -1.0), kind="stable")
+    return order[:min(count, int(held.sum()))]
+
+
+def sea_rms(scene: Scene) -> float:
+    """RMS height of the scene's wind sea over its square, m (Parseval; constant in time up to
+    the interference of opposed modes, taken at its largest)."""
+    spec = scene_spectrum(scene)
+    a = np.abs(spec.W)
+    h = 0.5 * (a + a[spec.mirror])
+    return float(np.sqrt(np.sum(h * h))) / spec.n**2
+
+
+def noise_sea(scene: Scene):
+    """The ``noise`` surface model of a wind scene: :class:`wavephys.surfaces.noise.NoiseSea` of
+    the sea's RMS amplitude, its first octave at the sea's strongest wavelength (at most a
+    quarter of the texel rate, so the finest octave spans ≥ 2 texels), tiling the square."""
+    from wavephys.surfaces.noise import NoiseSea
+
+    spec = scene_spectrum(scene)
+    k_peak = float(spec.k[np.argmax(np.abs(spec.W))])
+    cells = max(1, min(round(k_peak * scene.extent / (2 * math.pi)), scene.texels // 4))
+    return NoiseSea(length=scene.extent, amplitude=max(sea_rms(scene), 1e-12), frequency=cells / scene.extent, octaves=NOISE_OCTAVES,
+                    hurst=NOISE_HURST, seed=scene.wind.seed, base_amplitude=0.0)
+
+
+def _phase_rounding(spec: _Spectrum, scene: Scene, sel, count: int) -> float:
+    """Float32 rounding of summing modes ``sel`` directly: each phase k·x − ωt + φ rounded to
+    within 4 ulps of its size Θ, each cosine to 1 ulp, and the sum of ``count`` terms to
+    ``count`` ulps of Σ A: 2⁻²⁴ Σ A (4Θ + count + 1)."""
+    amp = np.abs(spec.W[sel]) / spec.n**2
+    omega = _dispersion(spec.k[sel], scene.water)[0]
+    theta = spec.k[sel] * scene.extent / math.sqrt(2.0) + omega * scene.duration + math.pi
+    return float(2.0**-24 * np.sum(amp * (4.0 * theta + count + 1)))
+
+
+def surface_bounds(scene: Scene, kappa: float) -> dict:
+    """:class:`HeightBounds` of each surface model other than the spectral step
+    (:data:`wavephys.planner.model.SURFACES`) against the full model, for a scene whose only
+    source is a wind sea ({} otherwise; an unavailable model is left out):
+
+    * ``gerstner-K``: the other modes are missing, a Gaussian field bounded by z × their RMS
+      (Parseval); η₂ is missing (½·s0·s1); float32 phases (:func:`_phase_rounding`);
+    * ``choppy``: the same linear sea, each point moved by λD with |D| ≤ √2·s0, so a texel
+      shows the height from up to λ√2·s0 away: ≤ λ√2·s0·s1; η₂ missing; resampling
+      :data:`RESAMPLE_ERROR` × the range 2·s0. Unavailable where it may fold (2λ·s1 ≥ 1);
+    * ``noise``: an unrelated field: |η_full| + |η_noise| ≤ s0 + ½·s0·s1 + a·Σ 2^{−Hi}.
+    """
+    if scene.stones or scene.ships or scene.wind is None:
+        return {}
+    spec = scene_spectrum(scene)
+    n, z = spec.n, spec.z
+    floor = float(kappa * spec.s0)
+    e2 = 0.5 * spec.s0 * spec.s1
+    dropped = 2.0 * spec.dropped
+    out = {}
+    a = np.abs(spec.W)
+    for name in ("gerstner-16", "gerstner-64", "gerstner-256"):
+        count = int(name.split("-")[1])
+        keep = np.zeros(a.size, bool)
+        keep[gerstner_modes(scene, count)] = True
+        x = np.where(keep, 0.0, a)
+        h = 0.5 * (x + x[spec.mirror])
+        rms = float(np.sqrt(np.sum(h * h))) / n**2
+        lin = z * rms + dropped
+        rounding = floor + _phase_rounding(spec, scene, keep, int(keep.sum()))
+        out[name] = HeightBounds(lin, e2, rounding, rms + e2 + rounding)
+    if 2.0 * CHOPPINESS * spec.s1 < 1.0:
+        move = CHOPPINESS * math.sqrt(2.0) * spec.s0 * spec.s1 + RESAMPLE_ERROR * 2.0 * spec.s0
+        rounding = floor + _phase_rounding(spec, scene, np.ones(a.size, bool), 1)
+        out["choppy"] = HeightBounds(move + dropped, e2, rounding, move + dropped + e2 + rounding)
+    amp = noise_sea(scene).amplitude * sum(2.0 ** (-NOISE_HURST * i) for i in range(NOISE_OCTAVES))
+    out["noise"] = HeightBounds(spec.s0 + amp, e2, floor, spec.s0 + amp + e2 + floor)
     return out

@@ -17,11 +17,12 @@ import jax
 import jax.numpy as jnp
 import numpy as np
 
+from wavephys.core.grid import Grid
 from wavephys.core.inputs import check_instance
 from wavephys.planner.model import SceneModel, interior, texel_shift_phase
 from wavephys.planner.scene import Scene
 
-__all__ = ["Output", "run", "shade", "floor_light", "compare", "FLOOR_ALBEDO"]
+__all__ = ["Output", "run", "shade", "floor_light", "compare", "surface_frames", "encode_texture", "decode_texture", "FLOOR_ALBEDO"]
 
 FLOOR_ALBEDO = 0.6
 """Reflectance of the floor seen through the water in :func:`shade` (pale sand)."""
@@ -83,6 +84,14 @@ def run(scene: Scene, model: SceneModel) -> Output:
 
     if scene.ships:
         model.check_ships()
+    if model.choices.surface != "spectral":
+        start = _time.perf_counter()
+        stored = encode_texture(surface_frames(model), model.choices.texture, model.output_grid)
+        seconds = _time.perf_counter() - start
+        heights = decode_texture(stored)
+        t0 = _time.perf_counter()
+        image = shade(scene, model, heights[-1])
+        return Output(heights, image, seconds, _time.perf_counter() - t0)
     sim = model.simulation
     start = _time.perf_counter()
     state = _initial_state(model)
@@ -100,8 +109,9 @@ def run(scene: Scene, model: SceneModel) -> Output:
         last = stepping.surface(sim, state)
         eta = jnp.concatenate([surfs.eta, last.eta[None]])
         eta_dot = jnp.concatenate([surfs.eta_dot, last.eta_dot[None]])
-    heights = _frames(model, eta, eta_dot)
+    stored = encode_texture(_frames(model, eta, eta_dot), model.choices.texture, model.output_grid)
     seconds = _time.perf_counter() - start
+    heights = decode_texture(stored)  # what the renderer reads (decoded in its shader, not timed here)
     t0 = _time.perf_counter()
     image = shade(scene, model, heights[-1])
     return Output(heights, image, seconds, _time.perf_counter() - t0)
@@ -128,6 +138,85 @@ def _assemble(eta, eta_dot, index, s, dt, factor):
     blend = _blend(eta[index], eta[nxt], eta_dot[index], eta_dot[nxt], dt, w)
     frames = jnp.where(w > 0, blend, eta[index])
     return jax.vmap(lambda f: fourier_refine(f, factor))(frames) if factor > 1 else frames
+
+
+def surface_frames(model: SceneModel) -> np.ndarray:
+    """Frames (F, n, n), m, of a wind scene by its configuration's surface model other than the
+    spectral step (:data:`wavephys.planner.model.SURFACES`), each evaluated at t = j/fps on the
+    output texels: the strongest waves summed directly, the sea in closed form displaced by
+    Tessendorf's λD and resampled, or the procedural fBm."""
+    check_instance("model", model, SceneModel, "wavephys.planner.SceneModel")
+    name = model.choices.surface
+    if name == "spectral":
+        raise ValueError("surface_frames is for the surface models other than 'spectral' (run() steps that one)")
+    from wavephys.planner.predict import CHOPPINESS, _dispersion, gerstner_modes, noise_sea, scene_spectrum, wind_heights
+
+    scene, grid = model.scene, model.output_grid
+    times = np.arange(1, scene.frames + 1) / scene.fps
+    if name.startswith("gerstner"):
+        from wavephys.surfaces.gerstner import GerstnerWaves
+
+        spec = scene_spectrum(scene)
+        sel = gerstner_modes(scene, int(name.split("-")[1]))
+        x, y = (np.asarray(a, np.float64) for a in grid.mesh())
+        kx, ky = spec.kx[sel], spec.ky[sel]
+        phase = np.angle(spec.W[sel]) - kx * x[0, 0] - ky * y[0, 0]  # the DFT refers to the first sample
+        waves = GerstnerWaves(np.stack([kx, ky], 1), np.abs(spec.W[sel]) / spec.n**2, np.angle(np.exp(1j * phase)),
+                              0.0, model.water)
+        return np.stack([np.asarray(waves.heights(grid, float(t), iterations=1)) for t in times])
+    if name == "choppy":
+        from wavephys.surfaces.choppy import displacement
+        from wavephys.surfaces.resample import resample_heights
+
+        k = np.asarray(grid.wavenumber_magnitude(), np.float64)
+        omega = jnp.asarray(_dispersion(k, model.water)[0], jnp.float32)
+        w = jnp.asarray(wind_heights(scene, grid), jnp.complex64)
+        out = []
+        for t in times:
+            eta = _sea_at(w, omega, jnp.float32(t))
+            out.append(np.asarray(resample_heights(displacement(eta, grid, CHOPPINESS), eta, grid)))
+        return np.stack(out)
+    sea = noise_sea(scene)
+    return np.stack([np.asarray(sea.heights(grid, float(t))) for t in times])
+
+
+@jax.jit
+def _sea_at(w, omega, t):
+    """The linear sea's heights at time t from its DFT at t = 0: Re F⁻¹[ĥ e^{−iωt}]."""
+    return jnp.real(jnp.fft.ifft2(w * jnp.exp(-1j * omega * t)))
+
+
+def encode_texture(heights, fmt: str, grid):
+    """Frames ``heights`` (F, n, n), m, stored in the height texture format ``fmt``
+    (:data:`wavephys.planner.model.TEXTURES`): a float32 or float16 array, or for ``u16`` /
+    ``u8`` one :class:`optics.rendering.textures.EncodedHeight` per frame (its own minimum to
+    maximum onto the codes). :func:`decode_texture` reads it back."""
+    from optics.rendering.textures import encode_height
+    from wavephys.core.inputs import check_array, check_choice
+    from wavephys.planner.model import TEXTURES
+
+    check_choice("fmt", fmt, TEXTURES)
+    check_instance("grid", grid, Grid, "wavephys.Grid")
+    check_array("heights", heights, ndim=3, shape_tail=(grid.n, grid.n))
+    if fmt == "f32":
+        return np.asarray(heights, np.float32)
+    if fmt == "f16":
+        return np.asarray(heights, np.float32).astype(np.float16)
+    bits = 16 if fmt == "u16" else 8
+    return [encode_height(f, grid, bits) for f in np.asarray(heights)]
+
+
+def decode_texture(stored) -> np.ndarray:
+    """Heights (F, n, n), m, from :func:`encode_texture`'s result (float32 for the float formats,
+    float64 for the integer ones: their exact decoded values)."""
+    from optics.rendering.textures import EncodedHeight, decode_height
+
+    if isinstance(stored, np.ndarray) and stored.dtype in (np.float32, np.float16):
+        return stored.astype(np.float32)
+    if isinstance(stored, list) and stored and all(isinstance(t, EncodedHeight) for t in stored):
+        return np.stack([decode_height(t) for t in stored])
+    raise TypeError(f"stored must be what encode_texture returns (a float32/float16 array or a list of "
+                    f"EncodedHeight), got {type(stored).__name__}")
 
 
 FRAME_BLOCK = 64
