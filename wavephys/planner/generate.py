@@ -22,7 +22,7 @@ import numpy as np
 
 from wavephys.core.inputs import check_choice, check_int
 from wavephys.core.water import Water
-from wavephys.planner.model import SceneModel
+from wavephys.planner.model import Choices, SceneModel
 from wavephys.planner.scene import MIN_TEXELS, Scene, ShipSpec, StoneSpec, WindSpec
 
 __all__ = ["generate_scenes", "KINDS"]
@@ -56,7 +56,7 @@ def generate_scenes(count: int, seed: int = 0, kinds=KINDS, texels=(32, 48, 64, 
             n = int(rng.choice([t for t in texels if t >= 64] or texels)) if kind == "ship" else int(rng.choice(texels))
             scene = _draw(kind, rng, n, f"{kind}-{len(out)}")
             if scene is not None and scene.ships:
-                SceneModel(scene).check_ships()  # the full model must be able to run it
+                SceneModel(scene, Choices(ship_patch=1)).check_ships()  # the full model must run it
         except ValueError:  # a draw the scene refuses (a course that leaves the square): draw again
             continue
         if scene is not None:

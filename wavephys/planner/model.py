@@ -16,7 +16,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, fields, replace
-from functools import cached_property
+from functools import cached_property, lru_cache
 
 import numpy as np
 
@@ -26,7 +26,7 @@ from wavephys.core.water import Water
 from wavephys.planner.scene import Scene
 
 __all__ = ["Choices", "SceneModel", "TERMS", "COARSEN", "STEPS_PER_FRAME", "FRESNEL_FORMS", "ABSORPTION_METHODS",
-           "CAUSTICS_REFINE", "FULL_REFINE", "TEXTURES", "TEXTURE_BYTES", "SURFACES", "SHIP_METHODS", "full_choices"]
+           "CAUSTICS_REFINE", "FULL_REFINE", "TEXTURES", "TEXTURE_BYTES", "SURFACES", "SHIP_METHODS", "SHIP_PATCHES", "MARGINS", "full_choices"]
 
 COARSEN = (1, 2, 4)
 """Simulation grid spacings the planner considers, in output texels."""
@@ -54,14 +54,22 @@ SHIP_METHODS = ("kernels", "impulses")
 """How a ship makes its waves each step (:data:`wavephys.physics.ship_waves.SHIP_METHODS`): the
 Φ1/Φ2 kernels (exact for straight motion within a step; the full model) or the naive row of
 impulses (the hull's change added at once)."""
+MARGINS = ("n/8", "n/16", "none")
+"""Open-water cutoff margins the planner considers, per side: an eighth of the visible texels
+(the full model), a sixteenth, or none (the visible square simulated periodic, right only while
+nothing that matters reaches its edges). Periodic scenes have none either way."""
+SHIP_PATCHES = (1, 2)
+"""Ship patch sides the planner considers, in multiples of the smallest power-of-two patch that
+holds the hull and its motion over a step (:attr:`SceneModel.ship_patch`); the full model takes
+2 where that patch stays inside the visible square, else 1."""
 TEXTURES = ("f32", "f16", "u16", "u8")
 """Height texture formats the planner considers: float32 (the full model), half float, and
 16- or 8-bit normalized integers spanning each frame's own minimum to maximum
 (:func:`optics.rendering.textures.encode_height`)."""
 TEXTURE_BYTES = {"f32": 4, "f16": 2, "u16": 2, "u8": 1}
 """Bytes per texel of each height texture format."""
-TERMS = ("surface", "surface_tension", "finite_depth", "coarsen", "steps_per_frame", "second_order", "ship_method",
-         "texture", "fresnel",
+TERMS = ("surface", "margin", "surface_tension", "finite_depth", "coarsen", "steps_per_frame", "second_order", "ship_method",
+         "ship_patch", "texture", "fresnel",
          "absorption", "caustics")
 """The switchable terms, in the order model cards list them."""
 
@@ -90,8 +98,12 @@ class Choices:
     caustics : int
         Caustics tracing refinement (:data:`CAUSTICS_REFINE`; 0 off). Only scenes with
         ``caustics = true`` show them; the others run with 0.
+    margin : str
+        The open-water cutoff margin (:data:`MARGINS`); periodic scenes ignore it.
     ship_method : str
         How ships make waves (:data:`SHIP_METHODS`); scenes without ships ignore it.
+    ship_patch : int
+        Ship patch side in multiples of the smallest that holds the hull (:data:`SHIP_PATCHES`).
     surface : str
         The surface model (:data:`SURFACES`); other than ``"spectral"`` only for scenes
         whose one source is a wind sea, with ``coarsen`` 1, ``steps_per_frame`` 1 and
@@ -112,6 +124,8 @@ class Choices:
     texture: str = "f32"
     surface: str = "spectral"
     ship_method: str = "kernels"
+    ship_patch: int = 2
+    margin: str = "n/8"
 
     def __post_init__(self):
         for k in ("surface_tension", "finite_depth", "second_order"):
@@ -127,6 +141,9 @@ class Choices:
         check_choice("texture", self.texture, TEXTURES)
         check_choice("surface", self.surface, SURFACES)
         check_choice("ship_method", self.ship_method, SHIP_METHODS)
+        object.__setattr__(self, "ship_patch", check_int("ship_patch", self.ship_patch, lo=1))
+        check_choice("ship_patch", self.ship_patch, SHIP_PATCHES)
+        check_choice("margin", self.margin, MARGINS)
         if self.surface != "spectral" and (self.coarsen != 1 or self.steps_per_frame != 1 or self.second_order):
             raise ValueError(f"surface = {self.surface!r} is evaluated on the output texels at every frame and has no "
                              f"second-order term: it needs coarsen = 1, steps_per_frame = 1 and second_order = False, "
@@ -144,12 +161,23 @@ class Choices:
 
 def full_choices(scene: Scene | None = None) -> Choices:
     """The most complete configuration (the reference every plan is measured against); for a
-    ``scene`` that shows no caustics, with the caustics term 0 (nothing to trace)."""
-    if scene is not None:
-        check_instance("scene", scene, Scene, "wavephys.planner.Scene")
-        if not scene.caustics:
-            return Choices(caustics=0)
-    return Choices()
+    ``scene`` that shows no caustics, with the caustics term 0 (nothing to trace), and whose
+    ships' doubled patch would leave the visible square, with the single patch."""
+    if scene is None:
+        return Choices()
+    check_instance("scene", scene, Scene, "wavephys.planner.Scene")
+    return _full_choices(scene)
+
+
+@lru_cache(maxsize=64)
+def _full_choices(scene: Scene) -> Choices:
+    out = Choices() if scene.caustics else Choices(caustics=0)
+    if scene.ships:
+        try:
+            SceneModel(scene, out).check_ships()
+        except ValueError:
+            out = replace(out, ship_patch=1)
+    return out
 
 
 @dataclass(frozen=True)
@@ -173,11 +201,11 @@ class SceneModel:
             raise ValueError(f"surface = {self.choices.surface!r} models a wind sea: it needs a scene whose only source "
                              f"is the wind (this one has {len(self.scene.stones)} stones, {len(self.scene.ships)} ships"
                              f"{'' if self.scene.wind is not None else ', no wind'})")
-        n_total = self.scene.texels + 2 * self.scene.margin
+        n_total = self.scene.texels + 2 * self.margin
         c = self.choices.coarsen
-        if n_total % (2 * c) or self.scene.margin % c or n_total // c < 16:
+        if n_total % (2 * c) or self.margin % c or n_total // c < 16:
             raise ValueError(f"coarsen = {c} does not divide this scene's grid ({n_total} points with a "
-                             f"{self.scene.margin}-point margin) into an even grid of ≥ 16 points")
+                             f"{self.margin}-point margin) into an even grid of ≥ 16 points")
         for i, s in enumerate(self.scene.stones):
             if s.radius < self.grid.dx:
                 raise ValueError(f"coarsen = {c}: stones[{i}].radius {s.radius:g} m is below the simulation grid "
@@ -185,9 +213,17 @@ class SceneModel:
 
     # -- grids and times --------------------------------------------------------------
     @property
+    def margin(self) -> int:
+        """The cutoff margin, output texels per side: the scene's (n/8 for open water, 0 for a
+        periodic scene) with ``choices.margin`` n/16 or none instead of n/8."""
+        if not self.scene.margin:
+            return 0
+        return {"n/8": self.scene.margin, "n/16": self.scene.texels // 16, "none": 0}[self.choices.margin]
+
+    @property
     def full_grid(self) -> Grid:
         """The simulated square at output resolution (visible texels plus margin)."""
-        n = self.scene.texels + 2 * self.scene.margin
+        n = self.scene.texels + 2 * self.margin
         return Grid(n, n * self.scene.pixel)
 
     @property
@@ -223,10 +259,16 @@ class SceneModel:
 
     @cached_property
     def ship_patch(self) -> int:
-        """Ship patch side, points: the smallest power of two (≥ 16) that holds the hull and its
-        motion over Δt with a quarter to spare, at most the grid."""
+        """Ship patch side, points: ``choices.ship_patch`` × the smallest power of two (≥ 16) that
+        holds the hull and its motion over Δt with a quarter to spare, at most the grid."""
         if not self.scene.ships:
             return min(64, self.grid.n)
+        return min(self.choices.ship_patch * self.smallest_ship_patch, self.grid.n)
+
+    @cached_property
+    def smallest_ship_patch(self) -> int:
+        """The smallest power-of-two patch side (≥ 16 points, at most the grid) that holds the
+        hull and its motion over Δt with a quarter to spare."""
         dx = self.grid.dx
         need = max(1.5 * 0.5 * math.hypot(s.length, s.width) + 0.5 * s.speed * self.dt for s in self.scene.ships)
         side = 16
@@ -239,7 +281,7 @@ class SceneModel:
         """The :class:`wavephys.simulation.Model` of this configuration (pure step, ``run``)."""
         from wavephys.simulation.model import Model
 
-        return Model(self.grid, self.water, self.dt, margin=self.scene.margin // self.choices.coarsen,
+        return Model(self.grid, self.water, self.dt, margin=self.margin // self.choices.coarsen,
                      second_order=self.choices.second_order, dtype=self.dtype, ship_patch=self.ship_patch,
                      ship_method=self.choices.ship_method)
 
@@ -285,10 +327,12 @@ class SceneModel:
                      "tanh kh" if c.finite_depth else "deep", f"texture {c.texture}", f"Fresnel {c.fresnel}",
                      f"absorption {c.absorption}"]
             return ", ".join(parts)
-        parts = [f"grid {self.grid.n}² (dx {self.grid.dx:.3g} m)", f"Δt {self.dt:.4g} s",
+        parts = [f"grid {self.grid.n}² (dx {self.grid.dx:.3g} m)" + (
+                     f", margin {self.margin}" if self.scene.margin else ""), f"Δt {self.dt:.4g} s",
                  "σ" if c.surface_tension else "no σ", "tanh kh" if c.finite_depth else "deep",
                  "2nd order" if c.second_order else "linear"] + (
-                    [f"ship {c.ship_method}"] if self.scene.ships else []) + [f"texture {c.texture}", f"Fresnel {c.fresnel}",
+                    [f"ship {c.ship_method}, patch {self.ship_patch}²"] if self.scene.ships else []) + [
+                    f"texture {c.texture}", f"Fresnel {c.fresnel}",
                  f"absorption {c.absorption}"]
         if self.scene.caustics:
             parts.append(f"caustics refine {c.caustics}" if c.caustics else "caustics off (flat-water light)")
@@ -297,7 +341,7 @@ class SceneModel:
 
 def interior(model: SceneModel, field):
     """The visible texels of a field on :attr:`SceneModel.full_grid` (last two axes)."""
-    m = model.scene.margin
+    m = model.margin
     return field[..., m:field.shape[-2] - m, m:field.shape[-1] - m] if m else field
 
 

@@ -37,8 +37,8 @@ from wavephys.planner.caustics import MARGIN, caustics_errors
 from wavephys.planner.cost import calibration, caustics_cost, colour_cost, height_cost, texture_cost
 from wavephys.planner.model import (ABSORPTION_METHODS, CAUSTICS_REFINE, FRESNEL_FORMS, FULL_REFINE,
                                     TERMS, TEXTURE_BYTES, TEXTURES, Choices, SceneModel, full_choices)
-from wavephys.planner.predict import (HeightBounds, height_bounds, height_peak, scene_spectrum, surface_bounds,
-                                      texture_error)
+from wavephys.planner.predict import (MARGIN_TEXELS, HeightBounds, height_bounds, height_peak, scene_spectrum,
+                                      surface_bounds, texture_error)
 from wavephys.planner.scene import Scene
 
 __all__ = ["plan", "Plan", "Term", "Candidate", "Infeasible", "full_model", "candidates", "colour_errors"]
@@ -174,9 +174,10 @@ def _candidates(scene: Scene) -> tuple:
     cal = calibration()
     bounds = height_bounds(scene, cal["kappa"])
     out = []
-    for (st, fd, c, spf, so, method), b in bounds.items():
+    for (st, fd, c, spf, so, method, patch, margin), b in bounds.items():
         try:
-            model = SceneModel(scene, Choices(st, fd, c, spf, so, ship_method=method))
+            model = SceneModel(scene, Choices(st, fd, c, spf, so, ship_method=method, ship_patch=patch,
+                                              margin=margin))
             if scene.ships:
                 model.check_ships()
         except ValueError:
@@ -253,7 +254,8 @@ def plan(scene: Scene, tolerance: float, colour_tolerance: Optional[float] = Non
     texture_slack = check_scalar("texture_slack", texture_slack, lo=0.0, hi=10.0)
     tolerance, colour_tolerance = float(tolerance), float(colour_tolerance)
     cands = candidates(scene)
-    full = next((c for c in cands if c.choices == _height_part(full_choices())), None)
+    full = next((c for c in cands if c.choices == replace(Choices(), ship_patch=full_choices(scene).ship_patch)),
+                None)
     if full is None:
         raise Infeasible(f"scene {scene.name!r}: the full model cannot run it (a ship's patch leaks or leaves "
                          f"the visible square at Δt = 1/fps)")
@@ -397,7 +399,8 @@ def _card(scene: Scene, cands, full: Candidate, choices: Choices, colour: dict, 
     return rows
 
 
-HEIGHT_TERMS = ("surface_tension", "finite_depth", "coarsen", "steps_per_frame", "second_order", "ship_method")
+HEIGHT_TERMS = ("margin", "surface_tension", "finite_depth", "coarsen", "steps_per_frame", "second_order",
+                "ship_method", "ship_patch")
 """The terms of the spectral step's configuration (card rows, each alone against the full model)."""
 
 
@@ -468,6 +471,23 @@ def _reason(scene, spectrum, term, value, err) -> str:
         if value == "kernels":
             return "Φ1/Φ2 kernels: exact for straight motion within a step"
         return f"impulses (the hull's change added at each step's end): {effect}"
+    if term == "margin":
+        if not scene.margin:
+            return "a periodic scene: no margin"
+        if scene.texels > MARGIN_TEXELS:
+            return f"n/8: margins are planned up to {MARGIN_TEXELS} texels"
+        size = {"n/8": scene.texels // 8, "n/16": scene.texels // 16, "none": 0}[value]
+        if value == "n/8":
+            return f"the full model's {size} texels a side"
+        return f"{size} texels a side (measured against n/8 on the linear model, ×1.25): {effect}"
+    if term == "ship_patch":
+        if not scene.ships:
+            return "no ships"
+        full = full_choices(scene).ship_patch
+        if full == 1:
+            return "the single patch: the doubled one would leave the visible square"
+        return ("the doubled patch (the full model's)" if value == 2 else
+                f"the single patch (its truncation evaluated per mode at three steps, ×1.25): {effect}")
     return ""
 
 

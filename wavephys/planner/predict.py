@@ -31,7 +31,7 @@ from __future__ import annotations
 __internal__ = True  # the planner's own models: used through plan(), not fuzzed as public API
 
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from functools import lru_cache
 
 import jax
@@ -39,11 +39,12 @@ import jax.numpy as jnp
 import numpy as np
 
 from wavephys.core.water import Water
-from wavephys.planner.model import COARSEN, SHIP_METHODS, STEPS_PER_FRAME, Choices, SceneModel
+from wavephys.planner.model import COARSEN, SHIP_METHODS, STEPS_PER_FRAME, Choices, SceneModel, full_choices
 from wavephys.planner.scene import Scene
 
 __all__ = ["HeightBounds", "scene_spectrum", "height_bounds", "hermite_blend_error", "texture_error", "height_peak",
-           "surface_bounds", "gerstner_modes", "sea_rms", "noise_sea", "CHOPPINESS", "RESAMPLE_ERROR"]
+           "surface_bounds", "gerstner_modes", "sea_rms", "noise_sea", "CHOPPINESS", "RESAMPLE_ERROR",
+           "patch_bound", "margin_errors"]
 
 SUPPORT_FRACTION = 1e-6
 """Modes are dropped from the per-mode sums in ascending order of their largest possible
@@ -380,6 +381,109 @@ def hermite_blend_error(theta) -> np.ndarray:
     return envelope[at]
 
 
+PATCH_SAMPLES = 3
+"""Steps at which the ship patch's truncation is evaluated (the first, middle and last)."""
+PATCH_MARGIN = 1.25
+"""Safety factor on the evaluated patch term (the steps between the sampled ones)."""
+
+
+def patch_bound(scene: Scene, coarsen: int, steps_per_frame: int, method: str) -> tuple:
+    r"""What the single ship patch adds against the doubled one, evaluated: (max-norm bound on
+    the heights, on |η_c|, on |Λη_c|), m, for the configuration's grid, Δt and ship method
+    (the full model's water).
+
+    Each step's new waves on the patch P and on the patch 2P differ by Δ (ψ units); their DFT
+    on the simulation grid, |Δ̂_k|, is evaluated at :data:`PATCH_SAMPLES` steps and its
+    largest value per mode taken. A ship on a straight course repeats the same Δ moved by
+    U·Δt each step, so after N steps mode k holds Δ̂_k Σ_j e^{i a_k jΔt} (a = ω − k·U), of
+    modulus ≤ |Δ̂_k|·min(N, 1/|sin(a_kΔt/2)|): only the modes near the Kelvin resonance add
+    up. With η_c = i·m·ψ per mode, the bound is :data:`PATCH_MARGIN` ×
+    (1/n²) Σ_k |m_k| |Δ̂_k| min(N, 1/|sin(a_kΔt/2)|), ×(1 + 0.3 ω_kΔt) where frames are
+    blended between steps (the Hermite weights' rate terms). Evaluated, not bounded: the patch
+    window's placement snaps to the grid, so Δ is a translate only up to a sub-texel shift.
+    """
+    return _patch_bound(scene, coarsen, steps_per_frame, method)
+
+
+@lru_cache(maxsize=256)
+def _patch_bound(scene, coarsen, steps_per_frame, method):
+    from wavephys.physics.ship_waves import ship_patch_waves
+
+    base = Choices(coarsen=coarsen, steps_per_frame=steps_per_frame, ship_method=method)
+    one = SceneModel(scene, replace(base, ship_patch=1))
+    two = SceneModel(scene, replace(base, ship_patch=2))
+    if one.ship_patch == two.ship_patch:
+        return 0.0, 0.0, 0.0
+    grid, water, dt, steps = one.grid, one.water, one.dt, one.steps
+    n = grid.n
+    k = np.asarray(grid.wavenumber_magnitude(), np.float64)
+    ky, kx = (np.broadcast_to(np.asarray(a, np.float64), (n, n)) for a in grid.wavenumbers())
+    omega, m = _dispersion(k, water)
+    out = np.zeros(3)
+    for spec, ship in zip(scene.ships, one.ships()):
+        delta = np.zeros((n, n))
+        for j in sorted({0, steps // 2, max(steps - 1, 0)}):
+            field = np.zeros((n, n), np.complex128)
+            for model, sign in ((one, 1.0), (two, -1.0)):
+                waves, (r0, c0) = ship_patch_waves(ship, grid, water, j * dt, dt, model.ship_patch // 2, method)
+                side = waves.shape[-1]
+                rows, cols = (r0 + np.arange(side)) % n, (c0 + np.arange(side)) % n
+                field[np.ix_(rows, cols)] += sign * np.asarray(waves, np.complex128)
+            delta = np.maximum(delta, np.abs(np.fft.fft2(field)))
+        ux, uy = spec.velocity
+        a = omega - (kx * ux + ky * uy)
+        sin = np.abs(np.sin(0.5 * a * dt))
+        reach = np.minimum(steps, 1.0 / np.maximum(sin, 1e-300))
+        if steps_per_frame > 1:
+            reach = reach * (1.0 + 0.3 * omega * dt)
+        weight = PATCH_MARGIN * m * delta * reach / n**2
+        out += (float(weight.sum()), float(weight.sum()), float((k * weight).sum()))
+    return tuple(out)
+
+
+MARGIN_TEXELS = 512
+"""Largest visible square (texels per side) whose margin is planned; larger keep n/8."""
+MARGIN_SAFETY = 1.25
+"""Factor on the measured margin difference (the other terms change it a little)."""
+
+
+def margin_errors(scene: Scene) -> dict:
+    """{margin choice: error}, m, for an open-water scene ({} for a periodic one): the largest
+    difference on the visible square, over every frame, between the full model's linear heights
+    with that cutoff margin and with n/8 (:data:`wavephys.planner.model.MARGINS`), × 1.25.
+
+    Evaluated, not bounded: the planner runs the scene's linear model three times. A bound
+    through the free (infinite-ocean) solution — each step adds at most the mask's bite on it and
+    what lies outside the square — came out 10⁴–10⁵ times the measured differences (the lake:
+    735 height quanta against 0.03), because long waves of every source reach the margin and
+    the bound counts every bite. Scenes larger than :data:`MARGIN_TEXELS` keep n/8 (inf for the
+    others)."""
+    return _margin_errors(scene)
+
+
+@lru_cache(maxsize=16)
+def _margin_errors(scene: Scene) -> dict:
+    from wavephys.planner.model import MARGINS
+    from wavephys.planner.runner import _heights
+
+    if not scene.margin:
+        return {}
+    if scene.texels > MARGIN_TEXELS:
+        return {k: (0.0 if k == "n/8" else math.inf) for k in MARGINS}
+    runs = {}
+    for key in MARGINS:
+        model = SceneModel(scene, Choices(second_order=False, margin=key, ship_patch=full_choices(scene).ship_patch))
+        try:
+            if scene.ships:
+                model.check_ships()
+            runs[key] = _heights(model).astype(np.float64)
+        except ValueError:  # a ship's patch leaves the visible square at this margin
+            runs[key] = None
+    ref = runs["n/8"]
+    return {k: (0.0 if k == "n/8" else math.inf if v is None else MARGIN_SAFETY * float(np.abs(v - ref).max()))
+            for k, v in runs.items()}
+
+
 @dataclass(frozen=True)
 class HeightBounds:
     """Predicted height errors (m) of one configuration against the full model.
@@ -401,10 +505,32 @@ class HeightBounds:
         return self.linear + self.second_order + self.rounding
 
 
+def _bound(spec, kappa, same, so, c, spf, e_lin, d0, d1, rms, blend) -> HeightBounds:
+    """One configuration's bounds from its linear bound ``e_lin``, the bounds ``d0``, ``d1`` on
+    its change of |η_c| and |Λη_c| and its linear ``rms`` (over the visible square)."""
+    floor = float(kappa * spec.s0)
+    if same and so:  # the full model itself (or one that computes the same numbers)
+        return HeightBounds(0.0, 0.0, floor, floor)
+    if same:  # only the second-order term differs
+        return HeightBounds(0.0, 0.5 * spec.s0 * spec.s1, floor, 0.5 * spec.s0 * spec.s1 + floor)
+    if so:
+        e2 = 0.5 * (d0 * spec.s1 + spec.s0 * d1)
+        if c > 1:  # products of modes the coarse grid folds back (aliasing)
+            e2 += spec.alias[c]
+        if spf > 1:  # η₂ is interpolated without its rate
+            e2 += blend[spf]
+    else:
+        e2 = 0.5 * spec.s0 * spec.s1
+    dropped = 2 * spec.dropped
+    return HeightBounds(e_lin + dropped, float(e2), floor, rms + float(e2) + floor)
+
+
 def height_bounds(scene: Scene, kappa: float) -> dict:
     """:class:`HeightBounds` of every height configuration of ``scene`` (a dict keyed by
-    (surface_tension, finite_depth, coarsen, steps_per_frame, second_order, ship_method); the
-    impulse method only where the scene has ships).
+    (surface_tension, finite_depth, coarsen, steps_per_frame, second_order, ship_method,
+    ship_patch, margin); the impulse method and the single patch only where the scene has
+    ships, the latter adding :func:`patch_bound` where the full model takes the doubled patch;
+    the narrower margins only for open water, adding :func:`margin_errors`).
 
     Stones and ships are bounded by the triangle inequality (rigorous for the linear
     surface); the wind sea by z × its RMS (:func:`gaussian_factor`). ``kappa``: the float32
@@ -433,6 +559,9 @@ def height_bounds(scene: Scene, kappa: float) -> dict:
     kk = spec.k
     out = {}
     methods = SHIP_METHODS if spec.ships else SHIP_METHODS[:1]
+    full_patch = full_choices(scene).ship_patch
+    patches = (1, 2) if scene.ships and full_patch == 2 else (full_patch,)
+    margins = {k: v for k, v in margin_errors(scene).items() if math.isfinite(v)} or {"n/8": 0.0}
     for vi, (st, fd), method in ((vi, v, sm) for vi, v in enumerate(((True, True), (False, True), (True, False),
                                                                       (False, False))) for sm in methods):
         omega, m = disp[vi]
@@ -468,26 +597,16 @@ def height_bounds(scene: Scene, kappa: float) -> dict:
                         d0 += float(np.max(np.sum(ax, axis=1))) / n**2
                         d1 += float(np.max(np.sum(kk * ax, axis=1))) / n**2
                 same = waters[vi] == waters[0] and c == 1 and spf == 1 and not impulses  # e.g. no tanh, deep
-                for so in (True, False):
-                    key = (st, fd, c, spf, so, method)
-                    floor = float(kappa * spec.s0)
-                    if same and so:  # the full model itself (or one that computes the same numbers)
-                        out[key] = HeightBounds(0.0, 0.0, floor, floor)
-                        continue
-                    if same:  # only the second-order term differs
-                        out[key] = HeightBounds(0.0, 0.5 * spec.s0 * spec.s1, floor, 0.5 * spec.s0 * spec.s1 + floor)
-                        continue
-                    if so:
-                        e2 = 0.5 * (d0 * spec.s1 + spec.s0 * d1)
-                        if c > 1:  # products of modes the coarse grid folds back (aliasing)
-                            e2 += spec.alias[c]
-                        if spf > 1:  # η₂ is interpolated without its rate
-                            e2 += blend[spf]
+                for so, patch in ((so, patch) for so in (True, False) for patch in patches):
+                    if patch < full_patch:  # the single patch against the full model's doubled one
+                        p_lin, p0, p1 = patch_bound(scene, c, spf, method)
+                        b = _bound(spec, kappa, False, so, c, spf, e_lin, d0 + p0, d1 + p1, rms * area, blend)
+                        b = HeightBounds(b.linear + p_lin, b.second_order, b.rounding, b.rms + p_lin)
                     else:
-                        e2 = 0.5 * spec.s0 * spec.s1
-                    dropped = 2 * spec.dropped
-                    out[key] = HeightBounds(e_lin + dropped, float(e2), float(kappa * spec.s0),
-                                            rms * area + float(e2) + float(kappa * spec.s0))
+                        b = _bound(spec, kappa, same, so, c, spf, e_lin, d0, d1, rms * area, blend)
+                    for margin, e_margin in margins.items():  # the margin's measured change adds
+                        out[(st, fd, c, spf, so, method, patch, margin)] = (b if not e_margin else HeightBounds(
+                            b.linear + e_margin, b.second_order, b.rounding, b.rms + e_margin))
     return out
 
 

@@ -80,22 +80,26 @@ def run(scene: Scene, model: SceneModel) -> Output:
     check_instance("model", model, SceneModel, "wavephys.planner.SceneModel")
     if model.scene != scene:
         raise ValueError("model was made for another scene: SceneModel(scene, choices)")
-    import wavephys.simulation.stepping as stepping
-
     if scene.ships:
         model.check_ships()
-    if model.choices.surface != "spectral":
-        start = _time.perf_counter()
-        stored = encode_texture(surface_frames(model), model.choices.texture, model.output_grid)
-        seconds = _time.perf_counter() - start
-        heights = decode_texture(stored)
-        t0 = _time.perf_counter()
-        image = shade(scene, model, heights[-1])
-        return Output(heights, image, seconds, _time.perf_counter() - t0)
-    sim = model.simulation
     start = _time.perf_counter()
+    frames = _heights(model) if model.choices.surface == "spectral" else surface_frames(model)
+    stored = encode_texture(frames, model.choices.texture, model.output_grid)
+    seconds = _time.perf_counter() - start
+    heights = decode_texture(stored)  # what the renderer reads (decoded in its shader, not timed here)
+    t0 = _time.perf_counter()
+    image = shade(scene, model, heights[-1])
+    return Output(heights, image, seconds, _time.perf_counter() - t0)
+
+
+def _heights(model: SceneModel) -> np.ndarray:
+    """The spectral step's frames (F, n, n), m, on the output texels: the pure step over the
+    scene, frames blended between steps and refined onto the texels."""
+    import wavephys.simulation.stepping as stepping
+
+    sim = model.simulation
     state = _initial_state(model)
-    if scene.ships:
+    if model.scene.ships:
         ships, etas, rates = model.ships(), [], []
         for _ in range(model.steps):
             state, surf = stepping.step(sim, state, ships)
@@ -109,12 +113,7 @@ def run(scene: Scene, model: SceneModel) -> Output:
         last = stepping.surface(sim, state)
         eta = jnp.concatenate([surfs.eta, last.eta[None]])
         eta_dot = jnp.concatenate([surfs.eta_dot, last.eta_dot[None]])
-    stored = encode_texture(_frames(model, eta, eta_dot), model.choices.texture, model.output_grid)
-    seconds = _time.perf_counter() - start
-    heights = decode_texture(stored)  # what the renderer reads (decoded in its shader, not timed here)
-    t0 = _time.perf_counter()
-    image = shade(scene, model, heights[-1])
-    return Output(heights, image, seconds, _time.perf_counter() - t0)
+    return _frames(model, eta, eta_dot)
 
 
 @jax.jit
