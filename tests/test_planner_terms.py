@@ -253,3 +253,27 @@ def test_per_mode_closed_form_reproduces_the_step_for_both_ship_methods(method):
                            1 / ship.fps if method == "impulses" else None)[0]
     predicted = interior(SceneModel(ship), np.real(np.fft.ifft2(modes)))
     assert np.abs(predicted - got).max() <= 0.01 * np.abs(got).max()
+
+
+def test_budget_is_applied_before_the_texture_slack():
+    """With a slack that would take any smaller texture, a budget at the cheapest model's cost
+    still gets a plan (the formats over the budget are dropped first), within the budget."""
+    scene = _tank()
+    cheapest = plan(scene, 2 * scene.height_quantum, texture_slack=0.0)
+    p = plan(scene, 2 * scene.height_quantum, budget=cheapest.cost * (1 + 1e-9), texture_slack=10.0)
+    assert p.cost <= cheapest.cost * (1 + 1e-9)
+    from wavephys.planner import Infeasible
+
+    with pytest.raises(Infeasible, match="budget"):
+        plan(scene, 2 * scene.height_quantum, budget=cheapest.cost * 0.5)
+
+
+def test_ship_scene_whose_grid_some_coarsenings_cannot_divide_is_planned():
+    """72 texels of open water (a 9-texel margin): coarsening by 2 or 4 cannot divide the grid,
+    so those configurations are left out instead of failing the plan."""
+    from wavephys.planner import ShipSpec
+
+    scene = Scene(27.0, 0.375, depth=4.0, open_water=True, duration=0.2, fps=30.0, height_range=0.05,
+                  ships=(ShipSpec(-1.0, 0.5, 2.0, 10.0, 2.0, 1.5, 0.03),), name="test-ship-72")
+    p = plan(scene, scene.height_quantum)
+    assert p.model.choices.coarsen == 1 and p.predicted_error <= p.tolerance

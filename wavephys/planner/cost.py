@@ -107,5 +107,9 @@ def caustics_cost(scene, refine: int, cal: dict | None = None) -> float:
 def texture_cost(scene, fmt: str, cal: dict | None = None) -> float:
     """Predicted seconds of encoding every output frame into the height texture format ``fmt``
     (:data:`wavephys.planner.model.TEXTURES`; the renderer decodes on the GPU, for free)."""
+    from wavephys.core.inputs import check_choice
+    from wavephys.planner.model import TEXTURES
+
+    check_choice("fmt", fmt, TEXTURES)
     cal = cal or calibration()
     return cal["texture"][fmt] * scene.texels**2 / 1e6 * scene.frames

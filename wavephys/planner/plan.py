@@ -279,6 +279,12 @@ def plan(scene: Scene, tolerance: float, colour_tolerance: Optional[float] = Non
     if not best:
         raise Infeasible(f"no optics form{' or caustics refinement' if scene.caustics else ''} meets the colour "
                          f"tolerance {colour_tolerance:.3g}")
+    if budget is not None:
+        over = min(b[4] for b in best.values())
+        best = {f: b for f, b in best.items() if b[4] <= budget}
+        if not best:
+            raise Infeasible(f"the cheapest model within {tolerance:.3g} m costs {over:.3g} s, over the budget "
+                             f"{budget:.3g} s")
     cheapest = min(b[4] for b in best.values())
     fmt = min((f for f in best if best[f][4] <= (1.0 + texture_slack) * cheapest),
               key=lambda f: (TEXTURE_BYTES[f], best[f][4]))
@@ -286,9 +292,6 @@ def plan(scene: Scene, tolerance: float, colour_tolerance: Optional[float] = Non
     full_refine = FULL_REFINE if scene.caustics else 0
     full_cost = (full.cost + colour_cost(scene, "exact", "spectral") + caustics_cost(scene, full_refine)
                  + texture_cost(scene, "f32"))
-    if budget is not None and cost > budget:
-        raise Infeasible(f"the cheapest model within {tolerance:.3g} m costs {cost:.3g} s, over the budget "
-                         f"{budget:.3g} s")
     terms = _card(scene, cands, full, choices, colour, caustics, cand)
     front = _pareto(cands)
     return Plan(scene, tolerance, colour_tolerance, SceneModel(scene, choices), cand.bounds, colour_err, cost,
@@ -343,10 +346,6 @@ def _colour_total(colour: dict, fresnel: str, absorption: str, delta: float, e_m
     out = dr * max(1.0, floor * e_max) if dr else 0.0
     out += dt * e_max if dt else 0.0
     return out + (floor * delta if delta else 0.0)
-
-
-def _height_part(choices: Choices) -> Choices:
-    return replace(choices, fresnel="exact", absorption="spectral")
 
 
 def _pareto(cands) -> list:

@@ -458,7 +458,7 @@ def margin_errors(scene: Scene) -> dict:
     735 height quanta against 0.03), because long waves of every source reach the margin and
     the bound counts every bite. Scenes larger than :data:`MARGIN_TEXELS` keep n/8 (inf for the
     others)."""
-    return _margin_errors(scene)
+    return dict(_margin_errors(scene))  # a copy: the cached result stays as measured
 
 
 @lru_cache(maxsize=16)
@@ -599,7 +599,10 @@ def height_bounds(scene: Scene, kappa: float) -> dict:
                 same = waters[vi] == waters[0] and c == 1 and spf == 1 and not impulses  # e.g. no tanh, deep
                 for so, patch in ((so, patch) for so in (True, False) for patch in patches):
                     if patch < full_patch:  # the single patch against the full model's doubled one
-                        p_lin, p0, p1 = patch_bound(scene, c, spf, method)
+                        try:
+                            p_lin, p0, p1 = patch_bound(scene, c, spf, method)
+                        except ValueError:  # this coarsening cannot run the scene (SceneModel says why)
+                            continue
                         b = _bound(spec, kappa, False, so, c, spf, e_lin, d0 + p0, d1 + p1, rms * area, blend)
                         b = HeightBounds(b.linear + p_lin, b.second_order, b.rounding, b.rms + p_lin)
                     else:
@@ -652,6 +655,9 @@ RESAMPLE_ERROR = 0.01
 """Error of resampling displaced heights onto the texels, as a fraction of the height range:
 :func:`wavephys.surfaces.resample.resample_heights` at refine 2 stays below 1 % of it for
 choppiness up to 0.9 of the folding value (measured by its tests)."""
+CHOPPY_REACH = 0.9
+"""The choppy model is offered where 2λ·s1 (a bound on λ|∂D|) stays below this: the resampling's
+1 % was measured up to 0.9 of the folding choppiness."""
 NOISE_OCTAVES, NOISE_HURST = 2, 1.0
 """The ``noise`` surface model's fBm: two octaves (Schneider & Westermann), H = 1 (a k⁻⁴ tail)."""
 
@@ -684,7 +690,10 @@ def noise_sea(scene: Scene):
 
     spec = scene_spectrum(scene)
     k_peak = float(spec.k[np.argmax(np.abs(spec.W))])
-    cells = max(1, min(round(k_peak * scene.extent / (2 * math.pi)), scene.texels // 4))
+    from wavephys.surfaces.noise import TABLE_SIZE
+
+    top = min(scene.texels // 4, TABLE_SIZE // 2 ** (NOISE_OCTAVES - 1))  # finest octave ≥ 2 texels, ≤ the table
+    cells = max(1, min(round(k_peak * scene.extent / (2 * math.pi)), top))
     return NoiseSea(length=scene.extent, amplitude=max(sea_rms(scene), 1e-12), frequency=cells / scene.extent, octaves=NOISE_OCTAVES,
                     hurst=NOISE_HURST, seed=scene.wind.seed, base_amplitude=0.0)
 
@@ -708,7 +717,8 @@ def surface_bounds(scene: Scene, kappa: float) -> dict:
       (Parseval); η₂ is missing (½·s0·s1); float32 phases (:func:`_phase_rounding`);
     * ``choppy``: the same linear sea, each point moved by λD with |D| ≤ √2·s0, so a texel
       shows the height from up to λ√2·s0 away: ≤ λ√2·s0·s1; η₂ missing; resampling
-      :data:`RESAMPLE_ERROR` × the range 2·s0. Unavailable where it may fold (2λ·s1 ≥ 1);
+      :data:`RESAMPLE_ERROR` × the range 2·s0. Unavailable from 2λ·s1 ≥ 0.9 (where it may fold,
+      beyond the range the resampling error was measured on);
     * ``noise``: an unrelated field: |η_full| + |η_noise| ≤ s0 + ½·s0·s1 + a·Σ 2^{−Hi}.
     """
     if scene.stones or scene.ships or scene.wind is None:
@@ -730,10 +740,13 @@ def surface_bounds(scene: Scene, kappa: float) -> dict:
         lin = z * rms + dropped
         rounding = floor + _phase_rounding(spec, scene, keep, int(keep.sum()))
         out[name] = HeightBounds(lin, e2, rounding, rms + e2 + rounding)
-    if 2.0 * CHOPPINESS * spec.s1 < 1.0:
+    if 2.0 * CHOPPINESS * spec.s1 < CHOPPY_REACH:  # within the range its resampling error was measured on
         move = CHOPPINESS * math.sqrt(2.0) * spec.s0 * spec.s1 + RESAMPLE_ERROR * 2.0 * spec.s0
         rounding = floor + _phase_rounding(spec, scene, np.ones(a.size, bool), 1)
         out["choppy"] = HeightBounds(move + dropped, e2, rounding, move + dropped + e2 + rounding)
-    amp = noise_sea(scene).amplitude * sum(2.0 ** (-NOISE_HURST * i) for i in range(NOISE_OCTAVES))
+    try:
+        amp = noise_sea(scene).amplitude * sum(2.0 ** (-NOISE_HURST * i) for i in range(NOISE_OCTAVES))
+    except ValueError:  # the scene's square cannot hold the noise's lattice: left out
+        return out
     out["noise"] = HeightBounds(spec.s0 + amp, e2, floor, spec.s0 + amp + e2 + floor)
     return out
