@@ -186,11 +186,11 @@ def _open_pond(frames, x=0.0):
 def test_short_open_scene_drops_the_margin_and_a_long_one_keeps_it():
     """Four frames after a stone lands in open water nothing that matters has reached the edges:
     the plan simulates the visible square alone (no margin), and its measured error, the margin
-    included, stays within its prediction. Two seconds later the waves have (no margin would err
-    8 quanta): the plan keeps the full model's n/8."""
+    included, stays within its prediction. Half a second after a stone lands near an edge the
+    waves have reached it (no margin would change 7.9 quanta, n/16 2.0): the plan keeps n/8."""
     from wavephys.planner.predict import margin_errors
 
-    short, long_ = _open_pond(4), _open_pond(60, x=0.3)
+    short, long_ = _open_pond(4), _open_pond(16, x=0.6)
     p = plan(short, 0.5 * short.height_quantum)
     assert p.model.choices.margin == "none" and p.model.margin == 0 and p.model.grid.n == 32
     err = compare(run(short, p.model), run(short, full_model(short)))["height_max"]
@@ -268,12 +268,24 @@ def test_budget_is_applied_before_the_texture_slack():
         plan(scene, 2 * scene.height_quantum, budget=cheapest.cost * 0.5)
 
 
-def test_ship_scene_whose_grid_some_coarsenings_cannot_divide_is_planned():
+def test_ship_bounds_skip_coarsenings_that_cannot_divide_the_grid(monkeypatch):
     """72 texels of open water (a 9-texel margin): coarsening by 2 or 4 cannot divide the grid,
-    so those configurations are left out instead of failing the plan."""
+    so the ship patch's evaluation raises for them (as SceneModel does) and those configurations
+    are left out instead of failing the plan. (The evaluation itself is stubbed: its cost is
+    tested elsewhere.)"""
+    import wavephys.planner.predict as predict
     from wavephys.planner import ShipSpec
 
-    scene = Scene(27.0, 0.375, depth=4.0, open_water=True, duration=0.2, fps=30.0, height_range=0.05,
+    scene = Scene(27.0, 0.375, depth=4.0, open_water=True, duration=2 / 30, fps=30.0, height_range=0.05,
                   ships=(ShipSpec(-1.0, 0.5, 2.0, 10.0, 2.0, 1.5, 0.03),), name="test-ship-72")
-    p = plan(scene, scene.height_quantum)
-    assert p.model.choices.coarsen == 1 and p.predicted_error <= p.tolerance
+
+    def patch(scene, coarsen, steps_per_frame, method):
+        SceneModel(scene, Choices(coarsen=coarsen))  # raises for coarsen 2 and 4 here
+        return 1e-9, 1e-9, 1e-9
+
+    monkeypatch.setattr(predict, "patch_bound", patch)
+    monkeypatch.setattr(predict, "margin_errors", lambda scene: {"n/8": 0.0})
+    predict._scene_spectrum.cache_clear()
+    bounds = predict.height_bounds(scene, 0.0)
+    assert {key[2] for key in bounds} == {1, 2, 4}  # the doubled patch has no evaluation to fail
+    assert {key[2] for key in bounds if key[6] == 1} == {1}
