@@ -303,22 +303,21 @@ class SceneModel:
                 for s in self.scene.ships]
 
     def check_ships(self) -> None:
-        """ValueError if a ship's patch leaks past ``leak_tolerance`` at this Δt or leaves the
-        visible square (checked before any stepping)."""
-        from wavephys.physics.ship_waves import patch_leak
-
+        """ValueError if a ship's patch leaves the visible square or leaks past ``leak_tolerance``
+        at this Δt (checked before any stepping; the leak is measured once per water, grid
+        spacing, Δt and patch, on the full model's grid, and shared by every margin)."""
         model = self.simulation
         half, grid = model.ship_patch // 2, model.grid
         lo, hi = model.margin, grid.n - model.margin
-        for i, (spec, ship) in enumerate(zip(self.scene.ships, self.ships())):
-            leak = patch_leak(ship, grid, model.water, 0.0, model.dt, half)
-            if leak > model.leak_tolerance:
-                raise ValueError(f"ships[{i}]: {leak:.2g} of the waves leak past the {2 * half}-point patch at "
-                                 f"Δt = {model.dt:.3g} s")
+        for i, spec in enumerate(self.scene.ships):
             for t in (0.0, self.scene.duration):
                 r0, c0, _ = grid.window(*spec.position(t), half)
                 if not (lo <= r0 and r0 + 2 * half <= hi and lo <= c0 and c0 + 2 * half <= hi):
                     raise ValueError(f"ships[{i}]: its {2 * half}-point patch leaves the visible square at t = {t:g} s")
+        for i, leak in enumerate(_patch_leaks(self.scene, self.choices.coarsen, model.dt, half)):
+            if leak > model.leak_tolerance:
+                raise ValueError(f"ships[{i}]: {leak:.2g} of the waves leak past the {2 * half}-point patch at "
+                                 f"Δt = {model.dt:.3g} s")
 
     def describe(self) -> str:
         c = self.choices
@@ -337,6 +336,19 @@ class SceneModel:
         if self.scene.caustics:
             parts.append(f"caustics refine {c.caustics}" if c.caustics else "caustics off (flat-water light)")
         return ", ".join(parts)
+
+
+@lru_cache(maxsize=4096)
+def _patch_leaks(scene: Scene, coarsen: int, dt: float, half: int) -> tuple:
+    """:func:`wavephys.physics.ship_waves.patch_leak` of each of the scene's ships for a patch of
+    half-side ``half`` at Δt ``dt`` on the full model's grid coarsened ``coarsen`` times, with
+    the scene's own water (σ and tanh kh change the leak by far less than its tolerance, and one
+    compiled patch serves every dispersion variant)."""
+    from wavephys.physics.ship_waves import patch_leak
+
+    n = scene.texels + 2 * scene.margin
+    grid = Grid(n // coarsen, n * scene.pixel)
+    return tuple(patch_leak(ship, grid, scene.water, 0.0, dt, half) for ship in SceneModel(scene).ships())
 
 
 def interior(model: SceneModel, field):
