@@ -226,7 +226,7 @@ OVERRIDES = {
     "wavephys.simulation.driver.Simulation.add_wind": {"wind_speed": lambda: 5.0},
     "wavephys.physics.wind.wind_spectrum": {"wind_speed": lambda: 5.0},
     "wavephys.harness.checks.compare": {"rtol": lambda: 0.1},
-    "wavephys.harness.pytest_plugin.Checker.close": {"rtol": lambda: 0.1},
+    "wavephys.app.pytest_plugin.Checker.close": {"rtol": lambda: 0.1},
     "wavephys.physics.ship_waves.max_patch_dt": {"half": lambda: 8, "grid": lambda: Grid(64, 8.0)},
     "optics.checks.plain_numpy_water_srgb": {"distance": lambda: 1.0},
     "optics.checks.flat_pool_colour": {"scene": lambda: __import__("optics.checks").checks.flat_pool()},
@@ -251,11 +251,17 @@ OVERRIDES = {
     "wavephys.app.scenes.scene_frames": {"n": lambda: 64},
     "wavephys.app.scenes.scene_grid": {"n": lambda: 64},
     "wavephys.harness.dispersion.measure_dispersion": {"eta": lambda: RNG.standard_normal((16, 8, 8))},
-    "wavephys.harness.pytest_plugin.Checker.dispersion": {
+    "wavephys.app.pytest_plugin.Checker.dispersion": {
         "eta": _dispersion_record, "dx": lambda: 1.0, "dt": lambda: 0.4, "water": lambda: Water(sigma=0.0)},
-    "wavephys.harness.pytest_plugin.Checker.energy_conserved": {"eta": lambda: np.stack([np.ones((N, N))] * 2),
+    "wavephys.app.pytest_plugin.Checker.energy_conserved": {"eta": lambda: np.stack([np.ones((N, N))] * 2),
                                                                 "eta_dot": lambda: np.stack([np.ones((N, N))] * 2)},
     "optics.light.directions.reflect": {"n": lambda: np.array([0.0, 0.0, 1.0])},
+    "optics.shaders.check.check_glsl": {"source": lambda: _GLSL_FRESNEL, "function": lambda: "f",
+                                        "against": lambda: "fresnel", "chart": lambda: TMP / "shader.png",
+                                        "tolerance": lambda: 2e-4},
+    "optics.shaders.check.describe_check": {"against": lambda: "fresnel"},
+    "wavephys.app.pytest_plugin.Checker.glsl": {"source": lambda: _GLSL_FRESNEL, "function": lambda: "f",
+                                                "against": lambda: "fresnel", "tolerance": lambda: 2e-4},
     "optics.light.directions.refract": {"n": lambda: np.array([0.0, 0.0, 1.0])},
     "optics.light.directions.normalize": {"v": lambda: np.array([1.0, 2.0, 2.0])},
     "wavephys.core.grid.Grid.deposit": {"x": lambda: np.zeros(5), "y": lambda: np.zeros(5)},
@@ -314,7 +320,17 @@ OVERRIDES = {
                                                 "amplitude": lambda: 1.0},
 }
 
+_GLSL_FRESNEL = """float f(float c, float n1, float n2) {
+    float s2 = (n1 / n2) * (n1 / n2) * (1.0 - c * c);
+    if (s2 >= 1.0) return 1.0;
+    float t = sqrt(1.0 - s2);
+    float rs = (n1 * c - n2 * t) / (n1 * c + n2 * t), rp = (n1 * t - n2 * c) / (n1 * t + n2 * c);
+    return 0.5 * (rs * rs + rp * rp);
+}"""
+
 SKIP = {
+    # the shader check's verdict, made by check_glsl (its fields are what was measured)
+    "optics.shaders.check.ShaderReport",
     # the planner's answers and records, made by it (their fields are what it predicted)
     "wavephys.planner.plan.Term", "wavephys.planner.plan.Candidate", "wavephys.planner.plan.Infeasible",
     "wavephys.planner.plan.Plan",
@@ -361,7 +377,7 @@ SHAPED = {"eta", "eta_prev", "eta0", "eta1", "eta_dot", "eta_dot0", "eta_dot1", 
 SHAPE_FREE = {
     ("wavephys.core.grid.Grid.sample", "field"), ("optics.light.directions.normalize", "v"),
     ("wavephys.harness.dispersion.measure_dispersion", "eta"),
-    ("wavephys.harness.pytest_plugin.Checker.dispersion", "eta"),
+    ("wavephys.app.pytest_plugin.Checker.dispersion", "eta"),
     ("wavephys.plot.plot_surface", "eta"), ("wavephys.plot.plot_wake", "eta"), ("wavephys.plot.plot_images", "images"),
     ("wavephys.models.finite_difference.laplacian", "eta"), ("wavephys.models.truncated_kernel.convolve_periodic", "eta"),
     ("optics.caustics.common.bilateral_filter", "image"), ("optics.caustics.common.blur_121", "image"),

@@ -97,7 +97,7 @@ def test_no_public_function_over_80_lines():
 
 
 def test_plugin_costs_no_jax_import():
-    code = "import sys, wavephys.harness.pytest_plugin, wavephys, optics; print('jax' in sys.modules)"
+    code = "import sys, wavephys.app.pytest_plugin, wavephys, optics; print('jax' in sys.modules)"
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
     assert out.stdout.strip() == "False"
 

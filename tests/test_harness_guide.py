@@ -34,13 +34,51 @@ def test_guide_worked_example_explains_the_failure(capsys):
     assert f"measured {measured:g}" in guide.replace("\n", " ")  # the guide shows what it prints
 
 
-def test_readme_surfaces_example_runs_as_written(capsys):
-    readme = (ROOT / "README.md").read_text()
-    section = readme.split("## Cheap surface models, measured", 1)[1].split("\n## ", 1)[0]
+def test_validation_doc_surfaces_example_runs_as_written(capsys):
+    doc = (ROOT / "docs" / "validation.md").read_text()
+    section = doc.split("## Cheap surface models, measured", 1)[1].split("\n## ", 1)[0]
     (block,) = _python_blocks(section)
     namespace = {}
-    exec(compile(block, "README.md", "exec"), namespace)
+    exec(compile(block, "docs/validation.md", "exec"), namespace)
     printed = capsys.readouterr().out
     assert "fold at lambda = " in printed
     assert 0.01 < float(namespace["foam"].mean()) < 0.1  # some foam, on the steepest crests
     assert namespace["eta"].shape == (128, 128)
+
+
+def test_guide_shader_example_runs_as_written(pytester, tmp_path, capsys):
+    """The shader section's test passes as written; its command prints the failure the guide shows."""
+    from wavephys.app.cli import main
+
+    guide = (ROOT / "docs" / "harness.md").read_text()
+    section = guide.split("## Check your shaders", 1)[1]
+    (block,) = _python_blocks(section)[:1]
+    pytester.makepyfile(test_guide_shader=block)
+    pytester.runpytest_subprocess("-q", "-p", "no:cacheprovider").assert_outcomes(passed=1)
+    capsys.readouterr()
+    namespace = {}
+    exec(compile(block, "docs/harness.md", "exec"), namespace)
+    (tmp_path / "water.glsl").write_text(namespace["SCHLICK"])
+    command = re.search(r"```bash\n(wavephys check .*?)```", section, flags=re.S).group(1)
+    argv = command.replace("\\\n", " ").split()[1:]
+    argv = [str(tmp_path / a) if a in ("water.glsl", "fresnel.png") else a for a in argv]
+    assert main(argv) == 1
+    printed = capsys.readouterr().out
+    shown = re.search(r"```\n(float fresnelSchlick.*?)```", section, flags=re.S).group(1)
+    assert printed.splitlines()[0] == shown.splitlines()[0]
+    assert shown.strip().splitlines()[-1] in printed.splitlines()  # the cause line
+    assert (tmp_path / "fresnel.png").stat().st_size > 1000
+
+
+def test_readme_wake_and_step_examples_run_as_written(tmp_path, monkeypatch, capsys):
+    readme = (ROOT / "README.md").read_text()
+    monkeypatch.chdir(tmp_path)
+    for title in ("## Plot wakes and ring waves", "## The pure step"):
+        (block,) = _python_blocks(readme.split(title, 1)[1].split("\n## ", 1)[0])
+        namespace = {}
+        exec(compile(block, "README.md", "exec"), namespace)
+        if "edge" in namespace:
+            assert abs(namespace["edge"].angle - 19.47) < max(1.0, 2 * namespace["edge"].uncertainty)
+            assert (tmp_path / "wake.png").stat().st_size > 10_000
+        else:
+            assert namespace["etas"].shape == (4, 256, 256)

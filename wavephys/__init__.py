@@ -56,7 +56,7 @@ _legacy_getattr = _install(__name__, {
     "finite_difference": "wavephys.models.finite_difference",
     "truncated_kernel": "wavephys.models.truncated_kernel",
     "validate": "wavephys.harness",
-    "pytest_plugin": "wavephys.harness.pytest_plugin",
+    "pytest_plugin": "wavephys.app.pytest_plugin",
     "cli": "wavephys.app.cli",
     "noise": "wavephys.surfaces.noise",
     "gerstner": "wavephys.surfaces.gerstner",

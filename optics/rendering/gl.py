@@ -46,10 +46,12 @@ float fresnel_exact(float cos_i, float n1, float n2) {  // unpolarized dielectri
     float rp = (n1 * ct - n2 * c) / max(n1 * ct + n2 * c, 1e-30);
     return 0.5 * (rs * rs + rp * rp);
 }
-vec3 refract_dir(vec3 d, vec3 n, float eta) {  // Snell; n faces against d, eta = n1/n2
+vec3 refract_dir(vec3 d, vec3 n, float eta) {  // Snell; n faces against d, eta = n1/n2; vec3(0) under TIR
     float c = -dot(d, n);
     float k = 1.0 - eta * eta * (1.0 - c * c);
-    return normalize(eta * d + (eta * c - sqrt(max(k, 0.0))) * n);
+    if (k < 0.0) return vec3(0.0);
+    return normalize(eta * d + (eta * c - sqrt(k)) * n);
 }
 """
-"""GLSL: ``fresnel_exact(cos_i, n1, n2)`` and ``refract_dir(d, n, eta)``."""
+"""GLSL: ``fresnel_exact(cos_i, n1, n2)`` and ``refract_dir(d, n, eta)`` (vec3(0) under total internal
+reflection, as GLSL's ``refract``). Both pass their shader checks (``tests/test_shaders.py``)."""

@@ -6,6 +6,7 @@
   wavephys textures            export a built-in scene's textures
   wavephys plan SCENE          the cheapest model that meets a tolerance (the scene planner)
   wavephys report --out DIR    one self-contained HTML page of what is measured
+  wavephys check --glsl FILE   check a GLSL function against the physics (Fresnel, refraction, …)
 """
 
 from __future__ import annotations
@@ -284,6 +285,82 @@ def cmd_report(args, parser) -> int:
     return 0
 
 
+def _setting(text: str):
+    """``KEY=VALUE`` with VALUE a number, true/false/none, a comma list (a tuple; ``a,`` has one item) or text."""
+    key, sep, value = text.partition("=")
+    if not sep or not key.strip().isidentifier():
+        raise argparse.ArgumentTypeError(f"expected KEY=VALUE, got {text!r}")
+
+    def one(v: str):
+        v = v.strip()
+        low = v.lower()
+        if low in ("true", "false"):
+            return low == "true"
+        if low == "none":
+            return None
+        for kind in (int, float):
+            try:
+                return kind(v)
+            except ValueError:
+                pass
+        return v
+
+    parts = [one(v) for v in value.split(",") if v.strip()] if "," in value else None  # "above," is a 1-tuple
+    return key.strip(), tuple(parts) if parts is not None else one(value)
+
+
+def _read_glsl(parser, path: str) -> str:
+    p = Path(path)
+    if not p.is_file():
+        parser.error(f"--glsl: no file at {path}" if not p.exists() else f"--glsl: {path} is not a file")
+    try:
+        return p.read_text(encoding="utf-8")
+    except UnicodeDecodeError:
+        parser.error(f"--glsl: {path} is not a UTF-8 text file (GLSL source expected)")
+    except OSError as exc:
+        parser.error(f"--glsl: cannot read {path} ({exc.strerror})")
+
+
+def cmd_check(args, parser) -> int:
+    from wavephys.core.files import atomic_path, output_file
+
+    if args.list:
+        from optics.shaders import SHADER_CHECKS, describe_check
+
+        print("\n\n".join(describe_check(name) for name in SHADER_CHECKS))
+        return 0
+    if args.glsl is None or args.function is None or args.against is None:
+        parser.error("give --glsl FILE, --function NAME and --against CHECK (names from --list)")
+    source = _read_glsl(parser, args.glsl)
+    json_path = _checked(parser, output_file, args.json, "--json", (".json",)) if args.json else None
+    chart = _checked(parser, output_file, args.chart, "--chart", (".png",)) if args.chart else None
+    from optics.rendering.gl import RendererUnavailable
+    from optics.shaders import GLSLError, check_glsl
+
+    options = dict(args.option or [])
+    takes = tuple(t.strip() for t in args.takes.split(",")) if args.takes else None
+    try:
+        report = check_glsl(source, args.function, args.against, takes=takes, returns=args.returns,
+                            uniforms=dict(args.uniform or []) or None, tolerance=args.tolerance, chart=chart,
+                            **options)
+    except RendererUnavailable as exc:
+        print(f"wavephys check: {exc}", file=sys.stderr)
+        return 3
+    except GLSLError as exc:
+        print(f"wavephys check: {args.glsl}: {exc}", file=sys.stderr)
+        return 2
+    except (TypeError, ValueError) as exc:
+        parser.error(str(exc))
+    print(report.report())
+    if json_path is not None:
+        with atomic_path(json_path) as tmp:
+            tmp.write_text(json.dumps(report.as_dict(), indent=2))
+        print(f"wrote {json_path}")
+    if chart is not None:
+        print(f"wrote {chart}")
+    return 0 if report.ok else 1
+
+
 def _version() -> str:
     from wavephys import __version__
 
@@ -353,6 +430,31 @@ def build_parser() -> argparse.ArgumentParser:
     rp.add_argument("--figures", metavar="DIR", help="the bench charts' folder (default: the checkout's bench/figures)")
     rp.add_argument("--quick", action="store_true", help="smaller grids, one model card, one frame")
     rp.set_defaults(func=cmd_report)
+    ck = sub.add_parser("check", help="check a GLSL function against the physics (Fresnel, refraction, absorption, "
+                                      "normals)", epilog=EXIT_CODES.replace("a validation row failed",
+                                                                            "the function does not meet the physics"),
+                        formatter_class=fmt,
+                        description="Compile a GLSL function on the headless OpenGL context, evaluate it over its "
+                                    "whole input domain and compare it with the physics; print the worst error, "
+                                    "where it occurs and the likely cause.\n\n  wavephys check --glsl water.glsl "
+                                    "--function fresnel --against fresnel --option form=schlick")
+    ck.add_argument("--glsl", metavar="FILE", help="the GLSL source that defines the function")
+    ck.add_argument("--function", metavar="NAME", help="the function to check")
+    ck.add_argument("--against", metavar="CHECK", help="what it computes: fresnel, refract, reflect, transmittance, "
+                                                        "rgb_absorption, normal_decode, height_normal (see --list)")
+    ck.add_argument("--takes", metavar="ROLE,...", help="what each parameter is, in order (roles from --list; "
+                                                        "default: the check's own)")
+    ck.add_argument("--returns", metavar="TYPE", help="the return type you expect (float, vec3)")
+    ck.add_argument("--option", type=_setting, action="append", metavar="KEY=VALUE",
+                    help="an option of the check, e.g. form=schlick, sides=above, convention=directx (repeatable)")
+    ck.add_argument("--uniform", type=_setting, action="append", metavar="NAME=VALUE",
+                    help="a value for a uniform the function reads, e.g. uF0=0.02 or uTint=0.1,0.2,0.3 (repeatable)")
+    ck.add_argument("--tolerance", type=_float(0.0, open_lo=True), default=None, help="largest error allowed "
+                                                                                      "(default: the check's)")
+    ck.add_argument("--json", metavar="PATH", help="also write the report as JSON")
+    ck.add_argument("--chart", metavar="PATH", help="also draw the error over the domain (a .png)")
+    ck.add_argument("--list", action="store_true", help="list the checks, their roles and options, and exit")
+    ck.set_defaults(func=cmd_check)
     return parser
 
 

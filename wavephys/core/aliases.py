@@ -5,7 +5,7 @@ they now live in. ``import wavephys.dispersion`` and ``from wavephys import disp
 then give the very module object at the new place (nothing is copied, so monkeypatching
 either name affects both). An old name that was split over several modules gets a
 module of its own that re-exports their public names. Nothing is imported until the old
-name is used.
+name is used. Names listed as ``deprecated`` warn (``DeprecationWarning``) when imported.
 """
 
 from __future__ import annotations
@@ -15,15 +15,17 @@ import importlib.abc
 import importlib.util
 import sys
 import types
+import warnings
 
 __internal__ = True  # tooling for the library's own modules: not fuzzed as public API
 __all__ = ["install"]
 
 
 class _AliasFinder(importlib.abc.MetaPathFinder, importlib.abc.Loader):
-    def __init__(self, package: str, aliases: dict[str, tuple[str, ...]]):
+    def __init__(self, package: str, aliases: dict[str, tuple[str, ...]], deprecated=()):
         self.package = package
         self.aliases = {f"{package}.{old}": targets for old, targets in aliases.items()}
+        self.deprecated = {f"{package}.{old}" for old in deprecated}
 
     def find_spec(self, fullname, path=None, target=None):
         if fullname in self.aliases:
@@ -34,6 +36,9 @@ class _AliasFinder(importlib.abc.MetaPathFinder, importlib.abc.Loader):
         return None  # a placeholder module; exec_module replaces or fills it
 
     def exec_module(self, module):
+        if module.__name__ in self.deprecated:
+            warnings.warn(f"{module.__name__} has moved to {', '.join(self.aliases[module.__name__])}; the old "
+                          "name will be removed in a later release", DeprecationWarning, stacklevel=2)
         targets = [importlib.import_module(t) for t in self.aliases[module.__name__]]
         if len(targets) == 1:
             sys.modules[module.__name__] = targets[0]  # the import system returns this object
@@ -47,15 +52,16 @@ class _AliasFinder(importlib.abc.MetaPathFinder, importlib.abc.Loader):
         module.__doc__ = "Re-exports " + ", ".join(t.__name__ for t in targets) + " (the old module name)."
 
 
-def install(package: str, aliases: dict[str, str | tuple[str, ...]]):
-    """Make ``package.<old>`` importable for each ``old → new`` (or ``old → (new, new2, …)``).
+def install(package: str, aliases: dict[str, str | tuple[str, ...]], deprecated=()):
+    """Make ``package.<old>`` importable for each ``old → new`` (or ``old → (new, new2, …)``);
+    the old names in ``deprecated`` warn when imported.
 
     Returns a module ``__getattr__`` for the package, so ``package.<old>`` also works as an
     attribute after ``import package``.
     """
     table = {old: (new,) if isinstance(new, str) else tuple(new) for old, new in aliases.items()}
     if not any(isinstance(f, _AliasFinder) and f.package == package for f in sys.meta_path):
-        sys.meta_path.append(_AliasFinder(package, table))
+        sys.meta_path.append(_AliasFinder(package, table, deprecated))
 
     def __getattr__(name: str) -> types.ModuleType:
         if name in table:

@@ -10,12 +10,15 @@ they want to check (ours, a shader, a finite-difference toy):
 * :class:`Check`, :func:`compare`, :func:`bound`, :func:`assert_check` — result rows that
   report expected against measured against tolerance, and fail with that line.
 
-The pytest plugin (:mod:`wavephys.harness.pytest_plugin`, registered as ``pytest11``)
-exposes them as fixtures. Names load on first use: the plugin costs test sessions that
+The pytest plugin (:mod:`wavephys.app.pytest_plugin`, registered as ``pytest11``; the old
+path ``wavephys.harness.pytest_plugin`` still imports, with a DeprecationWarning) exposes
+them as fixtures. Names load on first use: the plugin costs test sessions that
 do not use its fixtures no JAX import.
 """
 
 import importlib
+
+from wavephys.core.aliases import install as _install
 
 _EXPORTS = {
     "DispersionSamples": "dispersion", "measure_dispersion": "dispersion", "dispersion_error": "dispersion",
@@ -28,12 +31,15 @@ _EXPORTS = {
 __all__ = list(_EXPORTS)
 
 
+_moved = _install(__name__, {"pytest_plugin": "wavephys.app.pytest_plugin"}, deprecated=("pytest_plugin",))
+
+
 def __getattr__(name):
     if name in _EXPORTS:
         value = getattr(importlib.import_module(f"wavephys.harness.{_EXPORTS[name]}"), name)
         globals()[name] = value
         return value
-    raise AttributeError(f"module 'wavephys.harness' has no attribute {name!r}")
+    return _moved(name)
 
 
 def __dir__():

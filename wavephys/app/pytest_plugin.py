@@ -2,15 +2,23 @@
 
 Installed with wavephys; any test suite can then ask for these fixtures::
 
-    def test_my_shader_waves(wavephys_check):
+    def test_my_waves(wavephys_check):
         eta = run_my_simulator(...)              # (n_t, n, n) heights, m
         wavephys_check.dispersion(eta, dx, dt, Water(sigma=0.0), rtol=0.01,
                                   k_range=(1.0, 20.0))
 
+    def test_my_fresnel(wavephys_check):
+        wavephys_check.glsl(open("water.glsl").read(), function="fresnel", against="fresnel",
+                            form="schlick")
+
 Fixtures: ``wavephys_water`` (default :class:`~wavephys.Water`) and ``wavephys_check``
-(a :class:`Checker`). Each method returns the :class:`~wavephys.harness.Check` it made and
-fails the test with expected / measured / tolerance when it is not ok. This module
-imports nothing heavy: JAX and NumPy load when a fixture is first used.
+(a :class:`Checker`). Each method returns the row or report it made and fails the test
+with expected / measured / tolerance (and the likely cause) when it is not ok. This module
+imports nothing heavy: JAX, NumPy and OpenGL load when a fixture is first used.
+
+The plugin lives in the application layer because it uses both the wave harness
+(:mod:`wavephys.harness`) and the optics (:mod:`optics.shaders`); its old path
+``wavephys.harness.pytest_plugin`` still imports, with a ``DeprecationWarning``.
 """
 
 from __future__ import annotations
@@ -66,6 +74,24 @@ class Checker:
         e = np.asarray(measure_energy(eta, eta_dot, dx, water).total)
         drift = np.max(np.abs(e / e[0] - 1.0))
         return assert_check(compare("energy drift", drift, 0.0, atol=rtol))
+
+    def glsl(self, source, function, against, *, takes=None, returns=None, uniforms=None, tolerance=None,
+             chart=None, **options):
+        """Assert that the GLSL ``function`` in ``source`` meets the physics of the check ``against``
+        over its whole input domain (:func:`optics.shaders.check_glsl`, same arguments).
+
+        Fails the test with the worst error, the input where it occurs and the likely cause;
+        returns the :class:`~optics.shaders.ShaderReport` when it passes. A source that does
+        not compile, or a function that is missing or has another signature, raises
+        :class:`~optics.shaders.GLSLError` (a ValueError) with the driver's message.
+        """
+        from optics.shaders import check_glsl
+
+        report = check_glsl(source, function, against, takes=takes, returns=returns, uniforms=uniforms,
+                            tolerance=tolerance, chart=chart, **options)
+        if not report.ok:
+            raise AssertionError(report.report())
+        return report
 
 
 @pytest.fixture
