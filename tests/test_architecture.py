@@ -138,3 +138,21 @@ def test_bench_is_not_installed():
 
     spec = importlib.util.find_spec("bench")
     assert spec is None or Path(spec.origin).parent.parent == ROOT  # only from a checkout
+
+
+def test_moved_plugin_path_warns_and_is_the_same_module():
+    code = ("import warnings, importlib; warnings.simplefilter('error', DeprecationWarning)\n"
+            "try:\n    importlib.import_module('wavephys.harness.pytest_plugin')\n"
+            "except DeprecationWarning as w:\n    print('warned', 'wavephys.app.pytest_plugin' in str(w))\n"
+            "warnings.simplefilter('ignore')\n"
+            "import wavephys.harness.pytest_plugin as old, wavephys.app.pytest_plugin as new\n"
+            "print(old is new, hasattr(new.Checker, 'glsl'))")
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
+    assert out.stdout.split() == ["warned", "True", "True", "True"]
+
+
+def test_plugin_entry_point_names_the_application_layer():
+    from importlib.metadata import entry_points
+
+    (ep,) = [e for e in entry_points(group="pytest11") if e.name == "wavephys"]
+    assert ep.value == "wavephys.app.pytest_plugin"

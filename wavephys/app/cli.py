@@ -367,6 +367,35 @@ def _version() -> str:
     return f"wavephys {__version__}"
 
 
+def _add_check_parser(sub, fmt) -> None:
+    """The ``check`` subcommand's options (a user's GLSL against the physics)."""
+    ck = sub.add_parser("check", help="check a GLSL function against the physics (Fresnel, refraction, absorption, "
+                                      "normals)", epilog=EXIT_CODES.replace("a validation row failed",
+                                                                            "the function does not meet the physics"),
+                        formatter_class=fmt,
+                        description="Compile a GLSL function on the headless OpenGL context, evaluate it over its "
+                                    "whole input domain and compare it with the physics; print the worst error, "
+                                    "where it occurs and the likely cause.\n\n  wavephys check --glsl water.glsl "
+                                    "--function fresnel --against fresnel --option form=schlick")
+    ck.add_argument("--glsl", metavar="FILE", help="the GLSL source that defines the function")
+    ck.add_argument("--function", metavar="NAME", help="the function to check")
+    ck.add_argument("--against", metavar="CHECK", help="what it computes: fresnel, refract, reflect, transmittance, "
+                                                        "rgb_absorption, normal_decode, height_normal (see --list)")
+    ck.add_argument("--takes", metavar="ROLE,...", help="what each parameter is, in order (roles from --list; "
+                                                        "default: the check's own)")
+    ck.add_argument("--returns", metavar="TYPE", help="the return type you expect (float, vec3)")
+    ck.add_argument("--option", type=_setting, action="append", metavar="KEY=VALUE",
+                    help="an option of the check, e.g. form=schlick, sides=above, convention=directx (repeatable)")
+    ck.add_argument("--uniform", type=_setting, action="append", metavar="NAME=VALUE",
+                    help="a value for a uniform the function reads, e.g. uF0=0.02 or uTint=0.1,0.2,0.3 (repeatable)")
+    ck.add_argument("--tolerance", type=_float(0.0, open_lo=True), default=None, help="largest error allowed "
+                                                                                      "(default: the check's)")
+    ck.add_argument("--json", metavar="PATH", help="also write the report as JSON")
+    ck.add_argument("--chart", metavar="PATH", help="also draw the error over the domain (a .png)")
+    ck.add_argument("--list", action="store_true", help="list the checks, their roles and options, and exit")
+    ck.set_defaults(func=cmd_check)
+
+
 def build_parser() -> argparse.ArgumentParser:
     """The argument parser (no heavy imports: ``--help`` answers at once)."""
     fmt = argparse.RawDescriptionHelpFormatter
@@ -430,31 +459,7 @@ def build_parser() -> argparse.ArgumentParser:
     rp.add_argument("--figures", metavar="DIR", help="the bench charts' folder (default: the checkout's bench/figures)")
     rp.add_argument("--quick", action="store_true", help="smaller grids, one model card, one frame")
     rp.set_defaults(func=cmd_report)
-    ck = sub.add_parser("check", help="check a GLSL function against the physics (Fresnel, refraction, absorption, "
-                                      "normals)", epilog=EXIT_CODES.replace("a validation row failed",
-                                                                            "the function does not meet the physics"),
-                        formatter_class=fmt,
-                        description="Compile a GLSL function on the headless OpenGL context, evaluate it over its "
-                                    "whole input domain and compare it with the physics; print the worst error, "
-                                    "where it occurs and the likely cause.\n\n  wavephys check --glsl water.glsl "
-                                    "--function fresnel --against fresnel --option form=schlick")
-    ck.add_argument("--glsl", metavar="FILE", help="the GLSL source that defines the function")
-    ck.add_argument("--function", metavar="NAME", help="the function to check")
-    ck.add_argument("--against", metavar="CHECK", help="what it computes: fresnel, refract, reflect, transmittance, "
-                                                        "rgb_absorption, normal_decode, height_normal (see --list)")
-    ck.add_argument("--takes", metavar="ROLE,...", help="what each parameter is, in order (roles from --list; "
-                                                        "default: the check's own)")
-    ck.add_argument("--returns", metavar="TYPE", help="the return type you expect (float, vec3)")
-    ck.add_argument("--option", type=_setting, action="append", metavar="KEY=VALUE",
-                    help="an option of the check, e.g. form=schlick, sides=above, convention=directx (repeatable)")
-    ck.add_argument("--uniform", type=_setting, action="append", metavar="NAME=VALUE",
-                    help="a value for a uniform the function reads, e.g. uF0=0.02 or uTint=0.1,0.2,0.3 (repeatable)")
-    ck.add_argument("--tolerance", type=_float(0.0, open_lo=True), default=None, help="largest error allowed "
-                                                                                      "(default: the check's)")
-    ck.add_argument("--json", metavar="PATH", help="also write the report as JSON")
-    ck.add_argument("--chart", metavar="PATH", help="also draw the error over the domain (a .png)")
-    ck.add_argument("--list", action="store_true", help="list the checks, their roles and options, and exit")
-    ck.set_defaults(func=cmd_check)
+    _add_check_parser(sub, fmt)
     return parser
 
 
