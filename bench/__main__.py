@@ -1,4 +1,4 @@
-"""``python -m bench {propagation,boundaries,optics,ship,wake,render,surfaces,scale,calibrate,planner} [--json PATH] [--quick]``.
+"""``python -m bench {propagation,boundaries,optics,jacobian,ship,wake,render,surfaces,scale,calibrate,planner} [--json PATH] [--quick]``.
 
 Each writes its rows as JSON and its charts as PNG next to it (default
 ``bench/results/``) and prints a table.
@@ -90,6 +90,25 @@ def run_optics(args) -> None:
     ab = [r for r in rows if r["family"] == "absorption"]
     print("rgb vs spectral: " + ", ".join(f"{r['distance']:.2g} m: {r['error']:.3f}" for r in ab[::6]))
     _write(rows, optics.figures(rows), Path(args.json or "bench/results/optics.json"))
+
+
+def run_jacobian(args) -> None:
+    from bench import jacobian
+
+    rows = jacobian.boundary_rows(_say, seeds=(1,) if args.quick else (1, 2), n=64 if args.quick else 128)
+    rows += jacobian.speed_rows(_say, sizes=(256,) if args.quick else (256, 512))
+    for fraction in jacobian.FRACTIONS:
+        sel = [r for r in rows if r["family"] == "jacobian boundary" and r["fraction"] == fraction]
+        gather = [r for r in sel if r["answered"] == "gather"]
+        worst = f"max-norm {max(r['error'] for r in gather):.2e}, L2 {max(r['l2_error'] for r in gather):.2e}" \
+            if gather else "none answered by the gather"
+        print(f"{fraction:4.2f} of the first fold: {len(gather)}/{len(sel)} gathered ({worst}); "
+              f"worst overall {max(r['error'] for r in sel):.2e}")
+    for r in rows:
+        if r["family"] == "jacobian speed":
+            print(f"speed n={r['n']} {r['method']}: {r['seconds'] * 1e3:.1f} ms = {r['ratio']:.1f} steps "
+                  f"(step {r['baseline_seconds'] * 1e3:.2f} ms)")
+    _write(rows, jacobian.figures(rows), Path(args.json or "bench/results/jacobian.json"))
 
 
 def run_ship(args) -> None:
@@ -244,6 +263,7 @@ def main(argv=None) -> int:
     for name, fn, help_ in (("propagation", run_propagation, "step vs bare FFT; error vs time"),
                             ("boundaries", run_boundaries, "measured failure boundaries"),
                             ("optics", run_optics, "Fresnel, absorption and caustics: error vs cost"),
+                            ("jacobian", run_jacobian, "jacobian caustics: error up to and past the first fold, cost"),
                             ("ship", run_ship, "moving hulls: kernels vs stones, FD wake, speed"),
                             ("wake", run_wake, "wake angles against Froude number: measured, theory, published law"),
                             ("render", run_render, "renderer: frame times, texture cost, GPU vs reference"),

@@ -52,6 +52,7 @@ def absorption_rows() -> list[dict]:
 
 
 CAUSTICS_CONFIGS = ([("beam", dict(refine=r), f"refine={r}") for r in (1, 2, 3, 4)]
+                    + [("jacobian", {}, "auto")]
                     + [("beam", dict(refine=r, normals="central"), f"refine={r} central") for r in (1, 3)]
                     + [("gl", dict(supersample=s), f"supersample={s}") for s in (1, 4, 8)]
                     + [("gl", dict(refine=3, supersample=s), f"refine=3 ss={s}") for s in (4, 8)]
@@ -122,6 +123,7 @@ def speed_rows(progress=print) -> list[dict]:
     state, _ = sim.run(sim.drop(sim.initial_state(), Stones(0.0, 0.0, 0.3, 0.05)), 30)
     eta = sim.surface(state).eta
     configs = {"beam (refine=1)": dict(method="beam", refine=1), "beam (refine=3, default)": dict(method="beam"),
+               "jacobian (auto)": dict(method="jacobian"),
                "gl (supersample=4, llvmpipe)": dict(method="gl", supersample=4),
                "photon (4/texel, bilateral)": dict(method="photon", photons_per_texel=4)}
     fns = {"step": lambda: sim.step(state)}

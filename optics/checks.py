@@ -134,9 +134,29 @@ def _generated_surface_rows() -> list[Check]:
     ref = converged_floor_irradiance(eta, grid, depth, sun, tolerance=2e-3)
     peak = float(ref.irradiance.max())
     beam = np.asarray(floor_irradiance(eta, grid, depth, sun), np.float64)
+    jac = np.asarray(floor_irradiance(eta, grid, depth, sun, method="jacobian", fold="raise"), np.float64)
     rows = [bound("converged reference on a generated 2-D sea: bound (max |E_2r - E_r| / peak)", ref.bound, 2e-3),
             bound("default beam (refine 3) vs the reference, generated 2-D sea: max |error| / peak",
-                  float(np.max(np.abs(beam - ref.irradiance))) / peak, 0.01)]
+                  float(np.max(np.abs(beam - ref.irradiance))) / peak, 0.01),
+            bound("jacobian gather vs the reference, same sea (0.6 of the first fold): max |error| / peak",
+                  float(np.max(np.abs(jac - ref.irradiance))) / peak, 0.01)]
+    import warnings
+
+    from optics.caustics import CausticsFold
+
+    deep = 1.5 * first_fold_depth(eta, grid, sun)
+    try:
+        floor_irradiance(eta, grid, deep, sun, method="jacobian", fold="raise")
+        refused = 0.0
+    except CausticsFold:
+        refused = 1.0
+    rows.append(bound("jacobian at 1.5 x the first fold: refused by name (1 = CausticsFold)", refused, 1.0,
+                      relation=">="))
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        handed = np.asarray(floor_irradiance(eta, grid, deep, sun, method="jacobian"), np.float64)
+    rows.append(bound("jacobian at 1.5 x the first fold, fold='beam': max |E - beam| (the beam answers)",
+                      float(np.max(np.abs(handed - np.asarray(floor_irradiance(eta, grid, deep, sun))))), 0.0))
     try:
         gl = floor_irradiance(eta, grid, depth, sun, method="gl", refine=3, supersample=8)
         rows.append(bound("GPU drawing (refine 3, supersample 8) vs the reference, same sea: max |error| / peak",

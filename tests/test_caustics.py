@@ -221,7 +221,7 @@ def test_bad_input(kw, name):
 
 
 def test_methods_are_a_family():
-    assert set(FLOOR_IRRADIANCE_METHODS) == {"beam", "gl", "photon", "reference", "blinn_phong"}
+    assert set(FLOOR_IRRADIANCE_METHODS) == {"beam", "jacobian", "gl", "photon", "reference", "blinn_phong"}
     with pytest.raises(TypeError, match="photons_per_txl"):  # a typo no method takes
         floor_irradiance(jnp.zeros((16, 16)), Grid(16, 1.0), 1.0, method="photon", photons_per_txl=4)
     # options of other methods are not passed on: the beam ignores photons_per_texel

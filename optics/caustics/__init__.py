@@ -11,6 +11,9 @@ The methods (:data:`FLOOR_IRRADIANCE_METHODS`), one module each:
 
 * ``"beam"`` — :func:`floor_irradiance_beam`, beam tracing by exact rasterization: every
   surface cell's two triangles spread their flux over their exact landed footprints;
+* ``"jacobian"`` — :func:`floor_irradiance_jacobian`, the area ratio of the landing map from
+  spectral curvatures, gathered per floor texel by Newton's method (below the first fold;
+  past it the beam answers, or it refuses by name);
 * ``"gl"`` — :func:`floor_irradiance_gl`, the same beams drawn by OpenGL (moderngl) into a
   float target with additive blending, the way Loviscach and WebGL Water do it in hardware;
 * ``"photon"`` — :func:`floor_irradiance_photon`, photon splatting with a bilateral filter;
@@ -29,6 +32,7 @@ from optics.caustics.beam import floor_irradiance_beam
 from optics.caustics.blinn_phong import floor_irradiance_blinn_phong
 from optics.caustics.common import bilateral_filter, blur_121, surface_fields
 from optics.caustics.gl import floor_irradiance_gl
+from optics.caustics.jacobian import CausticsFold, floor_irradiance_jacobian
 from optics.caustics.rays import floor_irradiance_photon
 from optics.caustics.surfaces import SURFACE_SPECTRA, random_surface
 from optics.caustics.reference import ConvergedIrradiance, converged_floor_irradiance, floor_irradiance_reference
@@ -36,11 +40,13 @@ from optics.light.fresnel import N_WATER
 from wavephys.core.methods import Methods
 
 __all__ = ["FLOOR_IRRADIANCE_METHODS", "floor_irradiance", "floor_irradiance_beam", "floor_irradiance_gl",
+           "floor_irradiance_jacobian", "CausticsFold",
            "floor_irradiance_photon", "floor_irradiance_reference", "converged_floor_irradiance", "ConvergedIrradiance",
            "floor_irradiance_blinn_phong", "random_surface", "SURFACE_SPECTRA", "first_fold_depth", "focal_depth",
            "sinusoid_irradiance", "bilateral_filter", "blur_121"]
 
-FLOOR_IRRADIANCE_METHODS = Methods("floor irradiance", beam=floor_irradiance_beam, gl=floor_irradiance_gl,
+FLOOR_IRRADIANCE_METHODS = Methods("floor irradiance", beam=floor_irradiance_beam, jacobian=floor_irradiance_jacobian,
+                                   gl=floor_irradiance_gl,
                                    photon=floor_irradiance_photon, reference=floor_irradiance_reference,
                                    blinn_phong=floor_irradiance_blinn_phong)
 """Caustics methods by name."""
@@ -68,7 +74,8 @@ def floor_irradiance(eta, grid, depth, sun=(0.0, 0.0, 1.0), method: str = "beam"
         Refractive index of water, ≥ 1.
     options
         The method's own options (each method takes only its own): ``fresnel``;
-        ``refine``, ``blur``, ``normals`` (beam); ``refine``, ``supersample`` (gl);
+        ``refine``, ``blur``, ``normals`` (beam); ``supersample``, ``iterations``, ``fold``
+        (jacobian); ``refine``, ``supersample`` (gl);
         ``photons_per_texel``, ``filter_radius``, ``seed`` (photon); ``tolerance``,
         ``max_refine`` (reference); ``exponent`` (blinn_phong).
 

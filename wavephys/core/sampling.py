@@ -23,8 +23,8 @@ import jax.numpy as jnp
 import numpy as np
 
 __internal__ = True  # tooling for the library's own modules (users call the Grid's methods)
-__all__ = ["texel_coordinates", "bilinear", "cloud_in_cell", "array_module", "triangle_window", "deposit_triangles",
-           "rasterize_triangles"]
+__all__ = ["texel_coordinates", "bilinear", "bspline", "cloud_in_cell", "array_module", "triangle_window",
+           "deposit_triangles", "rasterize_triangles"]
 
 MODES = ("wrap", "clamp")
 
@@ -67,6 +67,38 @@ def bilinear(field, u, v, mode: str = "wrap"):
         fu, fv = fu[..., None], fv[..., None]
     return ((f[i0, j0] * (1 - fu) + f[i0, j1] * fu) * (1 - fv)
             + (f[i1, j0] * (1 - fu) + f[i1, j1] * fu) * fv)
+
+
+def _bspline_weights(t):
+    """Cubic B-spline weights of the taps −1..2 around a point at fraction t, and their d/dt."""
+    t2, t3 = t * t, t * t * t
+    w = (((1 - t) ** 3) / 6, (3 * t3 - 6 * t2 + 4) / 6, (-3 * t3 + 3 * t2 + 3 * t + 1) / 6, t3 / 6)
+    dw = (-((1 - t) ** 2) / 2, (3 * t2 - 4 * t) / 2, (-3 * t2 + 2 * t + 1) / 2, t2 / 2)
+    return w, dw
+
+
+def bspline(coefficients, u, v, derivatives: bool = False):
+    """The periodic cubic B-spline with ``coefficients`` (rows, cols, channels) at texel
+    coordinates ``u``, ``v`` (1-D, the same length P): values (P, channels), and with
+    ``derivatives`` also d/du and d/dv (per texel). Coefficients come from
+    :func:`wavephys.core.spectral.bspline_coefficients` (channels last).
+
+    Each point reads one 4 × 4 window of the periodically padded coefficients (one gather
+    of windows, not 16 gathers of texels). JAX only (traceable).
+    """
+    rows, cols, channels = coefficients.shape
+    padded = jnp.pad(coefficients, ((1, 2), (1, 2), (0, 0)), mode="wrap")
+    iu, iv = jnp.floor(u), jnp.floor(v)
+    fu, fv = u - iu, v - iv
+    i0 = iv.astype(jnp.int32) % rows
+    j0 = iu.astype(jnp.int32) % cols
+    windows = jax.vmap(lambda i, j: jax.lax.dynamic_slice(padded, (i, j, 0), (4, 4, channels)))(i0, j0)
+    (wu, dwu), (wv, dwv) = _bspline_weights(fu), _bspline_weights(fv)
+    wu, dwu, wv, dwv = (jnp.stack(w, axis=1) for w in (wu, dwu, wv, dwv))  # (P, 4)
+    value = jnp.einsum("pi,pj,pijc->pc", wv, wu, windows)
+    if not derivatives:
+        return value
+    return (value, jnp.einsum("pi,pj,pijc->pc", wv, dwu, windows), jnp.einsum("pi,pj,pijc->pc", dwv, wu, windows))
 
 
 def cloud_in_cell(u, v, values, shape: tuple[int, int], mode: str = "wrap"):

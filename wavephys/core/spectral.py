@@ -21,7 +21,7 @@ from wavephys.core.sampling import array_module
 
 __internal__ = True  # tooling for the library's own modules (users call the Grid's methods)
 __all__ = ["angular_wavenumbers", "spectral_gradient", "central_gradient", "GRADIENT_METHODS", "gradient",
-           "spectral_laplacian", "fourier_refine"]
+           "spectral_laplacian", "fourier_refine", "spectral_derivatives", "bspline_coefficients"]
 
 
 def angular_wavenumbers(shape: tuple[int, int], spacing, real: bool = False, xp=None):
@@ -97,3 +97,31 @@ def fourier_refine(field, factor: int):
     ky, kx = angular_wavenumbers((m, m), 1.0 / m, real=True, xp=xp)  # on a unit square
     shift = 0.5 / m - 0.5 / n  # fine origin − coarse origin, in units of L
     return xp.fft.irfft2(full * xp.exp(1j * (kx + ky) * shift) * (factor * factor), s=(m, m)).astype(f.dtype)
+
+
+def spectral_derivatives(field, spacing):
+    """(∂f/∂x, ∂f/∂y, ∂²f/∂x², ∂²f/∂x∂y, ∂²f/∂y²) of a real periodic field by one FFT: exact for
+    band-limited fields (1/m and 1/m² × f), stacked on a new first axis."""
+    xp = array_module(field)
+    f = xp.asarray(field)
+    ny, nx = f.shape[-2:]
+    ky, kx = angular_wavenumbers((ny, nx), spacing, real=True, xp=xp)
+    spec = xp.fft.rfft2(f)
+    planes = xp.stack([1j * kx * spec, 1j * ky * spec, -kx * kx * spec, -kx * ky * spec, -ky * ky * spec])
+    return xp.fft.irfft2(planes, s=(ny, nx))
+
+
+def bspline_coefficients(field):
+    r"""Coefficients c of the periodic cubic B-spline that interpolates ``field`` (..., ny, nx) at its samples.
+
+    The spline Σ c_ij β³(u − j) β³(v − i) equals the field at every sample; its transfer
+    function per axis is (4 + 2 cos ω)/6 (ω = 2π·fftfreq), so c is the field's spectrum
+    divided by it (one FFT each way; Unser 1999, "Splines: a perfect fit for signal and
+    image processing"). Evaluate with :func:`wavephys.core.sampling.bspline`.
+    """
+    xp = array_module(field)
+    f = xp.asarray(field)
+    ny, nx = f.shape[-2:]
+    wy = (4.0 + 2.0 * xp.cos(2.0 * math.pi * xp.fft.fftfreq(ny))) / 6.0
+    wx = (4.0 + 2.0 * xp.cos(2.0 * math.pi * xp.fft.rfftfreq(nx))) / 6.0
+    return xp.fft.irfft2(xp.fft.rfft2(f) / (wy[:, None] * wx[None, :]), s=(ny, nx)).astype(f.dtype)
