@@ -253,3 +253,20 @@ def test_report_is_plain_data(shaders):
     assert d["against"] == "fresnel" and d["takes"] == ["cos_theta"] and isinstance(d["samples"], int)
     assert "llvmpipe" in d["renderer"] or d["renderer"]
     assert np.isfinite(d["error"]) and d["seconds"] > 0
+
+
+def test_chart_leaves_the_matplotlib_backend_alone(shaders, tmp_path):
+    """A notebook keeps its inline backend: the chart is drawn without pyplot."""
+    import subprocess
+    import sys
+
+    code = ("import matplotlib, sys; before = matplotlib.get_backend()\n"
+            "def refuse(*a, **k):\n    raise AssertionError('matplotlib.use called')\n"
+            "matplotlib.use = refuse\n"
+            "from optics.shaders import check_glsl\n"
+            "check_glsl('float f(float c) { return 0.0204 + 0.9796 * pow(1.0 - c, 5.0); }', 'f', 'fresnel', "
+            f"takes=('cos_theta',), form='schlick', sides='above', chart={str(tmp_path / 'c.png')!r})\n"
+            "print(matplotlib.get_backend() == before)")
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
+    assert out.stdout.split() == ["True"]
+    assert (tmp_path / "c.png").stat().st_size > 1000

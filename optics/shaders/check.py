@@ -96,16 +96,13 @@ class ShaderReport:
 
     def chart(self, path):
         """Draw the error over the domain (one line per side or group, the tolerance dashed) to a PNG."""
-        import matplotlib
-
-        matplotlib.use("Agg")
-        import matplotlib.pyplot as plt
+        from matplotlib.figure import Figure  # no pyplot: the caller's backend is left alone
 
         from wavephys.core.files import atomic_path, output_file
-
         path = output_file(path, "chart", (".png",))
         label, x = self._axis
-        fig, ax = plt.subplots(figsize=(6.0, 3.4), dpi=110)
+        fig = Figure(figsize=(6.0, 3.4), dpi=110)
+        ax = fig.add_subplot()
         floor = max(self.tolerance * 1e-4, 1e-12)
         for g in dict.fromkeys(self._groups.tolist()):
             on = self._groups == g
@@ -120,7 +117,6 @@ class ShaderReport:
         fig.tight_layout()
         with atomic_path(path) as tmp:
             fig.savefig(tmp, format="png")
-        plt.close(fig)
         return path
 
 
