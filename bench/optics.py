@@ -14,7 +14,7 @@ import numpy as np
 
 from bench.timing import interleaved, median_seconds
 from optics.caustics import floor_irradiance
-from optics.rendering.gl import RendererUnavailable
+from optics.gpu import RendererUnavailable
 from optics.light.attenuation import fit_rgb_coefficients, rgb_error
 from optics.light.fresnel import N_AIR, N_WATER, approximation_errors, reflectance
 from wavephys import Grid, Simulation, Stones, Water

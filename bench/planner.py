@@ -262,7 +262,7 @@ def kappa(progress=print, count: int = KAPPA_SCENES, seed: int = 99) -> dict:
     import tempfile
 
     from wavephys.planner import generate_scenes
-    from wavephys.planner.predict import scene_spectrum
+    from wavephys.planner.spectrum import scene_spectrum
 
     ratios = {}
     with tempfile.TemporaryDirectory() as tmp:

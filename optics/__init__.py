@@ -1,10 +1,12 @@
 """optics: light at and under the water surface, built on wavephys.
 
+* :mod:`optics.gpu` — the headless OpenGL context and the GLSL every shader shares;
 * :mod:`optics.light` — reflection and refraction directions, Fresnel (exact and the
   shader approximations), Beer–Lambert and spectral absorption (colour-science);
 * :mod:`optics.caustics` — irradiance on the floor (beam, photons, reference, Blinn–Phong);
 * :mod:`optics.rendering` — scenes, the headless moderngl renderer, its CPU reference
   tracer, and texture export;
+* :mod:`optics.shaders` — a user's GLSL checked against the physics;
 * :mod:`optics.checks` — the optics validations (rows of ``wavephys validate``).
 
 Submodules load on first use, so ``import optics`` stays light; ``optics.fresnel`` and
@@ -15,7 +17,7 @@ import importlib
 
 from wavephys.core.aliases import install as _install
 
-_SUBPACKAGES = ("light", "caustics", "rendering", "checks")
+_SUBPACKAGES = ("gpu", "light", "caustics", "rendering", "shaders", "checks")
 __all__ = list(_SUBPACKAGES)
 
 _legacy = _install(__name__, {

@@ -125,7 +125,7 @@ def check_caustics() -> list[Check]:
 def _generated_surface_rows() -> list[Check]:
     """A random 2-D sea (a band of directions, steepest slope 0.1, sun at 55 deg), floor at 0.6
     of the first fold: the default beam and the GPU drawing against the converged reference."""
-    from optics.rendering.gl import RendererUnavailable
+    from optics.gpu import RendererUnavailable
 
     grid = Grid(64, 2.0)
     eta = random_surface(grid, "band", 0.1, 7)

@@ -58,6 +58,7 @@ def _ship():
 
 
 EXAMPLES = {
+    "elevation": lambda: 35.0, "sun_elevation": lambda: 35.0, "azimuth": lambda: 120.0,
     # core objects
     "grid": _grid, "patch": lambda: Grid(8, 1.0), "water": Water, "model": _model,
     "state": lambda: initial_state(_model()), "before": _surface, "after": _surface,

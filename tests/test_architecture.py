@@ -2,6 +2,7 @@
 functions, cheap imports, and the old module names still importable."""
 
 import ast
+import re
 import subprocess
 import sys
 from pathlib import Path
@@ -31,54 +32,120 @@ def _imports(path: Path):
             yield from (f"{node.module}.{a.name}" for a in node.names)
 
 
-def _top_level_imports(path: Path):
-    """Imports executed when the module is imported (not inside functions)."""
-    tree = ast.parse(path.read_text())
-    for node in tree.body:
-        if isinstance(node, ast.Import):
-            yield from (a.name for a in node.names)
-        elif isinstance(node, ast.ImportFrom) and node.module and node.level == 0:
-            yield node.module
-            yield from (f"{node.module}.{a.name}" for a in node.names)
-
-
 MODULES = dict(_modules())
+TABLE = ROOT / "docs" / "architecture.md"
 
 
-def _layer(name: str) -> str:
-    if name.startswith(("wavephys.app", "wavephys.__main__", "wavephys.planner")):  # the command, the planner
-        return "app"
-    return "optics" if name.startswith("optics") else "wavephys"
+def _layer_table():
+    """docs/architecture.md's layer table: [(layer, packages, may import)], each a tuple of the
+    backquoted names in its column ("everything" for the application)."""
+    text = TABLE.read_text()
+    start = text.index("| layer | packages |")
+    rows = []
+    for line in text[start:].splitlines()[2:]:
+        if not line.startswith("|"):
+            break
+        cells = [c.strip() for c in line.strip("|").split("|")]
+        names = lambda cell: tuple(re.findall(r"`([A-Za-z_][\w.]*)`", cell))
+        rows.append((cells[0], names(cells[1]), "everything" if cells[3] == "everything" else names(cells[3])))
+    return rows
+
+
+LAYERS = _layer_table()
+FACES = {"wavephys", "optics"}  # the packages' own __init__: matched exactly, never as a prefix
+
+
+def _package(module: str):
+    """The table's package of ``module``: the longest listed prefix (the faces match exactly)."""
+    best = None
+    for _, packages, _ in LAYERS:
+        for p in packages:
+            hit = module == p if p in FACES else (module == p or module.startswith(p + "."))
+            if hit and (best is None or len(p) > len(best)):
+                best = p
+    return best
+
+
+def _allowed(package: str):
+    for _, packages, may in LAYERS:
+        if package in packages:
+            return may
+    raise KeyError(package)
+
+
+def test_the_layer_table_is_read():
+    """The table parses into every layer the project has (a reformatted table must not make the
+    layer test vacuous)."""
+    names = [row[0] for row in LAYERS]
+    assert len(LAYERS) >= 15 and names[0] == "foundation" and "application" in names, names
+    assert _allowed("wavephys.app") == "everything" and _allowed("wavephys.core") == ()
+    assert "optics.gpu" in _allowed("optics.caustics")
 
 
 @pytest.mark.parametrize("name", sorted(MODULES))
-def test_layers_point_one_way(name):
-    """Core physics and the harness never import optics; optics never imports the application."""
-    layer = _layer(name)
-    for imported in _imports(MODULES[name]):
-        if layer == "wavephys":
-            assert not imported.startswith(("optics", "wavephys.app", "wavephys.planner")), f"{name} imports {imported}"
-        if layer == "optics":
-            assert not imported.startswith(("wavephys.app", "wavephys.planner")), f"{name} imports {imported}"
+def test_every_module_is_in_the_layer_table(name):
+    assert _package(name) is not None, f"{name}: no row of docs/architecture.md's layer table names its package"
+
+
+@pytest.mark.parametrize("name", sorted(MODULES))
+def test_imports_follow_the_layer_table(name):
+    """Every import of ours (at any depth) is of the module's own package or one its row allows."""
+    own = _package(name)
+    may = _allowed(own)
+    if may == "everything":
+        return
+    bad = sorted({m for m in _imports(MODULES[name]) if m.split(".")[0] in PACKAGES
+                  and (p := _package(m)) is not None and p != own and p not in may})
+    assert not bad, f"{name} (package {own}) imports {bad}; docs/architecture.md allows {list(may)}"
+
+
+def _cycles(graph):
+    """Strongly connected components of more than one module (Tarjan)."""
+    index, low, stack, on, out = {}, {}, [], set(), []
+
+    def visit(v):
+        index[v] = low[v] = len(index)
+        stack.append(v)
+        on.add(v)
+        for w in graph[v]:
+            if w not in index:
+                visit(w)
+                low[v] = min(low[v], low[w])
+            elif w in on:
+                low[v] = min(low[v], index[w])
+        if low[v] == index[v]:
+            comp = []
+            while True:
+                w = stack.pop()
+                on.discard(w)
+                comp.append(w)
+                if w == v:
+                    break
+            if len(comp) > 1:
+                out.append(sorted(comp))
+
+    for v in graph:
+        if v not in index:
+            visit(v)
+    return out
+
+
+def _graph():
+    return {name: {m for m in _imports(path) if m in MODULES and m != name} for name, path in MODULES.items()}
 
 
 def test_no_import_cycles():
-    graph = {name: {m for m in _top_level_imports(path) if m in MODULES and m != name}
-             for name, path in MODULES.items()}
-    state = {}
+    """No circle among modules, lazy imports counted (a function-level import that closes a
+    circle is still one: the modules cannot be understood or moved apart)."""
+    assert not _cycles(_graph())
 
-    def visit(node, stack):
-        state[node] = "open"
-        for nxt in graph[node]:
-            if state.get(nxt) == "open":
-                raise AssertionError("import cycle: " + " -> ".join(stack[stack.index(nxt):] + [nxt]))
-            if nxt not in state:
-                visit(nxt, stack + [nxt])
-        state[node] = "done"
 
-    for node in graph:
-        if node not in state:
-            visit(node, [node])
+def test_layer_and_cycle_tests_can_fail():
+    """The checks above catch what they promise, on a made-up import of each kind."""
+    assert _cycles({"a": {"b"}, "b": {"c"}, "c": {"a"}, "d": set()}) == [["a", "b", "c"]]
+    assert "optics.rendering" not in _allowed("optics.caustics")  # the GL caustics' old import
+    assert "wavephys.parallel" not in _allowed("wavephys.physics")  # the forcing's old import
+    assert _package("wavephys.core.grid") == "wavephys.core" and _package("wavephys.corex") is None
 
 
 def _public_functions():

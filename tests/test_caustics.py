@@ -11,7 +11,7 @@ from hypothesis import strategies as st
 from optics.caustics import (FLOOR_IRRADIANCE_METHODS, SURFACE_SPECTRA, converged_floor_irradiance, first_fold_depth,
                              floor_irradiance, focal_depth, random_surface, sinusoid_irradiance)
 from optics.light.fresnel import N_AIR, N_WATER, reflectance
-from optics.rendering.gl import RendererUnavailable
+from optics.gpu import RendererUnavailable
 from wavephys import Grid
 from wavephys.core.sampling import deposit_triangles, triangle_window
 

@@ -241,15 +241,15 @@ def test_per_mode_closed_form_reproduces_the_step_for_both_ship_methods(method):
     impulse form is 19 %."""
     from wavephys.planner import ShipSpec
     from wavephys.planner.model import interior
-    from wavephys.planner.predict import _C, _dispersion, _waters, scene_spectrum
+    from wavephys.planner.spectrum import dispersion_variants, mode_dispersion, mode_heights, scene_spectrum
 
     ship = Scene(24.0, 0.375, depth=4.0, open_water=True, duration=0.3, fps=30.0, height_range=0.05,
                  ships=(ShipSpec(-1.0, 0.5, 2.0, 10.0, 2.0, 1.5, 0.03),), name="test-ship")
     spec = scene_spectrum(ship)
-    omega, m = _dispersion(spec.k, _waters(ship)[0])
+    omega, m = mode_dispersion(spec.k, dispersion_variants(ship)[0])
     got = run(ship, SceneModel(ship, Choices(second_order=False, ship_method=method))).heights[-1]
     modes = np.zeros((spec.n, spec.n), complex)
-    modes[spec.index] = _C(spec, omega, m, np.array([[ship.duration]]), False,
+    modes[spec.index] = mode_heights(spec, omega, m, np.array([[ship.duration]]), False,
                            1 / ship.fps if method == "impulses" else None)[0]
     predicted = interior(SceneModel(ship), np.real(np.fft.ifft2(modes)))
     assert np.abs(predicted - got).max() <= 0.01 * np.abs(got).max()
@@ -285,7 +285,9 @@ def test_ship_bounds_skip_coarsenings_that_cannot_divide_the_grid(monkeypatch):
 
     monkeypatch.setattr(predict, "patch_bound", patch)
     monkeypatch.setattr(predict, "margin_errors", lambda scene: {"n/8": 0.0})
-    predict._scene_spectrum.cache_clear()
+    import wavephys.planner.spectrum as spectrum
+
+    spectrum._scene_spectrum.cache_clear()
     bounds = predict.height_bounds(scene, 0.0)
     assert {key[2] for key in bounds} == {1, 2, 4}  # the doubled patch has no evaluation to fail
     assert {key[2] for key in bounds if key[6] == 1} == {1}

@@ -16,7 +16,7 @@ pytest.importorskip("moderngl")
 
 @pytest.fixture(scope="module")
 def shaders():
-    from optics.rendering.gl import RendererUnavailable
+    from optics.gpu import RendererUnavailable
 
     import optics.shaders
 
@@ -144,8 +144,8 @@ def test_list_names_every_check(shaders, capsys):
 
 
 def test_library_glsl_passes_its_own_checks(shaders):
-    """The renderer's and the GL caustics' shared GLSL (optics.rendering.gl) meets the physics."""
-    from optics.rendering.gl import GLSL_OPTICS
+    """The renderer's and the GL caustics' shared GLSL (optics.gpu) meets the physics."""
+    from optics.gpu import GLSL_OPTICS
 
     fresnel = shaders.check_glsl(GLSL_OPTICS, "fresnel_exact", "fresnel")
     refract = shaders.check_glsl(GLSL_OPTICS, "refract_dir", "refract", tir="zero")

@@ -27,7 +27,7 @@ flat water; the sinusoid's irradiance profile and focal depth. Adding a method: 
 module with a ``floor_irradiance_<name>`` function, and its entry in the mapping below.
 """
 
-from optics.caustics.analytic import first_fold_depth, focal_depth, sinusoid_irradiance
+from optics.caustics.analytic import first_fold_depth, flat_irradiance, focal_depth, sinusoid_irradiance
 from optics.caustics.beam import floor_irradiance_beam
 from optics.caustics.blinn_phong import floor_irradiance_blinn_phong
 from optics.caustics.common import bilateral_filter, blur_121, surface_fields
@@ -42,7 +42,7 @@ from wavephys.core.methods import Methods
 __all__ = ["FLOOR_IRRADIANCE_METHODS", "floor_irradiance", "floor_irradiance_beam", "floor_irradiance_gl",
            "floor_irradiance_jacobian", "CausticsFold",
            "floor_irradiance_photon", "floor_irradiance_reference", "converged_floor_irradiance", "ConvergedIrradiance",
-           "floor_irradiance_blinn_phong", "random_surface", "SURFACE_SPECTRA", "first_fold_depth", "focal_depth",
+           "floor_irradiance_blinn_phong", "random_surface", "SURFACE_SPECTRA", "first_fold_depth", "flat_irradiance", "focal_depth",
            "sinusoid_irradiance", "bilateral_filter", "blur_121"]
 
 FLOOR_IRRADIANCE_METHODS = Methods("floor irradiance", beam=floor_irradiance_beam, jacobian=floor_irradiance_jacobian,

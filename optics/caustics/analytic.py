@@ -3,7 +3,8 @@
 For η = a cos kx lit vertically with small slopes, the floor irradiance at depth z is
 E(X) = E0/|1 − (z/z_f) cos kx| at X = x − (z/z_f) sin(kx)/k with the focal depth
 z_f = n/((n − 1) a k²) (:func:`sinusoid_irradiance`, :func:`focal_depth`);
-:func:`first_fold_depth` finds where the traced mesh of any surface first folds.
+:func:`first_fold_depth` finds where the traced mesh of any surface first folds;
+:func:`flat_irradiance` is the floor's light under flat water (the E₀ of every method's E/E₀).
 """
 
 from __future__ import annotations
@@ -15,11 +16,39 @@ import jax.numpy as jnp
 import numpy as np
 
 from optics.caustics.common import land, surface_fields
-from optics.light.fresnel import N_WATER
+from optics.light.fresnel import N_AIR, N_WATER, reflectance_exact
 from wavephys.core.grid import Grid
 from wavephys.core.inputs import check_array, check_instance, check_scalar
 
-__all__ = ["sinusoid_irradiance", "focal_depth", "first_fold_depth"]
+__all__ = ["sinusoid_irradiance", "focal_depth", "first_fold_depth", "flat_irradiance"]
+
+
+def flat_irradiance(sun_elevation: float, n_air: float = N_AIR, n_water: float = N_WATER) -> float:
+    """E₀: the floor irradiance under flat water relative to the sun's irradiance on a horizontal
+    plane above it, the Fresnel transmittance 1 − R at the sun's incidence 90° − elevation
+    (the refracted beam's narrowing and the incidence's widening cancel on a horizontal floor).
+
+    Parameters
+    ----------
+    sun_elevation : float
+        Degrees above the horizon, in (0, 90].
+    n_air, n_water : float
+        Refractive indices.
+
+    Returns
+    -------
+    float
+        1 − R(cos θᵢ = sin e), in (0, 1).
+
+    Examples
+    --------
+    >>> round(flat_irradiance(90.0), 5)
+    0.97967
+    """
+    e = check_scalar("sun_elevation", sun_elevation, lo=0.0, hi=90.0, lo_open=True)
+    check_scalar("n_air", n_air, lo=1.0, hi=10.0)
+    check_scalar("n_water", n_water, lo=1.0, hi=10.0)
+    return 1.0 - float(reflectance_exact(math.sin(math.radians(e)), n_air, n_water))
 
 
 def focal_depth(amplitude, wavenumber, n_water=N_WATER):

@@ -12,7 +12,7 @@ surface's heights, exact slopes and sunlit mask are uploaded as one float textur
 
 Runs on any OpenGL 3.3 core context through EGL (Mesa llvmpipe on a CPU-only machine,
 the GPU driver elsewhere); without one it raises
-:class:`~optics.rendering.gl.RendererUnavailable`.
+:class:`~optics.gpu.RendererUnavailable`.
 """
 
 from __future__ import annotations
@@ -21,7 +21,7 @@ import numpy as np
 
 from optics.caustics.common import prepare, shadow_steps, sunlit
 from optics.light.fresnel import N_AIR, N_WATER
-from optics.rendering.gl import GLSL_OPTICS, gl_context
+from optics.gpu import GLSL_OPTICS, GLSL_SAMPLING, gl_context
 from wavephys.core.grid import Grid
 from wavephys.core.inputs import check_int
 
@@ -41,16 +41,7 @@ out vec2 cross_xy;            // where the ray crossed z = 0, m (unwrapped)
 out float trans;
 %OPTICS%
 const ivec2 CORNER[6] = ivec2[6](ivec2(0, 0), ivec2(1, 0), ivec2(1, 1), ivec2(0, 0), ivec2(1, 1), ivec2(0, 1));
-float ground_at(vec2 xy) {    // periodic bilinear, the library's cell-centred convention
-    vec2 u = (xy / L + 0.5) * float(ground_n) - 0.5;
-    vec2 f = floor(u);
-    vec2 w = u - f;
-    ivec2 i0 = ivec2(mod(f, float(ground_n)));
-    ivec2 i1 = (i0 + 1) % ground_n;
-    float a = texelFetch(ground_tex, i0, 0).r, b = texelFetch(ground_tex, ivec2(i1.x, i0.y), 0).r;
-    float c = texelFetch(ground_tex, ivec2(i0.x, i1.y), 0).r, e = texelFetch(ground_tex, i1, 0).r;
-    return (a * (1.0 - w.x) + b * w.x) * (1.0 - w.y) + (c * (1.0 - w.x) + e * w.x) * w.y;
-}
+float ground_at(vec2 xy) { return bilinear_at(ground_tex, ivec2(ground_n), xy, L, true).r; }  // periodic
 void main() {
     int cell = gl_VertexID / 6;
     ivec2 off = CORNER[gl_VertexID % 6];          // (column, row) offset of this corner
@@ -123,7 +114,7 @@ def _program():
     if "program" not in _STATE:
         ctx = gl_context()
         _STATE["ctx"] = ctx
-        _STATE["program"] = ctx.program(vertex_shader=VERTEX.replace("%OPTICS%", GLSL_OPTICS),
+        _STATE["program"] = ctx.program(vertex_shader=VERTEX.replace("%OPTICS%", GLSL_SAMPLING + GLSL_OPTICS),
                                         geometry_shader=GEOMETRY, fragment_shader=FRAGMENT)
         _STATE["vao"] = ctx.vertex_array(_STATE["program"], [])
     return _STATE["ctx"], _STATE["program"], _STATE["vao"]

@@ -19,12 +19,14 @@ tracer), JAX in → JAX out (traceable: the caustics).
 
 from __future__ import annotations
 
+import math
+
 import numpy as np
 
 from wavephys.core.inputs import check_array, check_scalar, is_traced
 from wavephys.core.sampling import array_module
 
-__all__ = ["normalize", "reflect", "refract", "transmissive_half_vector"]
+__all__ = ["normalize", "reflect", "refract", "transmissive_half_vector", "sun_direction"]
 
 
 def _check_vectors(name, v):
@@ -107,3 +109,37 @@ def transmissive_half_vector(light, view, n_ratio):
     _check_vectors("view", view)
     check_scalar("n_ratio", n_ratio, lo=1.0)
     return normalize(normalize(light) - normalize(view) / n_ratio)
+
+
+def sun_direction(elevation: float, azimuth: float = 0.0) -> tuple:
+    """Unit vector towards a light (the sun, or an eye) seen at ``elevation`` degrees above the
+    horizon and ``azimuth`` degrees anticlockwise from +x: (cos e cos a, cos e sin a, sin e).
+
+    The one place the library turns a sun elevation into a direction (the planner, the caustics
+    bench and the tests use it); the light travels along ``-sun_direction(...)``.
+
+    Parameters
+    ----------
+    elevation : float
+        Degrees above the horizon, in [-90, 90].
+    azimuth : float
+        Degrees anticlockwise from +x, finite; 180 puts the light behind a viewer looking along +x.
+
+    Returns
+    -------
+    tuple of float
+        (x, y, z), unit length.
+
+    Examples
+    --------
+    >>> sun_direction(90.0)
+    (0.0, 0.0, 1.0)
+    >>> [round(c, 6) for c in sun_direction(30.0, 180.0)]
+    [-0.866025, 0.0, 0.5]
+    """
+    e = math.radians(check_scalar("elevation", elevation, lo=-90.0, hi=90.0))
+    a = float(check_scalar("azimuth", azimuth))
+    quarter = {0.0: (1.0, 0.0), 90.0: (0.0, 1.0), 180.0: (-1.0, 0.0), 270.0: (0.0, -1.0)}.get(a % 360.0)
+    ca, sa = quarter or (math.cos(math.radians(a)), math.sin(math.radians(a)))  # exact on the axes
+    ce = 0.0 if abs(elevation) == 90.0 else math.cos(e)
+    return (ce * ca, ce * sa, math.sin(e))

@@ -9,9 +9,13 @@
   caustics, lookups) and their files.
 """
 
+from wavephys.core.aliases import install
+
 from optics.rendering.reference import psnr, trace
 from optics.rendering.renderer import Renderer, RendererUnavailable, render_sequence, save_png, to_srgb8
 from optics.rendering.scene import Camera, Effects, Scene, look_at
 
 __all__ = ["Scene", "Camera", "Effects", "look_at", "Renderer", "RendererUnavailable", "render_sequence",
            "save_png", "to_srgb8", "trace", "psnr"]
+
+__getattr__ = install("optics.rendering", {"gl": "optics.gpu"}, deprecated=("gl",))  # moved in 0.3

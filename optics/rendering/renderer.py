@@ -30,7 +30,7 @@ from pathlib import Path
 import numpy as np
 
 from optics.light.fresnel import normal_reflectance, reflectance_exact
-from optics.rendering.gl import EGL_PACKAGES, GLSL_OPTICS, RendererUnavailable, gl_context
+from optics.gpu import EGL_PACKAGES, GLSL_OPTICS, GLSL_SAMPLING, RendererUnavailable, gl_context
 from optics.rendering.scene import FAR_TILES, NEAR_TILES, SURROUNDINGS, Scene, sun_in_water, texture_sample
 from wavephys.core.files import atomic_path, output_file, output_folder
 from wavephys.core.progress import Progress
@@ -79,35 +79,11 @@ uniform float water_mean, foam_mean, near_tiles, far_tiles;
 uniform float perez_Y[5], perez_x[5], perez_y[5];  // Perez coefficients (host, float64: optics.light.sky)
 uniform vec3 sky_scale;
 out vec4 frag;
-
+%OPTICS%
 float eps;
 
-vec4 bilerp(sampler2D t, ivec2 size, vec2 xy) {
-    vec2 u = (xy / extent + 0.5) * vec2(size) - 0.5;
-    vec2 f = floor(u);
-    vec2 w = u - f;
-    ivec2 i = ivec2(f);
-    ivec2 i0 = clamp(i, ivec2(0), size - 1);
-    ivec2 i1 = clamp(i + 1, ivec2(0), size - 1);
-    vec4 a = texelFetch(t, ivec2(i0.x, i0.y), 0);
-    vec4 b = texelFetch(t, ivec2(i1.x, i0.y), 0);
-    vec4 c = texelFetch(t, ivec2(i0.x, i1.y), 0);
-    vec4 d = texelFetch(t, ivec2(i1.x, i1.y), 0);
-    return (a * (1.0 - w.x) + b * w.x) * (1.0 - w.y) + (c * (1.0 - w.x) + d * w.x) * w.y;
-}
-vec4 bilerp_wrap(sampler2D t, ivec2 size, vec2 xy) {
-    vec2 u = (xy / extent + 0.5) * vec2(size) - 0.5;
-    u = u - vec2(size) * floor(u / vec2(size));
-    vec2 f = floor(u);
-    vec2 w = u - f;
-    ivec2 i0 = ivec2(f) % size;
-    ivec2 i1 = (i0 + 1) % size;
-    vec4 a = texelFetch(t, ivec2(i0.x, i0.y), 0);
-    vec4 b = texelFetch(t, ivec2(i1.x, i0.y), 0);
-    vec4 c = texelFetch(t, ivec2(i0.x, i1.y), 0);
-    vec4 d = texelFetch(t, ivec2(i1.x, i1.y), 0);
-    return (a * (1.0 - w.x) + b * w.x) * (1.0 - w.y) + (c * (1.0 - w.x) + d * w.x) * w.y;
-}
+vec4 bilerp(sampler2D t, ivec2 size, vec2 xy) { return bilinear_at(t, size, xy, extent, false); }
+vec4 bilerp_wrap(sampler2D t, ivec2 size, vec2 xy) { return bilinear_at(t, size, xy, extent, true); }
 float fade(vec2 xy) {  // distance filtering of tiled fields
     float r = length(xy - eye.xy) / extent;
     float t = clamp((r - near_tiles) / (far_tiles - near_tiles), 0.0, 1.0);
@@ -138,7 +114,6 @@ vec3 normal_of(sampler2D t, ivec2 size, vec2 xy) {
     return normalize(vec3(-gx, -gy, 1.0));
 }
 
-%OPTICS%
 float reflectance(float cos_i, float n1, float n2) {
     if (e_fresnel) return fresnel_exact(cos_i, n1, n2);
     float c = clamp(cos_i, 0.0, 1.0);
@@ -168,19 +143,11 @@ vec3 preetham(vec3 d) {
 }
 
 vec3 environment(vec3 d) {
-    if (use_env) {
+    if (use_env) {  // equirectangular: periodic in azimuth, clamped at the poles
         const float PI = 3.14159265358979;
-        float u = (atan(d.y, d.x) + PI) / (2.0 * PI) * float(env_size.x) - 0.5;
-        float v = acos(clamp(d.z, -1.0, 1.0)) / PI * float(env_size.y) - 0.5;
-        float fi = floor(u), fj = floor(v);
-        float wu = u - fi, wv = v - fj;
-        int i = int(fi), j = int(fj);
-        int i0 = ((i % env_size.x) + env_size.x) % env_size.x;
-        int i1 = (((i + 1) % env_size.x) + env_size.x) % env_size.x;
-        int j0 = clamp(j, 0, env_size.y - 1), j1 = clamp(j + 1, 0, env_size.y - 1);
-        vec3 a = texelFetch(env_tex, ivec2(i0, j0), 0).rgb, b = texelFetch(env_tex, ivec2(i1, j0), 0).rgb;
-        vec3 c = texelFetch(env_tex, ivec2(i0, j1), 0).rgb, e = texelFetch(env_tex, ivec2(i1, j1), 0).rgb;
-        return (a * (1.0 - wu) + b * wu) * (1.0 - wv) + (c * (1.0 - wu) + e * wu) * wv;
+        vec2 u = vec2((atan(d.y, d.x) + PI) / (2.0 * PI) * float(env_size.x),
+                      acos(clamp(d.z, -1.0, 1.0)) / PI * float(env_size.y)) - 0.5;
+        return bilinear_texel(env_tex, env_size, u, bvec2(true, false)).rgb;
     }
     vec3 sky = sky_preetham ? preetham(d)
              : (d.z < 0.0 ? 0.5 * sky_horizon : sky_horizon + (sky_zenith - sky_horizon) * sqrt(max(d.z, 0.0)));
@@ -320,7 +287,7 @@ void main() {
     frag = vec4(c, 1.0);
 }
 """
-FRAGMENT = FRAGMENT.replace("%OPTICS%", GLSL_OPTICS)
+FRAGMENT = FRAGMENT.replace("%OPTICS%", GLSL_SAMPLING + GLSL_OPTICS)
 
 
 class Renderer:

@@ -126,10 +126,10 @@ def height_precision(eta, grid: Grid, bits: int, norm: str = "max") -> dict:
     h = float(grid.dx)
 
     def fd(f):
-        from wavephys.models.finite_difference import laplacian
+        from wavephys.core.spectral import central_laplacian
 
         gx, gy = central_gradient(f, h)
-        return np.hypot(gx, gy), laplacian(f) / (h * h)
+        return np.hypot(gx, gy), central_laplacian(f, h)
 
     sa, ca = fd(a)
     sb, cb = fd(b)

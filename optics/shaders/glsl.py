@@ -1,7 +1,7 @@
 """A user's GLSL function, found in its source, compiled and run over arrays of inputs.
 
 The function is called once per texel of a float32 render target from a fragment shader
-on the shared headless context (:func:`optics.rendering.gl.gl_context`: Mesa llvmpipe on
+on the shared headless context (:func:`optics.gpu.gl_context`: Mesa llvmpipe on
 a CPU-only machine, the GPU's driver elsewhere). Each argument is read from a float32
 texture with ``texelFetch`` (so values reach the function exactly as float32) or, for a
 ``sampler2D`` parameter, is a texture the function samples itself. The result is written
@@ -153,7 +153,7 @@ def find_function(source: str, function: str, types: tuple | None = None) -> Dec
 
 
 def _context():
-    from optics.rendering.gl import gl_context
+    from optics.gpu import gl_context
 
     if "ctx" not in _STATE:
         _STATE["ctx"] = gl_context()

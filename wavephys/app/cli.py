@@ -334,7 +334,7 @@ def cmd_check(args, parser) -> int:
     source = _read_glsl(parser, args.glsl)
     json_path = _checked(parser, output_file, args.json, "--json", (".json",)) if args.json else None
     chart = _checked(parser, output_file, args.chart, "--chart", (".png",)) if args.chart else None
-    from optics.rendering.gl import RendererUnavailable
+    from optics.gpu import RendererUnavailable
     from optics.shaders import GLSLError, check_glsl
 
     options = dict(args.option or [])

@@ -20,8 +20,8 @@ import math
 from wavephys.core.sampling import array_module
 
 __internal__ = True  # tooling for the library's own modules (users call the Grid's methods)
-__all__ = ["angular_wavenumbers", "spectral_gradient", "central_gradient", "GRADIENT_METHODS", "gradient",
-           "spectral_laplacian", "fourier_refine", "spectral_derivatives", "bspline_coefficients"]
+__all__ = ["angular_wavenumbers", "spectral_gradient", "central_gradient", "central_laplacian", "GRADIENT_METHODS",
+           "gradient", "spectral_laplacian", "fourier_refine", "spectral_derivatives", "bspline_coefficients"]
 
 
 def angular_wavenumbers(shape: tuple[int, int], spacing, real: bool = False, xp=None):
@@ -56,6 +56,15 @@ def central_gradient(field, spacing):
 
 GRADIENT_METHODS = {"spectral": spectral_gradient, "central": central_gradient}
 """Gradient methods by name: exact spectral, or central differences (what a shader does)."""
+
+
+def central_laplacian(field, spacing):
+    """∇²f by the periodic 5-point stencil on the last two axes (second order, no transforms),
+    1/spacing² × f. NumPy in → NumPy out, JAX in → JAX out."""
+    xp = array_module(field)
+    f = xp.asarray(field)
+    return (xp.roll(f, 1, -1) + xp.roll(f, -1, -1) + xp.roll(f, 1, -2) + xp.roll(f, -1, -2) - 4.0 * f) / (
+        spacing * spacing)
 
 
 def gradient(field, spacing, method: str = "spectral"):

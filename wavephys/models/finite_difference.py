@@ -30,7 +30,6 @@ import numpy as np
 from wavephys.core.inputs import Array, Real, Spec, check_array, check_bool, check_int, check_scalar, validate
 from wavephys.models.two_level import check_levels, run_two_level
 from wavephys.core.grid import Grid
-from wavephys.core.sampling import array_module
 
 __all__ = [
     "STABILITY_LIMIT",
@@ -84,10 +83,11 @@ _POSITIVE = Real(lo=0.0, lo_open=True)
 def laplacian(eta):
     """Periodic 5-point Laplacian on the last two axes, in grid units (1/Δx² omitted).
 
-    NumPy in → NumPy out (float64 measurements), JAX in → JAX out."""
-    xp = array_module(eta)
-    return (xp.roll(eta, 1, -1) + xp.roll(eta, -1, -1) + xp.roll(eta, 1, -2)
-            + xp.roll(eta, -1, -2) - 4.0 * eta)
+    NumPy in → NumPy out (float64 measurements), JAX in → JAX out
+    (:func:`wavephys.core.spectral.central_laplacian` at unit spacing)."""
+    from wavephys.core.spectral import central_laplacian
+
+    return central_laplacian(eta, 1.0)
 
 
 @validate(eta=_Level(), eta_prev=_Level(like="eta"), courant=_COURANT, damping=_DAMPING)

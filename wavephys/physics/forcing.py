@@ -72,18 +72,13 @@ class Forcing:
         _check_pressure(self.pressure, model.grid.n, float(model.grid.length))
 
     def rate(self, model, ops, t):
-        """Ŝ = −p̂/ρ at time ``t`` on the rfft2 half spectrum (m²/s² per sample, DFT convention)."""
-        x, y = model.grid.mesh()
-        mesh = getattr(model, "mesh", None)
-        if mesh is not None:  # evaluated block by block on the devices of a sharded model
-            from wavephys.parallel.layout import constrain, field_sharding
+        """Ŝ = −p̂/ρ at time ``t`` on the rfft2 half spectrum (m²/s² per sample, DFT convention).
 
-            x, y = (constrain(jnp.broadcast_to(a, (model.grid.n,) * 2), field_sharding(mesh, model.mesh_axis, 2))
-                    for a in (x, y))
+        The pressure is evaluated on ``model.mesh_fields()`` and transformed by
+        ``model.rfft2``: on a sharded model both stay split over its devices."""
+        x, y = model.mesh_fields()
         p = jnp.asarray(self.pressure(x.astype(ops.cos.dtype), y.astype(ops.cos.dtype), t), ops.cos.dtype)
-        from wavephys.parallel.fft import rfft2
-
-        return -rfft2(p, mesh, getattr(model, "mesh_axis", "rows")) / model.water.rho
+        return -model.rfft2(p) / model.water.rho
 
 
 @lru_cache(maxsize=64)

@@ -31,7 +31,7 @@ import numpy as np
 
 from wavephys.planner.model import CAUSTICS_REFINE, FULL_REFINE, SceneModel
 
-__all__ = ["sun_vector", "flat_irradiance", "full_surfaces", "CausticsErrors", "caustics_errors", "MARGIN",
+__all__ = ["full_surfaces", "CausticsErrors", "caustics_errors", "MARGIN",
            "SAMPLED_FRAMES", "MAX_CAUSTICS_TEXELS"]
 
 MAX_CAUSTICS_TEXELS = 512
@@ -44,21 +44,6 @@ SAMPLED_FRAMES = 5
 scenes). A sampled estimate: focusing can peak between them (hence :data:`MARGIN`)."""
 
 
-def sun_vector(sun_elevation: float) -> tuple:
-    """Direction towards the sun at ``sun_elevation`` degrees, behind the viewer (who looks
-    along +x, :func:`wavephys.planner.runner.shade`)."""
-    e = math.radians(sun_elevation)
-    return (-math.cos(e), 0.0, math.sin(e))
-
-
-def flat_irradiance(sun_elevation: float) -> float:
-    """E₀: the floor irradiance under flat water, relative to the sun's horizontal irradiance:
-    the Fresnel transmittance at the sun's incidence (90° − elevation)."""
-    from optics.light.fresnel import N_AIR, N_WATER, reflectance_exact
-
-    return 1.0 - float(reflectance_exact(math.sin(math.radians(sun_elevation)), N_AIR, N_WATER))
-
-
 def _sampled_frames(frames: int) -> tuple:
     return tuple(sorted({int(round(v)) for v in np.linspace(1, frames, min(SAMPLED_FRAMES, frames))}))
 
@@ -67,16 +52,16 @@ def full_surfaces(scene) -> tuple:
     """(frame numbers, heights (F, n, n) float64 m): the full model's surface at the sampled
     frames on the output texels, from its closed form (linear modes at time t, then
     η + ½ Re(η_c Λη_c) on the grid). Needs a periodic scene (no margin)."""
-    from wavephys.planner.predict import _C, _dispersion, _waters, scene_spectrum
+    from wavephys.planner.spectrum import dispersion_variants, mode_dispersion, mode_heights, scene_spectrum
 
     spec = scene_spectrum(scene)
     n = spec.n
-    omega, m = _dispersion(spec.k, _waters(scene)[0])
+    omega, m = mode_dispersion(spec.k, dispersion_variants(scene)[0])
     frames = _sampled_frames(scene.frames)
     t = (np.asarray(frames, np.float64) / scene.fps)[:, None]
-    c = _C(spec, omega, m, t)
+    c = mode_heights(spec, omega, m, t)
     if np.any(spec.W):
-        c = c + _C(spec, omega, m, t, wind=True)
+        c = c + mode_heights(spec, omega, m, t, wind=True)
     rows, cols = spec.index
     k = np.zeros((n, n))
     k[rows, cols] = spec.k
@@ -123,7 +108,10 @@ def _caustics_errors(scene) -> CausticsErrors:
 
     start = time.perf_counter()
     grid = SceneModel(scene).output_grid
-    sun = sun_vector(scene.sun_elevation)
+    from optics.caustics import flat_irradiance
+    from optics.light.directions import sun_direction
+
+    sun = sun_direction(scene.sun_elevation, 180.0)  # behind the viewer, who looks along +x
     e0 = flat_irradiance(scene.sun_elevation)
     frames, heights = full_surfaces(scene)
     delta = {r: 0.0 for r in CAUSTICS_REFINE}

@@ -37,9 +37,10 @@ from wavephys.planner.caustics import MARGIN, caustics_errors
 from wavephys.planner.cost import calibration, caustics_cost, colour_cost, height_cost, texture_cost
 from wavephys.planner.model import (ABSORPTION_METHODS, CAUSTICS_REFINE, FRESNEL_FORMS, FULL_REFINE,
                                     TERMS, TEXTURE_BYTES, TEXTURES, Choices, SceneModel, full_choices)
-from wavephys.planner.predict import (MARGIN_TEXELS, HeightBounds, height_bounds, height_peak, scene_spectrum,
-                                      surface_bounds, texture_error)
+from wavephys.planner.predict import (MARGIN_TEXELS, HeightBounds, height_bounds, height_peak, surface_bounds,
+                                      texture_error)
 from wavephys.planner.scene import Scene
+from wavephys.planner.spectrum import scene_spectrum
 
 __all__ = ["plan", "Plan", "Term", "Candidate", "Infeasible", "full_model", "candidates", "colour_errors"]
 

@@ -57,7 +57,7 @@ def _wind_psi(model: SceneModel):
     """The wind sea on the simulation grid: the full grid's ĥ restricted to the modes this grid
     holds (its Nyquist row and column left out) and referred to its first sample, as a
     travelling field ψ̂ = −i(ω/K)ĥ of the configuration's own dispersion."""
-    from wavephys.planner.predict import _dispersion, wind_heights
+    from wavephys.planner.spectrum import mode_dispersion, wind_heights
 
     full, grid = model.full_grid, model.grid
     h_full = wind_heights(model.scene, full)
@@ -68,7 +68,7 @@ def _wind_psi(model: SceneModel):
     h[nyq, :] = 0.0
     h[:, nyq] = 0.0
     k = np.asarray(grid.wavenumber_magnitude(), np.float64)
-    omega, m = _dispersion(k, model.water)
+    omega, m = mode_dispersion(k, model.water)
     inverse = np.where(m > 0, 1.0 / np.where(m > 0, m, 1.0), 0.0)
     return np.fft.ifft2(-1j * inverse * h)
 
@@ -83,7 +83,7 @@ def run(scene: Scene, model: SceneModel) -> Output:
     if scene.ships:
         model.check_ships()
     start = _time.perf_counter()
-    frames = _heights(model) if model.choices.surface == "spectral" else surface_frames(model)
+    frames = simulated_heights(model) if model.choices.surface == "spectral" else surface_frames(model)
     stored = encode_texture(frames, model.choices.texture, model.output_grid)
     seconds = _time.perf_counter() - start
     heights = decode_texture(stored)  # what the renderer reads (decoded in its shader, not timed here)
@@ -92,7 +92,7 @@ def run(scene: Scene, model: SceneModel) -> Output:
     return Output(heights, image, seconds, _time.perf_counter() - t0)
 
 
-def _heights(model: SceneModel) -> np.ndarray:
+def simulated_heights(model: SceneModel) -> np.ndarray:
     """The spectral step's frames (F, n, n), m, on the output texels: the pure step over the
     scene, frames blended between steps and refined onto the texels."""
     import wavephys.simulation.stepping as stepping
@@ -148,7 +148,7 @@ def surface_frames(model: SceneModel) -> np.ndarray:
     name = model.choices.surface
     if name == "spectral":
         raise ValueError("surface_frames is for the surface models other than 'spectral' (run() steps that one)")
-    from wavephys.planner.predict import CHOPPINESS, _dispersion, gerstner_modes, noise_sea, scene_spectrum, wind_heights
+    from wavephys.planner.spectrum import CHOPPINESS, gerstner_modes, mode_dispersion, noise_sea, scene_spectrum, wind_heights
 
     scene, grid = model.scene, model.output_grid
     times = np.arange(1, scene.frames + 1) / scene.fps
@@ -168,7 +168,7 @@ def surface_frames(model: SceneModel) -> np.ndarray:
         from wavephys.surfaces.resample import resample_heights
 
         k = np.asarray(grid.wavenumber_magnitude(), np.float64)
-        omega = jnp.asarray(_dispersion(k, model.water)[0], jnp.float32)
+        omega = jnp.asarray(mode_dispersion(k, model.water)[0], jnp.float32)
         w = jnp.asarray(wind_heights(scene, grid), jnp.complex64)
         out = []
         for t in times:
@@ -248,6 +248,7 @@ def shade(scene: Scene, model: SceneModel, heights):
     d down to the floor and straight back up (0 in deep water), and E/E₀ the floor's
     irradiance relative to flat water's (:func:`floor_light`; 1 where the scene shows no
     caustics). [0, 1] scale, shape (n, n, 3)."""
+    from optics.light.directions import sun_direction
     from optics.light.fresnel import N_WATER, reflectance
     from wavephys.core.inputs import check_array
 
@@ -262,8 +263,7 @@ def shade(scene: Scene, model: SceneModel, heights):
     gx, gy = (np.asarray(g, np.float64) for g in grid.gradient(jnp.asarray(heights)))
     normal = np.stack([-gx, -gy, np.ones_like(gx)], -1)
     normal /= np.linalg.norm(normal, axis=-1, keepdims=True)
-    e = math.radians(scene.view_elevation)
-    to_eye = np.array([-math.cos(e), 0.0, math.sin(e)])
+    to_eye = np.array(sun_direction(scene.view_elevation, 180.0))  # the viewer looks along +x
     cos_i = np.clip(normal @ to_eye, 0.0, 1.0)
     r = np.asarray(reflectance(jnp.asarray(cos_i, jnp.float32), method=model.choices.fresnel), np.float64)
     if math.isinf(scene.depth):
@@ -291,10 +291,11 @@ def floor_light(scene: Scene, model: SceneModel, heights) -> np.ndarray:
     if not scene.caustics or not refine:
         return np.ones((scene.texels, scene.texels))
     from optics.caustics import floor_irradiance_beam
-    from wavephys.planner.caustics import flat_irradiance, sun_vector
+    from optics.caustics import flat_irradiance
+    from optics.light.directions import sun_direction
 
     e = floor_irradiance_beam(jnp.asarray(heights, jnp.float32), model.output_grid, scene.depth,
-                              sun_vector(scene.sun_elevation), refine=refine)
+                              sun_direction(scene.sun_elevation, 180.0), refine=refine)
     return np.asarray(e, np.float64) / flat_irradiance(scene.sun_elevation)
 
 

@@ -18,10 +18,11 @@ import numpy as np
 from jax.sharding import Mesh
 
 from wavephys.core.grid import Grid
-from wavephys.core.inputs import check_bool, check_instance, check_int, check_scalar, is_traced
+from wavephys.core.inputs import check_array, check_bool, check_instance, check_int, check_scalar, is_traced
 from wavephys.core.pytree import register
 from wavephys.core.water import Water
-from wavephys.parallel.layout import AXIS, check_mesh, device_count, field_sharding, place, spectrum_sharding, spectrum_width
+from wavephys.parallel.layout import (AXIS, check_mesh, constrain, device_count, field_sharding, place, spectrum_sharding,
+                                      spectrum_width)
 from wavephys.physics.boundary import CUTOFF_METHODS, cutoff_mask
 from wavephys.physics.dispersion import angular_frequency, surface_operator
 from wavephys.physics.heights import height_multiplier
@@ -138,6 +139,26 @@ class Model:
         devices when sharded (:func:`wavephys.parallel.layout.spectrum_width`)."""
         n = self.grid.n
         return n // 2 + 1 if self.mesh is None else spectrum_width(n, self.device_count)
+
+    def mesh_fields(self):
+        """The grid's sample coordinates ``(x, y)``, m, each ``(n, n)`` and laid out like the
+        model's real fields (split by rows over the mesh when sharded): what a source evaluates
+        a field on, block by block on the devices."""
+        x, y = self.grid.mesh()
+        if self.mesh is None:
+            return x, y
+        sharding = field_sharding(self.mesh, self.mesh_axis, 2)
+        return tuple(constrain(jnp.broadcast_to(a, (self.grid.n,) * 2), sharding) for a in (x, y))
+
+    def rfft2(self, field):
+        """The rfft2 half spectrum of a real field ``(..., n, n)`` in the model's layout: the
+        slab-decomposed transform on a sharded model (:func:`wavephys.parallel.fft.rfft2`), so
+        a source's spectrum is never gathered on one device."""
+        from wavephys.parallel.fft import rfft2
+
+        n = self.grid.n
+        check_array("field", field, min_ndim=2, shape_tail=(n, n))
+        return rfft2(field, self.mesh, self.mesh_axis)
 
 
 register(Model, ("grid", "water", "dt"),
