@@ -4,13 +4,13 @@ over, and its cost against a simulation step and the default beam (same run, int
 
 from __future__ import annotations
 
-import math
 import statistics
 import warnings
 
 import numpy as np
 
 from bench.timing import interleaved
+from optics.light.directions import sun_direction
 from wavephys import Grid, Simulation, Stones, Water
 
 FRACTIONS = (0.1, 0.3, 0.5, 0.7, 0.8, 0.9, 1.0, 1.2, 1.5)
@@ -29,10 +29,9 @@ def boundary_rows(progress=print, seeds=(1, 2), n: int = 128) -> list[dict]:
     for spectrum in SURFACE_SPECTRA:
         for seed in seeds:
             eta = random_surface(grid, spectrum, 0.12, seed)
-            az = np.random.default_rng(seed).uniform(0.0, 2 * math.pi)
+            az = np.random.default_rng(seed).uniform(0.0, 360.0)
             for elevation in (90.0, 55.0):
-                e = math.radians(elevation)
-                sun = (math.cos(e) * math.cos(az), math.cos(e) * math.sin(az), math.sin(e))
+                sun = sun_direction(elevation, az)
                 fold = first_fold_depth(eta, grid, sun)
                 progress(f"jacobian boundary: {spectrum} seed {seed} sun {elevation:.0f} deg (first fold {fold:.3g} m)")
                 for fraction in FRACTIONS:

@@ -5,7 +5,6 @@ reference; the beam-tracing speed against one N = 512 simulation step.
 
 from __future__ import annotations
 
-import math
 import statistics
 
 import jax
@@ -13,6 +12,7 @@ import jax.numpy as jnp
 import numpy as np
 
 from bench.timing import interleaved, median_seconds
+from optics.light.directions import sun_direction
 from optics.caustics import floor_irradiance
 from optics.gpu import RendererUnavailable
 from optics.light.attenuation import fit_rgb_coefficients, rgb_error
@@ -73,11 +73,11 @@ def _family(count: int, seed: int = 2024):
         eta = random_surface(grid, spectrum, float(rng.uniform(0.03, 0.15)), int(rng.integers(1 << 30)))
         if rng.random() < 0.5:
             eta = jnp.rot90(eta)
-        elevation, azimuth = math.radians(rng.uniform(40.0, 90.0)), rng.uniform(0.0, 2 * math.pi)
-        sun = (math.cos(elevation) * math.cos(azimuth), math.cos(elevation) * math.sin(azimuth), math.sin(elevation))
+        elevation, azimuth = rng.uniform(40.0, 90.0), rng.uniform(0.0, 360.0)
+        sun = sun_direction(elevation, azimuth)
         fraction = (0.3, 0.6, 0.9)[i % 3]
         depth = fraction * first_fold_depth(eta, grid, sun)
-        yield dict(case=i, spectrum=spectrum, elevation=math.degrees(elevation), fraction=fraction, depth=depth), \
+        yield dict(case=i, spectrum=spectrum, elevation=elevation, fraction=fraction, depth=depth), \
             grid, eta, sun
 
 

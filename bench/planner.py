@@ -143,13 +143,12 @@ def optics_seconds(progress=print) -> tuple[dict, dict]:
     shading evaluates them (eager, float32 reflectance; transmittance tables cached)."""
     import jax.numpy as jnp
 
-    from optics.light.fresnel import reflectance
-    from wavephys.planner.model import FRESNEL_FORMS
+    from optics.light.fresnel import REFLECTANCE_METHODS, reflectance
     from wavephys.planner.runner import transmittance
     from wavephys.planner.scene import Scene, StoneSpec
 
     cos = jnp.asarray(np.random.default_rng(0).uniform(0, 1, 1_000_000), jnp.float32)
-    fresnel = {f: _median(lambda: reflectance(cos, method=f), repeats=5) for f in FRESNEL_FORMS}
+    fresnel = {f: _median(lambda: reflectance(cos, method=f), repeats=5) for f in REFLECTANCE_METHODS}  # every entry of the family
     scene = Scene(8.0, 0.125, depth=2.0, stones=(StoneSpec(0.0, 0.0, 0.5, 0.02),))
     paths = np.random.default_rng(1).uniform(4.0, 9.0, 1_000_000)
     absorption = {m: _median(lambda: transmittance(scene, m, paths), repeats=3) for m in ("spectral", "rgb")}

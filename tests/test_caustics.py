@@ -8,6 +8,7 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
+from optics.light.directions import sun_direction
 from optics.caustics import (FLOOR_IRRADIANCE_METHODS, SURFACE_SPECTRA, converged_floor_irradiance, first_fold_depth,
                              floor_irradiance, focal_depth, random_surface, sinusoid_irradiance)
 from optics.light.fresnel import N_AIR, N_WATER, reflectance
@@ -283,8 +284,7 @@ class TestLowSun:
         rng = np.random.default_rng(seed)
         # the steepest slope stands at 21.8°; one elevation per seed (each is its own compile)
         for elevation in ((10.0, 20.0, 15.0, 10.0)[seed],):
-            az, e = rng.uniform(0, 2 * math.pi), math.radians(elevation)
-            sun = (math.cos(e) * math.cos(az), math.cos(e) * math.sin(az), math.sin(e))
+            sun = sun_direction(elevation, rng.uniform(0.0, 360.0))
             refine = 3 if seed == 0 else 1  # the shadows do not depend on the refinement
             out = np.asarray(floor_irradiance(eta, grid, 1.0, sun, method="beam", fresnel=False, refine=refine))
             # measured |mean - 1| <= 9.6e-5 (without shadows: 1.8-2.3 % too much light at 10°)
@@ -315,8 +315,7 @@ def _family_case(seed, n=128):
     rng = np.random.default_rng(seed)
     grid = Grid(n, 2.0)
     eta = random_surface(grid, SURFACE_SPECTRA[seed % 3], float(rng.uniform(0.03, 0.15)), seed)
-    elevation, azimuth = math.radians(rng.uniform(40, 90)), rng.uniform(0, 2 * math.pi)
-    sun = (math.cos(elevation) * math.cos(azimuth), math.cos(elevation) * math.sin(azimuth), math.sin(elevation))
+    sun = sun_direction(rng.uniform(40.0, 90.0), rng.uniform(0.0, 360.0))
     depth = float(rng.uniform(0.3, 0.9)) * first_fold_depth(eta, grid, sun)
     return grid, eta, sun, depth
 

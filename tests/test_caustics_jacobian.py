@@ -9,6 +9,7 @@ import jax.numpy as jnp
 import numpy as np
 import pytest
 
+from optics.light.directions import sun_direction
 from optics.caustics import (CausticsFold, SURFACE_SPECTRA, converged_floor_irradiance, first_fold_depth,
                              floor_irradiance, floor_irradiance_beam, random_surface)
 from optics.light.fresnel import reflectance
@@ -27,8 +28,7 @@ def _draw(count, seed):
     for i in range(count):
         spectrum = SURFACE_SPECTRA[i % len(SURFACE_SPECTRA)]
         eta = random_surface(grid, spectrum, float(rng.uniform(0.04, 0.15)), int(rng.integers(1 << 30)))
-        elevation, azimuth = math.radians(rng.uniform(40.0, 90.0)), rng.uniform(0.0, 2 * math.pi)
-        sun = (math.cos(elevation) * math.cos(azimuth), math.cos(elevation) * math.sin(azimuth), math.sin(elevation))
+        sun = sun_direction(rng.uniform(40.0, 90.0), rng.uniform(0.0, 360.0))
         fraction = float(rng.uniform(0.15, 0.85))
         yield grid, eta, sun, fraction * first_fold_depth(eta, grid, sun), (spectrum, round(fraction, 2))
 

@@ -103,9 +103,10 @@ def measured_pool():
                     model = SceneModel(scene, replace(variant, ship_patch=1))
             got = run(scene, model)
             c = model.choices
-            key = (c.surface_tension, c.finite_depth, c.coarsen, c.steps_per_frame, c.second_order,
-                   c.ship_method if scene.ships else "kernels",  # without ships the method changes nothing
-                   c.ship_patch if scene.ships else 2, c.margin)
+            key = replace(Choices(), surface_tension=c.surface_tension, finite_depth=c.finite_depth,
+                          coarsen=c.coarsen, steps_per_frame=c.steps_per_frame, second_order=c.second_order,
+                          ship_method=c.ship_method if scene.ships else "kernels",  # no ships: changes nothing
+                          ship_patch=c.ship_patch if scene.ships else 2, margin=c.margin)
             out[(scene.name, variant)] = (compare(got, ref), bounds[key])
     return out
 

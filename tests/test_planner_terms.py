@@ -147,7 +147,7 @@ def test_surface_models_need_a_wind_sea_alone_and_no_second_order():
         surface_frames(full_model(_seas(1)[0]))
 
 
-def test_planner_keeps_the_spectral_step_and_takes_a_surface_model_when_it_is_cheaper(monkeypatch):
+def test_planner_keeps_the_spectral_step_and_takes_a_surface_model_when_it_is_cheaper():
     """On this CPU every alternative surface model costs more than the step (calibrated), so
     the card says why it keeps the step; with a calibration where Gerstner sums cost nothing,
     a loose tolerance takes the cheapest one within it, and its run stays within the bound."""
@@ -156,25 +156,16 @@ def test_planner_keeps_the_spectral_step_and_takes_a_surface_model_when_it_is_ch
     assert p.model.choices.surface == "spectral"
     row = next(t for t in p.terms if t.term == "surface")
     assert all(name in row.reason for name in SURFACES[1:])
-    import sys
-
     import wavephys.planner.cost as cost
-
-    plan_mod = sys.modules["wavephys.planner.plan"]  # the package's ``plan`` is the function
 
     cal = dict(cost.calibration())
     cal["surface"] = {k: dict(v, seconds=[1e-9] * len(v["seconds"])) for k, v in cal["surface"].items()}
-    monkeypatch.setattr(plan_mod, "calibration", lambda: cal)
-    monkeypatch.setattr(cost, "calibration", lambda: cal)
-    plan_mod._candidates.cache_clear()
-    try:
-        tol = 1.05 * surface_bounds(scene, cal["kappa"])["gerstner-256"].total
-        cheap = plan(scene, tol)
-        assert cheap.model.choices.surface != "spectral"
-        err = compare(run(scene, cheap.model), run(scene, full_model(scene)))["height_max"]
-        assert err <= cheap.predicted_error <= tol
-    finally:
-        plan_mod._candidates.cache_clear()
+    tol = 1.05 * surface_bounds(scene, cal["kappa"])["gerstner-256"].total
+    cheap = plan(scene, tol, calibration=cal)  # the explicit context: no cache to clear, nothing patched
+    assert cheap.model.choices.surface != "spectral"
+    assert plan(scene, tol).model.choices.surface == "spectral"  # the shipped calibration is untouched
+    err = compare(run(scene, cheap.model), run(scene, full_model(scene)))["height_max"]
+    assert err <= cheap.predicted_error <= tol
 
 
 # -- the open-water margin ---------------------------------------------------------------------
@@ -289,5 +280,5 @@ def test_ship_bounds_skip_coarsenings_that_cannot_divide_the_grid(monkeypatch):
 
     spectrum._scene_spectrum.cache_clear()
     bounds = predict.height_bounds(scene, 0.0)
-    assert {key[2] for key in bounds} == {1, 2, 4}  # the doubled patch has no evaluation to fail
-    assert {key[2] for key in bounds if key[6] == 1} == {1}
+    assert {key.coarsen for key in bounds} == {1, 2, 4}  # the doubled patch has no evaluation to fail
+    assert {key.coarsen for key in bounds if key.ship_patch == 1} == {1}

@@ -25,15 +25,13 @@ from wavephys.core.inputs import check_bool, check_choice, check_instance, check
 from wavephys.core.water import Water
 from wavephys.planner.scene import Scene
 
-__all__ = ["Choices", "SceneModel", "TERMS", "COARSEN", "STEPS_PER_FRAME", "FRESNEL_FORMS", "ABSORPTION_METHODS",
+__all__ = ["Choices", "SceneModel", "TERMS", "COARSEN", "STEPS_PER_FRAME", "ABSORPTION_METHODS",
            "CAUSTICS_REFINE", "FULL_REFINE", "TEXTURES", "TEXTURE_BYTES", "SURFACES", "SHIP_METHODS", "SHIP_PATCHES", "MARGINS", "full_choices"]
 
 COARSEN = (1, 2, 4)
 """Simulation grid spacings the planner considers, in output texels."""
 STEPS_PER_FRAME = (1, 2, 4, 8)
 """Output frames per simulation step the planner considers (frames between steps by Hermite)."""
-FRESNEL_FORMS = ("exact", "lut", "schlick", "jensen_golias", "loviscach")
-"""Fresnel reflectance forms the planner considers (names in optics' REFLECTANCE_METHODS)."""
 ABSORPTION_METHODS = ("spectral", "rgb")
 """Beer–Lambert absorption: integrated over the spectrum (colour-science) or three fitted RGB
 coefficients (:func:`optics.light.attenuation.fit_rgb_coefficients`)."""
@@ -71,7 +69,21 @@ TEXTURE_BYTES = {"f32": 4, "f16": 2, "u16": 2, "u8": 1}
 TERMS = ("surface", "margin", "surface_tension", "finite_depth", "coarsen", "steps_per_frame", "second_order", "ship_method",
          "ship_patch", "texture", "fresnel",
          "absorption", "caustics")
-"""The switchable terms, in the order model cards list them."""
+"""The switchable terms' names, in the order model cards list them (the terms themselves, one
+class each: :data:`wavephys.planner.terms.TERMS`; a test keeps the two equal)."""
+
+
+def __getattr__(name):
+    if name == "FRESNEL_FORMS":  # 0.3: the forms come from optics' family
+        import warnings
+
+        from optics.light.fresnel import REFLECTANCE_METHODS
+
+        warnings.warn("wavephys.planner.model.FRESNEL_FORMS is deprecated: the planner offers every entry of "
+                      "optics.light.fresnel.REFLECTANCE_METHODS its calibration covers "
+                      "(wavephys.planner.terms.fresnel_forms)", DeprecationWarning, stacklevel=2)
+        return tuple(REFLECTANCE_METHODS)
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
 
 
 @dataclass(frozen=True)
@@ -92,7 +104,8 @@ class Choices:
     second_order : bool
         Add the second-order height term.
     fresnel : str
-        Fresnel reflectance form (:data:`FRESNEL_FORMS`).
+        Fresnel reflectance form: a name in :data:`optics.light.fresnel.REFLECTANCE_METHODS`
+        (the planner offers the ones its calibration has a cost for).
     absorption : str
         ``"spectral"`` or ``"rgb"`` (:data:`ABSORPTION_METHODS`).
     caustics : int
@@ -134,7 +147,9 @@ class Choices:
         check_choice("coarsen", self.coarsen, COARSEN)
         object.__setattr__(self, "steps_per_frame", check_int("steps_per_frame", self.steps_per_frame, lo=1))
         check_choice("steps_per_frame", self.steps_per_frame, STEPS_PER_FRAME)
-        check_choice("fresnel", self.fresnel, FRESNEL_FORMS)
+        from optics.light.fresnel import REFLECTANCE_METHODS
+
+        REFLECTANCE_METHODS.check(self.fresnel, "fresnel")
         check_choice("absorption", self.absorption, ABSORPTION_METHODS)
         object.__setattr__(self, "caustics", check_int("caustics", self.caustics, lo=0))
         check_choice("caustics", self.caustics, CAUSTICS_REFINE)

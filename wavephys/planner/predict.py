@@ -33,19 +33,21 @@ from __future__ import annotations
 
 __internal__ = True  # the planner's own models: used through plan(), not fuzzed as public API
 
+import itertools
 import math
 from dataclasses import dataclass, replace
 from functools import lru_cache
 
 import numpy as np
 
-from wavephys.planner.model import COARSEN, SHIP_METHODS, STEPS_PER_FRAME, Choices, SceneModel, full_choices
+from wavephys.planner.model import (COARSEN, MARGINS, SHIP_METHODS, STEPS_PER_FRAME, Choices, SceneModel,
+                                   full_choices)
 from wavephys.planner.scene import Scene
 from wavephys.planner.spectrum import (CHOPPINESS, NOISE_HURST, NOISE_OCTAVES, SceneSpectrum, blended_mode_heights,
                                        dispersion_variants, evaluated_frames, gerstner_modes, mode_dispersion,
-                                       mode_heights, noise_sea, pair_bound, scene_spectrum)
+                                       mode_heights, noise_sea, pair_bound, scene_spectrum, variant_index)
 
-__all__ = ["HeightBounds", "height_bounds", "hermite_blend_error", "texture_error", "height_peak", "surface_bounds",
+__all__ = ["HeightBounds", "default_height_options", "height_bounds", "hermite_blend_error", "texture_error", "height_peak", "surface_bounds",
            "RESAMPLE_ERROR", "patch_bound", "margin_errors"]
 
 
@@ -229,91 +231,138 @@ def _bound(spec, kappa, same, so, c, spf, e_lin, d0, d1, rms, blend) -> HeightBo
     return HeightBounds(e_lin + dropped, float(e2), floor, rms + float(e2) + floor)
 
 
-def height_bounds(scene: Scene, kappa: float) -> dict:
-    """:class:`HeightBounds` of every height configuration of ``scene`` (a dict keyed by
-    (surface_tension, finite_depth, coarsen, steps_per_frame, second_order, ship_method,
-    ship_patch, margin); the impulse method and the single patch only where the scene has
-    ships, the latter adding :func:`patch_bound` where the full model takes the doubled patch;
-    the narrower margins only for open water, adding :func:`margin_errors`).
+def default_height_options(scene: Scene) -> dict:
+    """Every option of each of the spectral step's terms a scene can take (the one definition
+    :mod:`wavephys.planner.terms` offers them from), {term: values}: both dispersion switches, every coarsening, the
+    steps per frame up to the scene's frames, the second-order term on and off, the impulse
+    method and the single patch only where there are ships (the latter where the full model
+    takes the doubled patch), the narrower margins only for open water."""
+    full_patch = full_choices(scene).ship_patch
+    return dict(surface_tension=(True, False), finite_depth=(True, False), coarsen=COARSEN,
+                steps_per_frame=tuple(s for s in STEPS_PER_FRAME if s <= scene.frames), second_order=(True, False),
+                ship_method=SHIP_METHODS if scene.ships else SHIP_METHODS[:1],
+                ship_patch=(1, 2) if scene.ships and full_patch == 2 else (full_patch,),
+                margin=MARGINS if scene.margin else MARGINS[:1])
 
-    Stones and ships are bounded by the triangle inequality (rigorous for the linear
-    surface); the wind sea by z × its RMS (:func:`gaussian_factor`). ``kappa``: the float32
-    rounding coefficient (calibrated). The full configuration's own bound is the float32
-    floor alone.
-    """
+
+@dataclass(frozen=True)
+class _Linear:
+    """What every configuration's linear bound is measured against: the full model's C_k and
+    Ĥ_k at the evaluated frames, the modes each coarsening holds, and the η₂ blend bounds."""
+
+    spec: SceneSpectrum
+    t: np.ndarray
+    waters: list
+    disp: list
+    kinds: tuple
+    full: dict
+    h_full: dict
+    masks: dict
+    blend: dict
+    area: float
+
+
+def _linear_context(scene: Scene, coarsens, spfs) -> _Linear:
     spec = scene_spectrum(scene)
-    n = spec.n
     full_grid = SceneModel(scene).full_grid
-    frames = evaluated_frames(scene.frames)
-    t = (frames / scene.fps)[:, None]
+    t = (evaluated_frames(scene.frames) / scene.fps)[:, None]
     waters = dispersion_variants(scene)
     disp = [mode_dispersion(spec.k, w) for w in waters]
-    has_wind = bool(np.any(spec.W))
-    kinds = (False, True) if has_wind else (False,)
+    kinds = (False, True) if bool(np.any(spec.W)) else (False,)
     full = {w: mode_heights(spec, disp[0][0], disp[0][1], t, w) for w in kinds}
     h_full = {w: 0.5 * (c + np.conj(c[:, spec.mirror])) for w, c in full.items()}
     kmax_axis = np.maximum(np.abs(spec.kx), np.abs(spec.ky))
     masks = {}
-    for c in COARSEN:  # the modes a grid c times coarser holds (its Nyquist lines excluded)
+    for c in coarsens:  # the modes a grid c times coarser holds (its Nyquist lines excluded)
         k_nyq = math.pi / (c * float(full_grid.dx))
         masks[c] = np.ones_like(kmax_axis, bool) if c == 1 else (kmax_axis < k_nyq - 1e-9 * k_nyq)
-    blend = {spf: second_order_blend(spec, spf / scene.fps) for spf in STEPS_PER_FRAME}
+    blend = {spf: second_order_blend(spec, spf / scene.fps) for spf in spfs}
     area = full_grid.n / scene.texels  # an RMS over the visible square ≤ this × the RMS over the simulated one
-    z, root2 = spec.z, math.sqrt(2.0)
-    kk = spec.k
+    return _Linear(spec, t, waters, disp, kinds, full, h_full, masks, blend, area)
+
+
+def _differences(lin: _Linear, vi: int, impulses: bool, spf: int, fps: float) -> dict:
+    """Per kind of source (deterministic, wind): X = C_full − C_cfg and its real part's Ĥ."""
+    spec, t = lin.spec, lin.t
+    omega, m = lin.disp[vi]
+    dt = spf / fps
     out = {}
-    methods = SHIP_METHODS if spec.ships else SHIP_METHODS[:1]
+    for w in lin.kinds:
+        if spf == 1:
+            cfg = mode_heights(spec, omega, m, t, w, dt if impulses and not w else None)
+        else:
+            cfg = blended_mode_heights(spec, omega, m, t, dt, w, impulses and not w)
+        x = lin.full[w] - cfg
+        out[w] = (x, 0.5 * (x + np.conj(x[:, spec.mirror])))
+    return out
+
+
+def _linear_sums(lin: _Linear, diffs: dict, c: int) -> tuple:
+    """(e_lin, d0, d1, rms) of one configuration on a grid coarsened c times: the max-norm bound
+    of the linear heights, the bounds on the change of |η_c| and |Λη_c|, the linear RMS."""
+    spec = lin.spec
+    n, z, root2, kk = spec.n, spec.z, math.sqrt(2.0), spec.k
+    keep = lin.masks[c]
+    lost = np.where(keep, 0.0, 2.0)  # a lost mode: its content, and at most as much misplaced
+    e_lin = d0 = d1 = rms = 0.0
+    for w, (x, h) in diffs.items():
+        ah = np.where(keep, np.abs(h), lost * np.abs(lin.h_full[w]))
+        ax = np.where(keep, np.abs(x), lost * np.abs(lin.full[w]))
+        sq = np.sqrt(np.sum(ah**2, axis=1)) / n**2
+        rms += float(np.max(sq))
+        if w:  # the random sea: z × RMS (Parseval), √2 for the complex height
+            e_lin += z * float(np.max(sq))
+            d0 += root2 * z * float(np.max(np.sqrt(np.sum(ax**2, axis=1)))) / n**2
+            d1 += root2 * z * float(np.max(np.sqrt(np.sum((kk * ax) ** 2, axis=1)))) / n**2
+        else:
+            e_lin += float(np.max(np.sum(ah, axis=1))) / n**2
+            d0 += float(np.max(np.sum(ax, axis=1))) / n**2
+            d1 += float(np.max(np.sum(kk * ax, axis=1))) / n**2
+    return e_lin, d0, d1, rms
+
+
+def height_bounds(scene: Scene, kappa: float, options=None) -> dict:
+    """:class:`HeightBounds` of every height configuration of ``scene``, a dict keyed by its
+    :class:`~wavephys.planner.model.Choices` (the other terms full): the product of
+    ``options`` ({term: values} for each of the spectral step's terms; default
+    :func:`default_height_options`), less what cannot run. The single patch adds
+    :func:`patch_bound` where the full model takes the doubled patch; the narrower margins add
+    :func:`margin_errors` (a margin whose error is inf is left out).
+
+    Stones and ships are bounded by the triangle inequality (rigorous for the linear
+    surface); the wind sea by z × its RMS (:func:`wavephys.planner.spectrum.gaussian_factor`).
+    ``kappa``: the float32 rounding coefficient (calibrated). The full configuration's own
+    bound is the float32 floor alone.
+    """
+    opts = default_height_options(scene) if options is None else options
+    spfs = tuple(s for s in opts["steps_per_frame"] if s <= scene.frames)
+    lin = _linear_context(scene, opts["coarsen"], spfs)
     full_patch = full_choices(scene).ship_patch
-    patches = (1, 2) if scene.ships and full_patch == 2 else (full_patch,)
-    margins = {k: v for k, v in margin_errors(scene).items() if math.isfinite(v)} or {"n/8": 0.0}
-    for vi, (st, fd), method in ((vi, v, sm) for vi, v in enumerate(((True, True), (False, True), (True, False),
-                                                                      (False, False))) for sm in methods):
-        omega, m = disp[vi]
+    measured = margin_errors(scene) or {"n/8": 0.0}
+    margins = {k: v for k, v in measured.items() if k in opts["margin"] and math.isfinite(v)} or {"n/8": 0.0}
+    out = {}
+    for st, fd, method, spf in itertools.product(opts["surface_tension"], opts["finite_depth"], opts["ship_method"],
+                                                  spfs):
+        vi = variant_index(Choices(surface_tension=st, finite_depth=fd))
         impulses = method == "impulses"
-        for spf in STEPS_PER_FRAME:
-            if spf > scene.frames:
-                continue
-            dt = spf / scene.fps
-            diffs = {}
-            for w in kinds:
-                if spf == 1:
-                    cfg = mode_heights(spec, omega, m, t, w, dt if impulses and not w else None)
+        diffs = _differences(lin, vi, impulses, spf, scene.fps)
+        for c in opts["coarsen"]:
+            e_lin, d0, d1, rms = _linear_sums(lin, diffs, c)
+            same = lin.waters[vi] == lin.waters[0] and c == 1 and spf == 1 and not impulses  # e.g. no tanh, deep
+            for so, patch in itertools.product(opts["second_order"], opts["ship_patch"]):
+                if patch < full_patch:  # the single patch against the full model's doubled one
+                    try:
+                        p_lin, p0, p1 = patch_bound(scene, c, spf, method)
+                    except ValueError:  # this coarsening cannot run the scene (SceneModel says why)
+                        continue
+                    b = _bound(lin.spec, kappa, False, so, c, spf, e_lin, d0 + p0, d1 + p1, rms * lin.area, lin.blend)
+                    b = HeightBounds(b.linear + p_lin, b.second_order, b.rounding, b.rms + p_lin)
                 else:
-                    cfg = blended_mode_heights(spec, omega, m, t, dt, w, impulses and not w)
-                x = full[w] - cfg
-                diffs[w] = (x, 0.5 * (x + np.conj(x[:, spec.mirror])))
-            for c in COARSEN:
-                keep = masks[c]
-                lost = np.where(keep, 0.0, 2.0)  # a lost mode: its content, and at most as much misplaced
-                e_lin = d0 = d1 = 0.0
-                rms = 0.0
-                for w, (x, h) in diffs.items():
-                    ah = np.where(keep, np.abs(h), lost * np.abs(h_full[w]))
-                    ax = np.where(keep, np.abs(x), lost * np.abs(full[w]))
-                    sq = np.sqrt(np.sum(ah**2, axis=1)) / n**2
-                    rms += float(np.max(sq))
-                    if w:  # the random sea: z × RMS (Parseval), √2 for the complex height
-                        e_lin += z * float(np.max(sq))
-                        d0 += root2 * z * float(np.max(np.sqrt(np.sum(ax**2, axis=1)))) / n**2
-                        d1 += root2 * z * float(np.max(np.sqrt(np.sum((kk * ax) ** 2, axis=1)))) / n**2
-                    else:
-                        e_lin += float(np.max(np.sum(ah, axis=1))) / n**2
-                        d0 += float(np.max(np.sum(ax, axis=1))) / n**2
-                        d1 += float(np.max(np.sum(kk * ax, axis=1))) / n**2
-                same = waters[vi] == waters[0] and c == 1 and spf == 1 and not impulses  # e.g. no tanh, deep
-                for so, patch in ((so, patch) for so in (True, False) for patch in patches):
-                    if patch < full_patch:  # the single patch against the full model's doubled one
-                        try:
-                            p_lin, p0, p1 = patch_bound(scene, c, spf, method)
-                        except ValueError:  # this coarsening cannot run the scene (SceneModel says why)
-                            continue
-                        b = _bound(spec, kappa, False, so, c, spf, e_lin, d0 + p0, d1 + p1, rms * area, blend)
-                        b = HeightBounds(b.linear + p_lin, b.second_order, b.rounding, b.rms + p_lin)
-                    else:
-                        b = _bound(spec, kappa, same, so, c, spf, e_lin, d0, d1, rms * area, blend)
-                    for margin, e_margin in margins.items():  # the margin's measured change adds
-                        out[(st, fd, c, spf, so, method, patch, margin)] = (b if not e_margin else HeightBounds(
-                            b.linear + e_margin, b.second_order, b.rounding, b.rms + e_margin))
+                    b = _bound(lin.spec, kappa, same, so, c, spf, e_lin, d0, d1, rms * lin.area, lin.blend)
+                for margin, e_margin in margins.items():  # the margin's measured change adds
+                    key = Choices(st, fd, c, spf, so, ship_method=method, ship_patch=patch, margin=margin)
+                    out[key] = b if not e_margin else HeightBounds(b.linear + e_margin, b.second_order, b.rounding,
+                                                                   b.rms + e_margin)
     return out
 
 

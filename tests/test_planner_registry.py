@@ -1,0 +1,126 @@
+"""The planner as a registry of terms: one class per term, candidates from their options, the
+model card from their rows, the Fresnel options from optics' family; plans on the built-in scenes
+as recorded before the registry (tests/data/builtin_plans.json)."""
+
+import json
+import math
+from dataclasses import fields
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from wavephys.planner import BUILTIN_SCENES, Choices, Scene, StoneSpec, builtin_scene, plan
+from wavephys.planner.model import TERMS as TERM_NAMES
+from wavephys.planner.model import full_choices
+from wavephys.planner.terms import COLOUR_TERMS, HEIGHT_TERMS, TERMS, PlanTerm, fresnel_forms
+
+DATA = Path(__file__).parent / "data" / "builtin_plans.json"
+
+
+def _pond(n=32, frames=6):
+    return Scene(2.0, 2.0 / n, depth=0.5, open_water=False, duration=frames / 30.0, fps=30.0, height_range=0.02,
+                 stones=(StoneSpec(0.1, -0.2, 0.25, 0.01),), name=f"registry-pond-{n}")
+
+
+def test_one_term_per_choice_in_card_order():
+    assert tuple(TERMS) == TERM_NAMES
+    assert set(TERMS) == {f.name for f in fields(Choices)}
+    assert all(isinstance(t, PlanTerm) and t.kind in ("height", "texture", "colour") for t in TERMS.values())
+    assert set(HEIGHT_TERMS) | set(COLOUR_TERMS) | {"surface", "texture"} == set(TERMS)
+
+
+@pytest.mark.parametrize("name", BUILTIN_SCENES)
+def test_every_term_offers_the_full_model(name):
+    """Each term's options hold the full model's value, and a term applies (has a choice) only
+    where its options differ: no ships, no ship choices; a periodic tank, no margin."""
+    scene = builtin_scene(name)
+    full = full_choices(scene)
+    for term in TERMS.values():
+        assert term.full(scene) in term.options(scene), (term.name, term.options(scene))
+        assert term.apply(full, term.full(scene)) == full
+    assert TERMS["ship_method"].applies(scene) == bool(scene.ships)
+    assert TERMS["margin"].applies(scene) == bool(scene.margin)
+    assert TERMS["caustics"].applies(scene) == scene.caustics
+
+
+def test_the_card_is_the_terms_rows():
+    p = plan(_pond(), 0.5 * _pond().height_quantum)
+    assert [t.term for t in p.terms] == list(TERMS)
+    for row in p.terms:
+        assert row.unit == TERMS[row.term].unit and row.choice == getattr(p.model.choices, row.term)
+        assert isinstance(row.reason, str) and row.reason
+
+
+@pytest.mark.slow
+def test_plans_on_the_builtin_scenes_are_the_recorded_ones():
+    """The registry changed how plans are made, not what they are: every built-in scene at 0.5, 1
+    and 4 height quanta gets the choices, predicted errors and costs recorded before it."""
+    recorded = json.loads(DATA.read_text())
+    for key, want in recorded.items():
+        name, factor = key.split("@")
+        scene = builtin_scene(name)
+        p = plan(scene, float(factor) * scene.height_quantum)
+        got = p.as_dict()
+        assert got["choices"] == want["choices"], key
+        for k in ("predicted_error", "predicted_colour_error", "cost", "full_cost"):
+            assert math.isclose(got[k], want[k], rel_tol=1e-6, abs_tol=1e-15), (key, k, got[k], want[k])
+
+
+def _family_with(extra_name, extra):
+    from optics.light import fresnel
+    from wavephys.core.methods import Methods
+
+    methods = {k: fresnel.REFLECTANCE_METHODS[k] for k in fresnel.REFLECTANCE_METHODS}
+    return Methods("Fresnel reflectance", **methods, **{extra_name: extra})
+
+
+def test_a_new_fresnel_form_is_planned_by_registering_it(monkeypatch):
+    """Families drive the planner: a form registered in optics' family is bounded by
+    colour_errors and offered by the planner once the calibration has its cost; without a cost
+    it is not offered and the card says so (no KeyError)."""
+    import wavephys.planner.cost as cost
+    from optics.light import fresnel
+
+    def reflectance_copy(cos_theta, n1=fresnel.N_AIR, n2=fresnel.N_WATER):  # the exact form, renamed
+        return fresnel.reflectance_exact(cos_theta, n1, n2)
+
+    monkeypatch.setattr(fresnel, "REFLECTANCE_METHODS", _family_with("copy", reflectance_copy))
+    scene = _pond(n=32, frames=4)
+    shipped = cost.calibration()
+    assert "copy" not in fresnel_forms(shipped)
+    p = plan(scene, 0.5 * scene.height_quantum, calibration=dict(shipped))
+    row = next(t for t in p.terms if t.term == "fresnel")
+    assert "not calibrated, so not offered: copy" in row.reason
+    cal = dict(shipped, fresnel=dict(shipped["fresnel"], copy=1e-9))  # as exact, and nearly free
+    p = plan(scene, 0.5 * scene.height_quantum, calibration=cal)
+    assert p.model.choices.fresnel == "copy", p.card()
+    row = next(t for t in p.terms if t.term == "fresnel")
+    assert row.error == pytest.approx(0.0, abs=1e-7) and "copy: |ΔR|" in row.reason
+
+
+def test_a_family_entry_the_planner_lacks_is_refused_by_name():
+    with pytest.raises(ValueError, match="fresnel must be one of"):
+        Choices(fresnel="no-such-form")
+
+
+def test_the_explicit_calibration_is_checked():
+    with pytest.raises(TypeError, match="calibration must be a dict"):
+        plan(_pond(), 1e-3, calibration="fast")
+
+
+def test_the_old_fresnel_forms_name_warns():
+    import wavephys.planner.model as model
+
+    with pytest.warns(DeprecationWarning, match="REFLECTANCE_METHODS"):
+        forms = model.FRESNEL_FORMS
+    assert set(forms) >= {"exact", "schlick", "lut"}
+
+
+def test_shipped_calibration_covers_every_fresnel_form():
+    """The calibration covers every entry of the family (bench calibrate measures them all)."""
+    from optics.light.fresnel import REFLECTANCE_METHODS
+    from wavephys.planner.cost import calibration
+
+    assert set(fresnel_forms(calibration())) == set(REFLECTANCE_METHODS)
+    assert np.all(np.isfinite(list(calibration()["fresnel"].values())))
