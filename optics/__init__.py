@@ -28,7 +28,8 @@ _legacy = _install(__name__, {
     "render": "optics.rendering.renderer",
     "reference": "optics.rendering.reference",
     "textures": "optics.rendering.textures",
-})
+    "scenes": "wavephys.app.scenes",  # the built-in scenes moved to the application layer in 0.2
+}, deprecated=("scenes",))
 
 
 def __getattr__(name):

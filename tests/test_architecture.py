@@ -223,3 +223,34 @@ def test_plugin_entry_point_names_the_application_layer():
 
     (ep,) = [e for e in entry_points(group="pytest11") if e.name == "wavephys"]
     assert ep.value == "wavephys.app.pytest_plugin"
+
+
+def test_the_old_scenes_module_imports_with_a_warning():
+    code = ("import warnings; warnings.simplefilter('error', DeprecationWarning)\n"
+            "try:\n    import optics.scenes\nexcept DeprecationWarning as w:\n    print('warned', 'wavephys.app.scenes' in str(w))\n"
+            "warnings.simplefilter('ignore')\n"
+            "import optics.scenes as old, wavephys.app.scenes as new\nprint(old is new)")
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
+    assert out.stdout.split() == ["warned", "True", "True"]
+
+
+def test_renamed_options_keep_working_with_a_warning():
+    """lut_size → size (reflectance) and samples → refine (floor_irradiance), renamed in 0.2: the
+    old name gives the new one's answer and a DeprecationWarning; both at once is a TypeError."""
+    import jax.numpy as jnp
+    import numpy as np
+
+    from optics.caustics import floor_irradiance
+    from optics.light.fresnel import reflectance
+    from wavephys.core.grid import Grid
+
+    with pytest.warns(DeprecationWarning, match="'lut_size' was renamed 'size'"):
+        old = float(reflectance(0.3, method="lut", lut_size=16))
+    assert old == float(reflectance(0.3, method="lut", size=16))
+    grid = Grid(16, 1.0)
+    eta = jnp.asarray(0.002 * np.cos(2 * np.pi * np.asarray(grid.mesh()[0]) / 0.5), jnp.float32)
+    with pytest.warns(DeprecationWarning, match="'samples' was renamed 'refine'"):
+        old = np.asarray(floor_irradiance(eta, grid, 1.0, samples=2))
+    np.testing.assert_array_equal(old, np.asarray(floor_irradiance(eta, grid, 1.0, refine=2)))
+    with pytest.raises(TypeError, match="pass only 'size'"):
+        reflectance(0.3, method="lut", lut_size=16, size=16)

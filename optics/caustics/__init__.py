@@ -84,4 +84,7 @@ def floor_irradiance(eta, grid, depth, sun=(0.0, 0.0, 1.0), method: str = "beam"
     jax.Array (m, m)
         Floor irradiance / E0 (dimensionless), at the cell centres of ``Grid(m, L)``.
     """
+    from wavephys.core.aliases import renamed_options
+
+    options = renamed_options("floor_irradiance", options, {"samples": "refine"}, since="0.2")
     return FLOOR_IRRADIANCE_METHODS(method, eta, grid, depth, sun, resolution=resolution, n_water=n_water, **options)

@@ -167,6 +167,9 @@ def reflectance(cos_theta, n1=N_AIR, n2=N_WATER, method: str = "exact", **option
     >>> float(reflectance(0.5, 1.333, 1.000293))      # 60° from below: past 48.6°
     1.0
     """
+    from wavephys.core.aliases import renamed_options
+
+    options = renamed_options("reflectance", options, {"lut_size": "size"}, since="0.2")
     return REFLECTANCE_METHODS(method, cos_theta, n1, n2, **options)
 
 

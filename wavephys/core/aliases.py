@@ -6,6 +6,7 @@ then give the very module object at the new place (nothing is copied, so monkeyp
 either name affects both). An old name that was split over several modules gets a
 module of its own that re-exports their public names. Nothing is imported until the old
 name is used. Names listed as ``deprecated`` warn (``DeprecationWarning``) when imported.
+:func:`renamed_options` does the same for a keyword argument that was renamed.
 """
 
 from __future__ import annotations
@@ -18,7 +19,7 @@ import types
 import warnings
 
 __internal__ = True  # tooling for the library's own modules: not fuzzed as public API
-__all__ = ["install"]
+__all__ = ["install", "renamed_options"]
 
 
 class _AliasFinder(importlib.abc.MetaPathFinder, importlib.abc.Loader):
@@ -69,3 +70,19 @@ def install(package: str, aliases: dict[str, str | tuple[str, ...]], deprecated=
         raise AttributeError(f"module {package!r} has no attribute {name!r}")
 
     return __getattr__
+
+
+def renamed_options(function: str, options: dict, renames: dict, since: str = "0.3") -> dict:
+    """``options`` with each old keyword of ``renames`` ({old: new}) replaced by its new name,
+    warning (``DeprecationWarning``) that ``function`` renamed it in ``since``; TypeError when a
+    call passes both names. The input is not modified."""
+    out = dict(options)
+    for old, new in renames.items():
+        if old not in out:
+            continue
+        if new in out:
+            raise TypeError(f"{function}: {old!r} is the old name of {new!r}; pass only {new!r}")
+        warnings.warn(f"{function}: the option {old!r} was renamed {new!r} in {since}; the old name will be "
+                      f"removed in a later release", DeprecationWarning, stacklevel=3)
+        out[new] = out.pop(old)
+    return out
