@@ -206,6 +206,8 @@ OVERRIDES = {
     "wavephys.planner.plan.plan": {"scene": _plan_scene, "tolerance": lambda: 1e-3, "colour_tolerance": lambda: 0.01,
                                    "budget": lambda: 100.0, "texture_slack": lambda: 0.05},
     "wavephys.planner.plan.full_model": {"scene": _plan_scene}, "wavephys.planner.plan.candidates": {"scene": _plan_scene},
+    "wavephys.planner.plan.plan_context": {"scene": _plan_scene}, "wavephys.planner.colour.colour_errors": {
+        "scene": _plan_scene},
     "wavephys.planner.plan.colour_errors": {"scene": _plan_scene},
     "wavephys.planner.runner.run": _PLANNER,
     "wavephys.planner.runner.shade": {**_PLANNER, "heights": lambda: np.zeros((32, 32))},
@@ -335,6 +337,7 @@ SKIP = {
     "optics.shaders.check.ShaderReport",
     # the planner's answers and records, made by it (their fields are what it predicted)
     "wavephys.planner.plan.Term", "wavephys.planner.plan.Candidate", "wavephys.planner.plan.Infeasible",
+    "wavephys.planner.terms.Term", "wavephys.planner.terms.Candidate",
     "wavephys.planner.plan.Plan",
     # the report runs every section (minutes); its options are checked by tests/test_report.py
     "wavephys.app.report.build_report",

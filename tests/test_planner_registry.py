@@ -124,3 +124,11 @@ def test_shipped_calibration_covers_every_fresnel_form():
 
     assert set(fresnel_forms(calibration())) == set(REFLECTANCE_METHODS)
     assert np.all(np.isfinite(list(calibration()["fresnel"].values())))
+
+
+def test_an_incomplete_calibration_is_refused_by_name():
+    from wavephys.planner.cost import calibration
+
+    cal = {k: v for k, v in calibration().items() if k != "shade"}
+    with pytest.raises(ValueError, match=r"calibration lacks \['shade'\]"):
+        plan(_pond(), 1e-3, calibration=cal)

@@ -52,7 +52,27 @@ def flat_irradiance(sun_elevation: float, n_air: float = N_AIR, n_water: float =
 
 
 def focal_depth(amplitude, wavenumber, n_water=N_WATER):
-    """z_f = n/((n − 1) a k²), m: the depth where the crests of η = a cos kx focus the sun."""
+    """z_f = n/((n − 1) a k²): the depth where the crests of η = a cos kx focus a vertical sun.
+
+    Parameters
+    ----------
+    amplitude : float
+        a, m, > 0.
+    wavenumber : float
+        k, rad/m, > 0.
+    n_water : float
+        Refractive index, > 1.
+
+    Returns
+    -------
+    float
+        z_f, m.
+
+    References
+    ----------
+    J. Loviscach, "Complex water effects at interactive frame rates", WSCG 2003 (the focusing
+    of a sinusoid's crests); docs/physics.md §2.4 derives the paraxial map.
+    """
     check_scalar("amplitude", amplitude, lo=0.0, lo_open=True)
     check_scalar("wavenumber", wavenumber, lo=0.0, lo_open=True)
     check_scalar("n_water", n_water, lo=1.0, lo_open=True)
@@ -62,8 +82,27 @@ def focal_depth(amplitude, wavenumber, n_water=N_WATER):
 def sinusoid_irradiance(x, amplitude, wavenumber, depth, n_water=N_WATER):
     """Paraxial floor irradiance under η = a cos kx lit vertically (small slopes), E/E0.
 
-    Returns (X, E): the landing point X = x − (z/z_f) sin(kx)/k and E = 1/|1 − (z/z_f) cos kx|
-    with z_f = n/((n − 1) a k²) (docs/physics.md §2.4).
+    Parameters
+    ----------
+    x : array_like
+        Surface positions, m.
+    amplitude, wavenumber : float
+        a (m) and k (rad/m), > 0.
+    depth : float
+        Floor depth z, m, ≥ 0.
+    n_water : float
+        Refractive index, > 1.
+
+    Returns
+    -------
+    (X, E)
+        The landing points X = x − (z/z_f) sin(kx)/k, m, and E = 1/|1 − (z/z_f) cos kx| there,
+        with z_f = n/((n − 1) a k²) (:func:`focal_depth`).
+
+    References
+    ----------
+    J. Loviscach, "Complex water effects at interactive frame rates", WSCG 2003 (the focusing
+    of a sinusoid's crests); docs/physics.md §2.4 derives the paraxial map.
     """
     check_array("x", x)
     check_scalar("depth", depth, lo=0.0)
@@ -81,6 +120,25 @@ def first_fold_depth(eta, grid: Grid, sun=(0.0, 0.0, 1.0), n_water: float = N_WA
     the first caustic (a focus) forms. Bisection on the depth to relative ``tolerance``
     (in (0, 0.1]; a bounded number of steps). For η = a cos kx it measures the focal depth
     z_f. ``inf`` if no fold occurs above ``max_depth``.
+
+    Parameters
+    ----------
+    eta : array_like (n, n)
+        Surface heights on ``grid``, m, periodic.
+    grid : Grid
+    sun : array_like (3,)
+        Direction towards the sun, pointing up.
+    n_water : float
+        Refractive index, > 1.
+    max_depth : float
+        Deepest floor searched, m, > 0.
+    tolerance : float
+        Relative tolerance of the bisection, in (0, 0.1].
+
+    Returns
+    -------
+    float
+        The depth, m (inf: no fold above ``max_depth``).
     """
     check_instance("grid", grid, Grid, "wavephys.Grid")
     n = grid.n

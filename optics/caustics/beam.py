@@ -27,7 +27,7 @@ from optics.light.fresnel import N_WATER
 from wavephys.core.grid import Grid
 from wavephys.core.inputs import check_bool, check_choice, check_int
 from wavephys.core.sampling import rasterize_triangles
-from wavephys.core.spectral import central_gradient
+from wavephys.core.spectral import central_gradient, spectral_gradient
 
 __all__ = ["floor_irradiance_beam"]
 
@@ -38,10 +38,7 @@ _TRIANGLES = ((0, 1, 2), (0, 2, 3))
 @jax.jit
 def _slopes_spectral(eta, length):
     """First program: the FFT of η and its slopes (the XLA CPU note in wavephys.core.spectral)."""
-    n = eta.shape[-1]
-    ky, kx = Grid(n, length).wavenumbers(real=True)
-    spec = jnp.fft.rfft2(eta)
-    return jnp.fft.irfft2(jnp.stack([1j * kx * spec, 1j * ky * spec]), s=(n, n))
+    return jnp.stack(spectral_gradient(eta, length / eta.shape[-1]))
 
 
 def _corners(field, a, b):
@@ -117,6 +114,11 @@ def floor_irradiance_beam(eta, grid: Grid, depth, sun=(0.0, 0.0, 1.0), *, resolu
         Apply Loviscach's 1-2-1 blur afterwards (not needed: the footprints are exact).
     normals : {"spectral", "central"}
         Surface slopes exact (FFT) or by central differences (second order, no transforms).
+
+    Returns
+    -------
+    jax.Array (m, m)
+        E/E0 at the cell centres of ``Grid(m, L)``.
     """
     light = prepare(eta, grid, depth, sun, resolution, n_water, fresnel, check_values=False)
     refine = check_int("refine", refine, lo=1, hi=32)

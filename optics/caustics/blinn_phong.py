@@ -20,10 +20,27 @@ __all__ = ["floor_irradiance_blinn_phong"]
 
 def floor_irradiance_blinn_phong(eta, grid: Grid, depth, sun=(0.0, 0.0, 1.0), *, resolution: int | None = None,
                                  n_water: float = N_WATER, exponent: float = 20.0):
-    """The transmissive Blinn–Phong term, shape (m, m); ``exponent`` tr > 0.
+    """The transmissive Blinn–Phong term k_t⟨H_t, N⟩^tr, normalized to 1 under flat water.
 
-    Takes a flat floor ``depth`` only (it ignores geometry) and a ``resolution`` that is a
-    multiple of n (the surface is Fourier-refined to it).
+    A shading trick, not a flux: it cannot focus light. Takes a flat floor ``depth`` only (it
+    ignores geometry) and a ``resolution`` that is a multiple of n (the surface is
+    Fourier-refined to it).
+
+    Parameters
+    ----------
+    eta, grid, depth, sun, resolution, n_water
+        As :func:`optics.caustics.floor_irradiance`.
+    exponent : float
+        tr, > 0.
+
+    Returns
+    -------
+    jax.Array (m, m)
+
+    References
+    ----------
+    J. Schneider and R. Westermann, "Towards real-time visual simulation of water surfaces",
+    VMV 2001.
     """
     light = prepare(eta, grid, depth, sun, resolution, n_water, True)
     check_scalar("exponent", exponent, lo=0.0, lo_open=True)

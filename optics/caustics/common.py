@@ -17,6 +17,7 @@ from optics.light.fresnel import MAX_INDEX, N_AIR, N_WATER, reflectance_exact
 from wavephys.core.grid import Grid
 from wavephys.core.inputs import (Array, Int, Real, _real_kind, check_array, check_bool, check_instance, check_int, check_scalar,
                                   validate)
+from wavephys.core.spectral import central_gradient
 
 __internal__ = True  # tooling for the library's own modules: not fuzzed as public API
 __all__ = ["Lighting", "prepare", "surface_fields", "land", "blur_121", "bilateral_filter"]
@@ -81,8 +82,7 @@ def surface_fields(eta, grid: Grid, oversample: int = 1):
 @jax.jit
 def _slope_and_relief(eta, dx):
     """(steepest central-difference slope, max η − min η) in one pass on the device."""
-    gx = (jnp.roll(eta, -1, 1) - jnp.roll(eta, 1, 1)) / (2 * dx)
-    gy = (jnp.roll(eta, -1, 0) - jnp.roll(eta, 1, 0)) / (2 * dx)
+    gx, gy = central_gradient(eta, dx)
     return jnp.max(jnp.hypot(gx, gy)), jnp.max(eta) - jnp.min(eta)
 
 

@@ -74,12 +74,23 @@ def _first_hit(height, eta, x0, y0, d, fine: Grid, march: int):
 def floor_irradiance_photon(eta, grid: Grid, depth, sun=(0.0, 0.0, 1.0), *, resolution: int | None = None,
                             n_water: float = N_WATER, fresnel: bool = True, photons_per_texel: int = 1,
                             filter_radius: int = 2, seed: int = 0):
-    """Floor irradiance E/E0 by photon splatting, shape (m, m).
+    """Floor irradiance E/E0 by photon splatting (shot noise per texel).
 
-    ``photons_per_texel`` (≥ 1): photons per floor texel (the light-view texture is
-    m·sqrt(p) square); ``filter_radius`` (≥ 0): bilateral filter radius in texels (0: the
-    raw histogram); ``seed``: jitter seed. Other parameters as
-    :func:`optics.caustics.floor_irradiance`.
+    Parameters
+    ----------
+    eta, grid, depth, sun, resolution, n_water, fresnel
+        As :func:`optics.caustics.floor_irradiance` (heights in m on ``grid``; a floor depth
+        in m or a ground height field; the direction towards the sun; the map's side).
+    photons_per_texel : int
+        ≥ 1: photons per floor texel (the light-view texture is m·sqrt(p) square).
+    filter_radius : int
+        ≥ 0: bilateral filter radius in texels (0: the raw histogram).
+    seed : int
+        Jitter seed, ≥ 0.
+
+    Returns
+    -------
+    jax.Array (m, m)
     """
     light = prepare(eta, grid, depth, sun, resolution, n_water, fresnel)
     p = check_int("photons_per_texel", photons_per_texel, lo=1)

@@ -27,7 +27,19 @@ __all__ = ["ConvergedIrradiance", "converged_floor_irradiance", "floor_irradianc
 
 
 class ConvergedIrradiance(NamedTuple):
-    """A reference map and how far it can be trusted."""
+    """A reference map and how far it can be trusted.
+
+    Parameters
+    ----------
+    irradiance : numpy.ndarray (m, m)
+        Floor irradiance E/E0, the finer level's.
+    bound : float
+        max |E_2r − E_r| / peak: the finer level's error bound.
+    refine : int
+        The finer level's refinement 2r.
+    converged : bool
+        ``bound <= tolerance``.
+    """
 
     irradiance: np.ndarray  # (m, m) floor irradiance E/E0, the finer level's
     bound: float            # max |E_2r − E_r| / peak: the finer level's error bound
@@ -40,11 +52,23 @@ def converged_floor_irradiance(eta, grid: Grid, depth, sun=(0.0, 0.0, 1.0), *, r
                                start: int = 4, max_refine: int = 16) -> ConvergedIrradiance:
     """The reference map with its error bound (module doc).
 
-    ``tolerance``: the bound to reach, relative to the peak (in (0, 0.1]); ``start``: the
-    first level r (1 to 8); ``max_refine``: the finest level 2r allowed (2 to 32; each
-    doubling costs four times the last). Other parameters as
-    :func:`optics.caustics.floor_irradiance`. Returns the last level reached, with
-    ``converged`` False when the bound stayed above ``tolerance`` (e.g. past a fold).
+    Parameters
+    ----------
+    eta, grid, depth, sun, resolution, n_water, fresnel
+        As :func:`optics.caustics.floor_irradiance` (heights in m on ``grid``; a floor depth
+        in m or a ground height field; the direction towards the sun; the map's side).
+    tolerance : float
+        The bound to reach, relative to the peak, in (0, 0.1].
+    start : int
+        The first level r, 1 to 8.
+    max_refine : int
+        The finest level 2r allowed, 2 to 32 (each doubling costs four times the last).
+
+    Returns
+    -------
+    ConvergedIrradiance
+        The last level reached, with ``converged`` False when the bound stayed above
+        ``tolerance`` (e.g. past a fold).
     """
     prepare(eta, grid, depth, sun, resolution, n_water, fresnel)  # every argument checked before any work
     check_scalar("tolerance", tolerance, lo=0.0, hi=0.1, lo_open=True)
@@ -67,7 +91,22 @@ def converged_floor_irradiance(eta, grid: Grid, depth, sun=(0.0, 0.0, 1.0), *, r
 def floor_irradiance_reference(eta, grid: Grid, depth, sun=(0.0, 0.0, 1.0), *, resolution: int | None = None,
                                n_water: float = N_WATER, fresnel: bool = True, tolerance: float = 1e-3,
                                max_refine: int = 16):
-    """Floor irradiance E/E0 converged to ``tolerance`` of the peak (the map of
-    :func:`converged_floor_irradiance`, which also returns the bound), shape (m, m)."""
+    """Floor irradiance E/E0 converged to ``tolerance`` of the peak.
+
+    Parameters
+    ----------
+    eta, grid, depth, sun, resolution, n_water, fresnel
+        As :func:`optics.caustics.floor_irradiance` (heights in m on ``grid``; a floor depth
+        in m or a ground height field; the direction towards the sun; the map's side).
+    tolerance : float
+        The bound to reach, relative to the peak, in (0, 0.1].
+    max_refine : int
+        The finest refinement allowed, 2 to 32.
+
+    Returns
+    -------
+    numpy.ndarray (m, m)
+        The map of :func:`converged_floor_irradiance` (which also returns its bound).
+    """
     return converged_floor_irradiance(eta, grid, depth, sun, resolution=resolution, n_water=n_water, fresnel=fresnel,
                                       tolerance=tolerance, max_refine=max_refine).irradiance

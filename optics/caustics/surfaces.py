@@ -28,9 +28,22 @@ quarter of the domain."""
 def random_surface(grid: Grid, spectrum: str = "band", steepness: float = 0.1, seed: int = 0):
     """A periodic random height field (m) on ``grid`` whose steepest slope is ``steepness``.
 
-    ``spectrum``: a name in :data:`SURFACE_SPECTRA`; ``steepness``: max |∇η| (0, 1];
-    ``seed``: the random draw (≥ 0). Gaussian random Fourier amplitudes shaped by the
-    spectrum, then scaled; float32.
+    Gaussian random Fourier amplitudes shaped by the spectrum, then scaled.
+
+    Parameters
+    ----------
+    grid : Grid
+    spectrum : str
+        A name in :data:`SURFACE_SPECTRA`.
+    steepness : float
+        The steepest slope max |∇η|, in (0, 1].
+    seed : int
+        The random draw, ≥ 0.
+
+    Returns
+    -------
+    jax.Array (n, n)
+        Heights, m, float32.
     """
     check_instance("grid", grid, Grid, "wavephys.Grid")
     check_choice("spectrum", spectrum, SURFACE_SPECTRA)

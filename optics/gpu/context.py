@@ -18,8 +18,18 @@ class RendererUnavailable(RuntimeError):
 
 
 def gl_context():
-    """A standalone OpenGL 3.3 core context through EGL, or :class:`RendererUnavailable` saying
-    which packages to install."""
+    """A standalone OpenGL 3.3 core context through EGL.
+
+    Returns
+    -------
+    moderngl.Context
+        Make it current (``with ctx:``) before GL calls: several contexts can live in a process.
+
+    Raises
+    ------
+    RendererUnavailable
+        No context could be made; the message says which packages to install.
+    """
     try:
         import moderngl
     except ImportError as exc:  # pragma: no cover - moderngl is a dependency

@@ -63,6 +63,16 @@ def transmittance(distance, coefficient):
     coefficient : array_like
         Absorption (or attenuation) coefficient a, 1/m, ≥ 0; broadcasts with
         ``distance`` (e.g. shape (3,) for RGB).
+
+    Returns
+    -------
+    jax.Array
+        e^{−a d}, dimensionless, in [0, 1], of the broadcast shape.
+
+    References
+    ----------
+    L. Baboud & X. Décoret (2006). Realistic water volumes in real-time. *Eurographics Workshop on
+    Natural Phenomena* (docs/physics.md §2.3).
     """
     check_array("distance", distance, lo=0.0)
     check_array("coefficient", coefficient, lo=0.0)
@@ -85,6 +95,16 @@ def underwater_radiance(ground, diffuse, distance, depth, absorption, depth_coef
         Depth difference z between ground point and surface point, m, ≥ 0.
     absorption, depth_coefficient : array_like
         a and b, 1/m, ≥ 0 (b = 0: the simplified model).
+
+    Returns
+    -------
+    jax.Array
+        L, in the radiance units of ``ground`` and ``diffuse``, of the broadcast shape.
+
+    References
+    ----------
+    L. Baboud & X. Décoret (2006). Realistic water volumes in real-time. *Eurographics Workshop on
+    Natural Phenomena* (after Premože & Ashikhmin; docs/physics.md §2.3).
     """
     check_array("ground", ground, lo=0.0)
     check_array("diffuse", diffuse, lo=0.0)
@@ -108,6 +128,23 @@ def cutoff_distance(epsilon, coefficients):
     """d_max = −ln ε / min a, m: beyond it less than ε of the light survives in every band.
 
     ``epsilon`` in (0, 1); ``coefficients`` > 0, 1/m (any shape: the minimum is taken).
+
+    Parameters
+    ----------
+    epsilon : float
+        ε, the transmittance threshold, dimensionless, in (0, 1).
+    coefficients : array_like
+        Absorption coefficients a, 1/m, > 0, any shape (the minimum is taken).
+
+    Returns
+    -------
+    float
+        d_max, m.
+
+    References
+    ----------
+    L. Baboud & X. Décoret (2006). Realistic water volumes in real-time. *Eurographics Workshop on
+    Natural Phenomena* (docs/physics.md §2.3).
     """
     check_scalar("epsilon", epsilon, lo=0.0, hi=1.0, lo_open=True, hi_open=True)
     check_array("coefficients", coefficients, lo=0.0, lo_open=True)
@@ -132,6 +169,17 @@ def pure_water_absorption(wavelength_nm):
     ----------
     wavelength_nm : array_like
         Wavelengths, nm, within :data:`ABSORPTION_RANGE_NM`.
+
+    Returns
+    -------
+    numpy.ndarray
+        a(λ), 1/m, float64, shape of ``wavelength_nm``.
+
+    References
+    ----------
+    R. Röttgers, R. Doerffer, D. McKee & W. Schönfeld (2011/2016). Pure water spectral
+    absorption, scattering, and real part of refractive index model (WOPP). Mason, Cone & Fry
+    (2016), *Appl. Opt.* 55, 7163 (300–510 nm).
     """
     check_array("wavelength_nm", wavelength_nm, lo=ABSORPTION_RANGE_NM[0], hi=ABSORPTION_RANGE_NM[1])
     wl, a = _table()
@@ -172,6 +220,16 @@ def water_srgb(distance, illuminant: str = "D65", gamut: str = "clip", step: flo
         Negative channels (long paths, module doc) clipped to 0, or returned raw.
     step : float
         Spectral sampling, nm (1 to 20).
+
+    Returns
+    -------
+    numpy.ndarray (..., 3)
+        Linear sRGB transmittance, dimensionless (1 for d = 0), shape ``distance.shape + (3,)``.
+
+    References
+    ----------
+    R. Röttgers, R. Doerffer, D. McKee & W. Schönfeld (2011/2016). Pure water spectral
+    absorption, scattering, and real part of refractive index model (WOPP).
     """
     check_array("distance", distance, lo=0.0)
     check_choice("gamut", gamut, ("clip", "none"))
@@ -195,6 +253,30 @@ def fit_rgb_coefficients(max_distance: float = 5.0, illuminant: str = "D65", sam
 
     Least squares of ln(rgb_c) = −a_c d through the origin over d ∈ (0, max_distance]
     (channels that are not positive are left out of their own fit).
+
+    Parameters
+    ----------
+    max_distance : float
+        Longest path fitted, m, > 0.
+    illuminant : str
+        A name in ``colour.SDS_ILLUMINANTS`` (default D65).
+    samples : int
+        Distances sampled, equally spaced in (0, max_distance], 2 … 100000.
+
+    Returns
+    -------
+    numpy.ndarray (3,)
+        a_c for linear sRGB (r, g, b), 1/m.
+
+    Raises
+    ------
+    ValueError
+        If a channel is not positive anywhere on (0, max_distance].
+
+    References
+    ----------
+    R. Röttgers, R. Doerffer, D. McKee & W. Schönfeld (2011/2016). Pure water spectral
+    absorption, scattering, and real part of refractive index model (WOPP).
     """
     check_scalar("max_distance", max_distance, lo=0.0, lo_open=True)
     samples = check_int("samples", samples, lo=2, hi=100000)
@@ -212,7 +294,28 @@ def fit_rgb_coefficients(max_distance: float = 5.0, illuminant: str = "D65", sam
 def rgb_error(distance, coefficients, illuminant: str = "D65"):
     """max over channels |e^{−a_c d} − water_srgb(d)_c| (clipped gamut), per distance.
 
-    ``coefficients``: a_c, 1/m, three numbers ≥ 0 (e.g. :func:`fit_rgb_coefficients`)."""
+    ``coefficients``: a_c, 1/m, three numbers ≥ 0 (e.g. :func:`fit_rgb_coefficients`).
+
+    Parameters
+    ----------
+    distance : array_like
+        Path lengths d, m, ≥ 0.
+    coefficients : array_like (3,)
+        a_c, 1/m, ≥ 0.
+    illuminant : str
+        A name in ``colour.SDS_ILLUMINANTS`` (default D65).
+
+    Returns
+    -------
+    numpy.ndarray
+        The largest channel error, dimensionless (a transmittance difference), shape of
+        ``distance``.
+
+    References
+    ----------
+    R. Röttgers, R. Doerffer, D. McKee & W. Schönfeld (2011/2016). Pure water spectral
+    absorption, scattering, and real part of refractive index model (WOPP).
+    """
     check_array("coefficients", coefficients, ndim=1, shape_tail=(3,), lo=0.0)
     rgb = water_srgb(distance, illuminant)
     approx = np.exp(-np.multiply.outer(np.asarray(distance, float), np.asarray(coefficients)))

@@ -38,8 +38,21 @@ def _check_vectors(name, v):
 
 
 def normalize(v):
-    """v / |v| along the last axis. ``v`` finite, of nonzero length (a concrete zero vector is
-    refused; under ``jit`` a zero vector gives NaN)."""
+    """v / |v| along the last axis.
+
+    ``v`` finite, of nonzero length (a concrete zero vector is refused; under ``jit`` a zero
+    vector gives NaN).
+
+    Parameters
+    ----------
+    v : array_like (..., m)
+        Vectors along the last axis, finite, nonzero length (any unit).
+
+    Returns
+    -------
+    numpy.ndarray or jax.Array (..., m)
+        Unit vectors, dimensionless, floating dtype (NumPy in → NumPy out, JAX in → JAX out).
+    """
     check_array("v", v, min_ndim=1)
     xp = array_module(v)
     v = xp.asarray(v, dtype=xp.result_type(float, v))
@@ -59,7 +72,25 @@ def _facing(d, n):
 
 
 def reflect(d, n):
-    """Mirror direction r = d − 2(d·n)n (unit), for incoming direction ``d`` and normal ``n``."""
+    """Mirror direction r = d − 2(d·n)n (unit), for incoming direction ``d`` and normal ``n``.
+
+    Parameters
+    ----------
+    d : array_like (..., 3)
+        Direction of travel of the incoming ray (any length > 0).
+    n : array_like (..., 3)
+        Surface normal (either orientation, any length > 0; flipped to face ``d``).
+
+    Returns
+    -------
+    numpy.ndarray or jax.Array (..., 3)
+        r, unit length.
+
+    References
+    ----------
+    J. Schneider & R. Westermann (2001). Towards real-time visual simulation of water surfaces. *VMV*
+    (docs/physics.md §2.1).
+    """
     _check_vectors("d", d)
     _check_vectors("n", n)
     d, n, cos_i = _facing(d, n)
@@ -84,6 +115,11 @@ def refract(d, n, n1, n2):
     (t, tir)
         ``t`` the transmitted direction (the reflected one where ``tir`` is True, so the
         result is always a valid unit vector), ``tir`` a boolean array of shape ``(...)``.
+
+    References
+    ----------
+    J. Schneider & R. Westermann (2001). Towards real-time visual simulation of water surfaces. *VMV*
+    (docs/physics.md §2.1).
     """
     _check_vectors("d", d)
     _check_vectors("n", n)
@@ -104,6 +140,24 @@ def transmissive_half_vector(light, view, n_ratio):
     """H_t = normalize(L − V/n) (Schneider & Westermann 2001), for the Blinn–Phong-style
     transmission term k_t⟨H_t, N⟩^tr. ``light`` and ``view`` point away from the surface
     point; ``n_ratio`` = n_water/n_air ≥ 1. A shading trick, not a flux (see caustics).
+
+    Parameters
+    ----------
+    light : array_like (..., 3)
+        Direction from the surface point towards the light (any length > 0).
+    view : array_like (..., 3)
+        Direction from the surface point towards the eye (any length > 0).
+    n_ratio : float
+        n_water/n_air, ≥ 1.
+
+    Returns
+    -------
+    numpy.ndarray or jax.Array (..., 3)
+        H_t, unit length.
+
+    References
+    ----------
+    J. Schneider & R. Westermann (2001). Towards real-time visual simulation of water surfaces. *VMV*.
     """
     _check_vectors("light", light)
     _check_vectors("view", view)

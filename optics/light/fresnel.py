@@ -52,7 +52,18 @@ N_WATER = 1.333
 def normal_reflectance(n1, n2):
     """f0 = ((n1 − n2)/(n1 + n2))², the reflectance at normal incidence (0.0204 for water).
 
-    ``n1``, ``n2``: refractive indices in [1, 10]."""
+    ``n1``, ``n2``: refractive indices in [1, 10].
+
+    Parameters
+    ----------
+    n1, n2 : float or array_like
+        Refractive indices of the two media, in [1, 10].
+
+    Returns
+    -------
+    float or array_like
+        f0, dimensionless, in [0, 1).
+    """
     _check_indices(n1, n2)
     return ((n1 - n2) / (n1 + n2)) ** 2
 
@@ -88,20 +99,69 @@ def _sp(xp, c, n1, n2):
 
 
 def reflectance_sp(cos_theta, n1=N_AIR, n2=N_WATER):
-    """Exact (R_s, R_p) reflectances; both 1 under total internal reflection."""
+    """Exact (R_s, R_p) reflectances; both 1 under total internal reflection.
+
+    Parameters
+    ----------
+    cos_theta : array_like
+        cos θi, in [0, 1], in the incident medium (0 at grazing, 1 at normal incidence).
+    n1, n2 : float or array_like
+        Refractive indices of the incident and transmitting media, in [1, 10] (default air to
+        water; swap them for light from under water).
+
+    Returns
+    -------
+    (R_s, R_p) : tuple of array_like
+        The s- and p-polarized reflectances, dimensionless, in [0, 1], shape of ``cos_theta``.
+    """
     xp, c = _check(cos_theta, n1, n2)
     return _sp(xp, c, n1, n2)
 
 
 def reflectance_exact(cos_theta, n1=N_AIR, n2=N_WATER):
-    """Exact unpolarized reflectance R = (R_s + R_p)/2 (1 under total internal reflection)."""
+    """Exact unpolarized reflectance R = (R_s + R_p)/2 (1 under total internal reflection).
+
+    Parameters
+    ----------
+    cos_theta : array_like
+        cos θi, in [0, 1], in the incident medium (0 at grazing, 1 at normal incidence).
+    n1, n2 : float or array_like
+        Refractive indices of the incident and transmitting media, in [1, 10] (default air to
+        water; swap them for light from under water).
+
+    Returns
+    -------
+    array_like
+        R, dimensionless, in [0, 1], shape of ``cos_theta`` (NumPy in → NumPy out, JAX in → JAX
+        out).
+    """
     xp, c = _check(cos_theta, n1, n2)
     rs, rp = _sp(xp, c, n1, n2)
     return 0.5 * (rs + rp)
 
 
 def reflectance_schlick(cos_theta, n1=N_AIR, n2=N_WATER):
-    """Schlick's R ≈ f0 + (1 − f0)(1 − cos θ)⁵, with cos θt from the denser side (module doc)."""
+    """Schlick's R ≈ f0 + (1 − f0)(1 − cos θ)⁵, with cos θt from the denser side (module doc).
+
+    Parameters
+    ----------
+    cos_theta : array_like
+        cos θi, in [0, 1], in the incident medium (0 at grazing, 1 at normal incidence).
+    n1, n2 : float or array_like
+        Refractive indices of the incident and transmitting media, in [1, 10] (default air to
+        water; swap them for light from under water).
+
+    Returns
+    -------
+    array_like
+        R, dimensionless, in [0, 1] (1 past the critical angle), shape of ``cos_theta`` (NumPy
+        in → NumPy out, JAX in → JAX out).
+
+    References
+    ----------
+    J. Schneider & R. Westermann (2001). Towards real-time visual simulation of water surfaces.
+    *VMV* (printed with ⟨N, V⟩⁵ for (1 − ⟨N, V⟩)⁵; corrected here, module docstring).
+    """
     xp, c = _check(cos_theta, n1, n2)
     ct, tir = _cos_t(xp, c, n1 / n2)
     cos_used = xp.where(xp.asarray(n1) > xp.asarray(n2), ct, c)
@@ -110,26 +170,93 @@ def reflectance_schlick(cos_theta, n1=N_AIR, n2=N_WATER):
 
 
 def reflectance_jensen_golias(cos_theta, n1=N_AIR, n2=N_WATER):
-    """Jensen & Goliáš's R ≈ 1/(1 + cos θ)⁸ (from air; the indices are not used)."""
+    """Jensen & Goliáš's R ≈ 1/(1 + cos θ)⁸ (from air; the indices are not used).
+
+    Parameters
+    ----------
+    cos_theta : array_like
+        cos θi, in [0, 1], in the incident medium (0 at grazing, 1 at normal incidence).
+    n1, n2 : float or array_like
+        Refractive indices, in [1, 10]; checked but not used.
+
+    Returns
+    -------
+    array_like
+        R, dimensionless, in [0, 1], shape of ``cos_theta`` (NumPy in → NumPy out, JAX in → JAX
+        out).
+
+    References
+    ----------
+    L. S. Jensen & R. Goliáš (2001). Deep-water animation and rendering. *Gamasutra*.
+    """
     xp, c = _check(cos_theta, n1, n2)
     return 1.0 / (1.0 + c) ** 8
 
 
 def reflectance_loviscach(cos_theta, n1=N_AIR, n2=N_WATER):
-    """Loviscach's sky reflection factor clamp(1 − 2.5 cos θ) (the indices are not used)."""
+    """Loviscach's sky reflection factor clamp(1 − 2.5 cos θ) (the indices are not used).
+
+    Parameters
+    ----------
+    cos_theta : array_like
+        cos θi, in [0, 1], in the incident medium (0 at grazing, 1 at normal incidence).
+    n1, n2 : float or array_like
+        Refractive indices, in [1, 10]; checked but not used.
+
+    Returns
+    -------
+    array_like
+        R, dimensionless, in [0, 1], shape of ``cos_theta`` (NumPy in → NumPy out, JAX in → JAX
+        out).
+
+    References
+    ----------
+    J. Loviscach (2003). Complex water effects at interactive frame rates. *WSCG*, §4.
+    """
     xp, c = _check(cos_theta, n1, n2)
     return xp.clip(1.0 - 2.5 * c, 0.0, 1.0)
 
 
 def fresnel_lut(n1=N_AIR, n2=N_WATER, size: int = 64):
-    """The exact R at ``size`` equally spaced cos θ in [0, 1] (a texture for shaders)."""
+    """The exact R at ``size`` equally spaced cos θ in [0, 1] (a texture for shaders).
+
+    Parameters
+    ----------
+    n1, n2 : float
+        Refractive indices of the incident and transmitting media, in [1, 10].
+    size : int
+        Table entries, 2 … 2²⁰.
+
+    Returns
+    -------
+    jax.Array (size,)
+        R at cos θ = 0, 1/(size − 1), …, 1, dimensionless.
+    """
     size = check_int("size", size, lo=2, hi=1 << 20)
     return reflectance_exact(jnp.linspace(0.0, 1.0, size), n1, n2)
 
 
 def reflectance_lut(cos_theta, n1=N_AIR, n2=N_WATER, *, size: int = 64):
-    """R by linear interpolation in a uniform table of ``size`` exact values (index arithmetic,
-    as a shader does)."""
+    """R by linear interpolation in a uniform table of ``size`` exact values.
+
+    Index arithmetic, as a shader does.
+
+    Parameters
+    ----------
+    cos_theta : array_like
+        cos θi, in [0, 1], in the incident medium (0 at grazing, 1 at normal incidence).
+    n1, n2 : float or array_like
+        Refractive indices of the incident and transmitting media, in [1, 10] (default air to
+        water; swap them for light from under water).
+    size : int
+        Table entries, 2 … 2²⁰ (keyword only).
+
+    Returns
+    -------
+    array_like
+        R, dimensionless, in [0, 1], shape of ``cos_theta`` (NumPy in → NumPy out, JAX in → JAX
+        out).
+    """
     xp, c = _check(cos_theta, n1, n2)
     size = check_int("size", size, lo=2, hi=1 << 20)
     table = xp.asarray(reflectance_exact(xp.linspace(0.0, 1.0, size), n1, n2))
@@ -157,6 +284,21 @@ def reflectance(cos_theta, n1=N_AIR, n2=N_WATER, method: str = "exact", **option
         water; swap them for light from under water).
     method : str
         A name in :data:`REFLECTANCE_METHODS`; ``options`` go to it (``size`` for "lut").
+    **options
+        The method's own options (``size`` for "lut"; the old name ``lut_size`` is accepted).
+
+    Returns
+    -------
+    array_like
+        R, dimensionless, in [0, 1], shape of ``cos_theta`` (NumPy in → NumPy out, JAX in → JAX
+        out).
+
+    References
+    ----------
+    J. Schneider & R. Westermann (2001). Towards real-time visual simulation of water surfaces.
+    *VMV* (Schlick's form); L. S. Jensen & R. Goliáš (2001). Deep-water animation and rendering.
+    *Gamasutra*; J. Loviscach (2003). Complex water effects at interactive frame rates. *WSCG*,
+    §4 (docs/physics.md §2.2).
 
     Examples
     --------
@@ -179,6 +321,30 @@ def approximation_errors(method: str, n1=N_AIR, n2=N_WATER, samples: int = 20000
     Returns the signed worst error, its angle (degrees) and the cosine-weighted mean
     absolute error (weight cos θ sin θ: the irradiance-weighted average over the
     hemisphere). Evaluated in float32, as a shader would.
+
+    Parameters
+    ----------
+    method : str
+        A name in :data:`REFLECTANCE_METHODS`.
+    n1, n2 : float
+        Refractive indices of the incident and transmitting media, in [1, 10].
+    samples : int
+        Incidence angles, equally spaced in [0°, 90°], 3 … 10⁷.
+    **options
+        Passed on to the method (``size`` for "lut").
+
+    Returns
+    -------
+    dict
+        ``worst`` (signed R_method − R_exact of largest size, dimensionless), ``angle`` (its
+        incidence angle, degrees) and ``weighted_mean`` (dimensionless).
+
+    References
+    ----------
+    J. Schneider & R. Westermann (2001). Towards real-time visual simulation of water surfaces.
+    *VMV* (Schlick's form); L. S. Jensen & R. Goliáš (2001). Deep-water animation and rendering.
+    *Gamasutra*; J. Loviscach (2003). Complex water effects at interactive frame rates. *WSCG*,
+    §4 (docs/physics.md §2.2).
     """
     samples = check_int("samples", samples, lo=3, hi=10**7)
     _check_indices(n1, n2)
@@ -193,7 +359,22 @@ def approximation_errors(method: str, n1=N_AIR, n2=N_WATER, samples: int = 20000
 
 
 def sun_glint(n_dot_h):
-    """Loviscach's (2003) sun highlight g = clamp(100·n·h − 98.95), n·h in [−1, 1]."""
+    """Loviscach's (2003) sun highlight g = clamp(100·n·h − 98.95), n·h in [−1, 1].
+
+    Parameters
+    ----------
+    n_dot_h : array_like
+        n·h, the cosine between normal and half vector, in [−1, 1].
+
+    Returns
+    -------
+    array_like
+        g, dimensionless, in [0, 1], shape of ``n_dot_h``.
+
+    References
+    ----------
+    J. Loviscach (2003). Complex water effects at interactive frame rates. *WSCG*, §4.
+    """
     check_array("n_dot_h", n_dot_h, lo=-1.0, hi=1.0)
     xp = array_module(n_dot_h)
     return xp.clip(100.0 * xp.asarray(n_dot_h) - 98.95, 0.0, 1.0)
@@ -208,6 +389,16 @@ def water_refractive_index(wavelength_nm, temperature_k: float = 293.15):
         Wavelength in vacuum, nm, within [200, 1100] (the model's range of validity).
     temperature_k : float
         Water temperature, K, in [261.15, 773.15] (default 20 °C).
+
+    Returns
+    -------
+    numpy.ndarray
+        n, dimensionless, shape of ``wavelength_nm``.
+
+    References
+    ----------
+    Schiebener et al. (1990), as implemented by colour-science
+    (``light_water_refractive_index_Schiebener1990``).
     """
     from wavephys.core.inputs import check_scalar
 

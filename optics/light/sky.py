@@ -61,9 +61,32 @@ def _zenith(theta_s, t):
 
 @validate(turbidity=Real(lo=TURBIDITY_RANGE[0], hi=TURBIDITY_RANGE[1]), brightness=Real(lo=0.0, hi=1e6))
 def preetham_constants(sun, turbidity: float = 3.0, brightness: float = 0.45) -> dict:
-    """What the sky depends on besides the view direction, in float64: the Perez coefficients
-    A … E of Y, x, y (``coefficients``, (3, 5)) and the factors Q_z/F(0, θ_s) (``scale``, (3,)),
-    Y's scaled so the zenith luminance is ``brightness``. The shader takes these as uniforms."""
+    """What the sky depends on besides the view direction, in float64.
+
+    The Perez coefficients A … E of Y, x, y (``coefficients``, (3, 5)) and the factors
+    Q_z/F(0, θ_s) (``scale``, (3,)), Y's scaled so the zenith luminance is ``brightness``. The
+    shader takes these as uniforms.
+
+    Parameters
+    ----------
+    sun : array_like (3,)
+        Direction toward the sun, z > 0 (normalized here).
+    turbidity : float
+        T in [1.7, 10] (:data:`TURBIDITY_RANGE`): 2 very clear, 3 clear (default), 6 hazy.
+    brightness : float
+        Luminance of the zenith in scene units, in [0, 1e6].
+
+    Returns
+    -------
+    dict
+        ``coefficients`` (numpy.ndarray (3, 5)), ``scale`` (numpy.ndarray (3,)) and ``sun``
+        (the unit sun direction, numpy.ndarray (3,)).
+
+    References
+    ----------
+    A. J. Preetham, P. Shirley & B. Smits (1999). A practical analytic model for daylight.
+    *SIGGRAPH* (the coefficients from its appendix).
+    """
     check_array("sun", sun, ndim=1)
     s = np.asarray(sun, np.float64)
     if s.shape != (3,) or s[2] <= 0:
@@ -92,6 +115,16 @@ def preetham_sky(d, sun, turbidity: float = 3.0, brightness: float = 0.45):
         T in [1.7, 10]: 2 very clear, 3 clear (default), 6 hazy.
     brightness : float
         Luminance of the zenith in scene units (the gradient sky's zenith is about 0.45).
+
+    Returns
+    -------
+    numpy.ndarray (..., 3)
+        Linear sRGB radiance, scene units, ≥ 0, float64 (half the horizon value below it).
+
+    References
+    ----------
+    A. J. Preetham, P. Shirley & B. Smits (1999). A practical analytic model for daylight.
+    *SIGGRAPH*.
     """
     check_array("d", d, min_ndim=1)
     if np.shape(d)[-1] != 3:

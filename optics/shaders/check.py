@@ -278,7 +278,18 @@ def _renderer() -> str:
 
 
 def describe_check(against: str) -> str:
-    """What a check feeds, returns and compares with, in words (for ``--help`` and errors)."""
+    """What a check feeds, returns and compares with, in words (for ``--help`` and errors).
+
+    Parameters
+    ----------
+    against : str
+        A name in :data:`~optics.shaders.SHADER_CHECKS`.
+
+    Returns
+    -------
+    str
+        Several lines: the summary, the default roles, each role's meaning, the options.
+    """
     check = _check_against(against)
     import inspect
 

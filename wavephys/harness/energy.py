@@ -3,7 +3,6 @@
 
 from __future__ import annotations
 
-import math
 from dataclasses import dataclass
 
 import numpy as np
@@ -26,6 +25,18 @@ class Energy:
     @property
     def total(self) -> float:
         return self.potential + self.capillary + self.kinetic
+
+
+def _surface_operator(k, water: Water) -> np.ndarray:
+    """K = k tanh kh in float64 (:func:`wavephys.physics.dispersion.surface_operator`, the one
+    definition), for numpy wavenumbers."""
+    import jax
+    import jax.numpy as jnp
+
+    from wavephys.physics.dispersion import surface_operator
+
+    with jax.enable_x64(True):
+        return np.asarray(surface_operator(jnp.asarray(k, jnp.float64), water), np.float64)
 
 
 def measure_energy(eta, eta_dot, dx: float, water: Water) -> Energy:
@@ -55,8 +66,7 @@ def measure_energy(eta, eta_dot, dx: float, water: Water) -> Energy:
     ny, nx = eta.shape[-2:]
     ky, kx = angular_wavenumbers((ny, nx), dx, xp=np)
     k = np.sqrt(kx**2 + ky**2)
-    depth = float(water.depth)
-    K = k * (1.0 if math.isinf(depth) else np.tanh(k * depth))
+    K = _surface_operator(k, water)
     n = nx * ny
     eh = np.fft.fft2(eta)
     dh = np.fft.fft2(eta_dot)

@@ -50,7 +50,22 @@ STABILITY_LIMIT = 1.0 / math.sqrt(2.0)
 
 
 def courant_number(speed, dt, dx):
-    """C = c·Δt/Δx (dimensionless) for wave speed c (m/s), step Δt (s), spacing Δx (m)."""
+    """C = c·Δt/Δx (dimensionless) for wave speed c (m/s), step Δt (s), spacing Δx (m).
+
+    Parameters
+    ----------
+    speed : float
+        c, m/s, > 0.
+    dt : float
+        Δt, s, > 0.
+    dx : float
+        Δx, m, > 0.
+
+    Returns
+    -------
+    float
+        C, dimensionless (the scheme is stable for C ≤ :data:`STABILITY_LIMIT`).
+    """
     check_scalar("speed", speed, lo=0.0, lo_open=True)
     check_scalar("dt", dt, lo=0.0, lo_open=True)
     check_scalar("dx", dx, lo=0.0, lo_open=True)
@@ -84,7 +99,18 @@ def laplacian(eta):
     """Periodic 5-point Laplacian on the last two axes, in grid units (1/Δx² omitted).
 
     NumPy in → NumPy out (float64 measurements), JAX in → JAX out
-    (:func:`wavephys.core.spectral.central_laplacian` at unit spacing)."""
+    (:func:`wavephys.core.spectral.central_laplacian` at unit spacing).
+
+    Parameters
+    ----------
+    eta : array_like (..., ny, nx)
+        Height field, m, periodic, ny, nx ≥ 3.
+
+    Returns
+    -------
+    numpy.ndarray or jax.Array (..., ny, nx)
+        Δ_h η, m (per grid cell², the 1/Δx² omitted).
+    """
     from wavephys.core.spectral import central_laplacian
 
     return central_laplacian(eta, 1.0)
@@ -94,7 +120,30 @@ def laplacian(eta):
 def fd_step(eta, eta_prev, courant, damping=0.0):
     """One explicit step: returns η^{n+1} from η^n (``eta``) and η^{n−1} (``eta_prev``), m.
 
-    ``courant`` C = cΔt/Δx in (0, 10] (stable up to 1/√2), ``damping`` d in [0, 1)."""
+    ``courant`` C = cΔt/Δx in (0, 10] (stable up to 1/√2), ``damping`` d in [0, 1).
+
+    Parameters
+    ----------
+    eta : array_like (..., ny, nx)
+        η^n, m, ny, nx ≥ 3.
+    eta_prev : array_like (..., ny, nx)
+        η^{n−1}, m, the shape of ``eta``.
+    courant : float
+        C = cΔt/Δx, in (0, 10] (stable up to :data:`STABILITY_LIMIT` = 1/√2).
+    damping : float
+        d, in [0, 1) (0: undamped).
+
+    Returns
+    -------
+    array_like (..., ny, nx)
+        η^{n+1}, m.
+
+    References
+    ----------
+    Kass & Miller (1990); Gomez (2000), the undamped scheme, as used by L. Baboud & X. Décoret (2006).
+    Realistic water volumes in real-time. *Eurographics Workshop on Natural Phenomena*
+    (docs/physics.md §1.7).
+    """
     return (2.0 - damping) * eta - (1.0 - damping) * eta_prev + courant**2 * laplacian(eta)
 
 
@@ -112,6 +161,20 @@ def fd_run(eta, eta_prev, courant, steps: int, damping=0.0, check_stability: boo
         ≥ 1.
     damping : float
         d in [0, 1).
+    check_stability : bool
+        Reject C > 1/√2 (:data:`STABILITY_LIMIT`), default True.
+
+    Returns
+    -------
+    (eta, eta_prev, history)
+        η^N and η^{N−1}, m, shape of ``eta``, and the heights of every step, m, stacked on a
+        leading axis of length ``steps``.
+
+    References
+    ----------
+    Kass & Miller (1990); Gomez (2000), the undamped scheme, as used by L. Baboud & X. Décoret (2006).
+    Realistic water volumes in real-time. *Eurographics Workshop on Natural Phenomena*
+    (docs/physics.md §1.7).
     """
     eta, eta_prev = check_levels(eta, eta_prev)
     check_bool("check_stability", check_stability)
@@ -133,6 +196,28 @@ def fd_angular_frequency(kx, ky, speed, dt, dx):
 
     ``kx``, ``ky`` (rad/m) broadcast together. The result is NaN, by design, where the
     scheme is unstable for that mode (right-hand side > 1): there the scheme has no real ω.
+
+    Parameters
+    ----------
+    kx, ky : array_like
+        Wavenumber components, rad/m (broadcastable).
+    speed : float
+        c, m/s, > 0.
+    dt : float
+        Δt, s, > 0.
+    dx : float
+        Δx, m, > 0.
+
+    Returns
+    -------
+    jax.Array
+        ω, rad/s, of the broadcast shape; NaN where the mode is unstable.
+
+    References
+    ----------
+    Kass & Miller (1990); Gomez (2000), the undamped scheme, as used by L. Baboud & X. Décoret (2006).
+    Realistic water volumes in real-time. *Eurographics Workshop on Natural Phenomena*
+    (docs/physics.md §1.7).
     """
     try:
         np.broadcast_shapes(np.shape(kx), np.shape(ky))
@@ -151,6 +236,35 @@ def find_stability_limit(n: int = 32, steps: int = 400, growth: float = 10.0,
     (random initial data excite every mode, the checkerboard included). Bisection on
     [0.5, 1] to ``tolerance`` in [1e-7, 0.1] (a bounded number of steps). Returns the
     measured boundary C* (compare with :data:`STABILITY_LIMIT` = 1/√2).
+
+    Parameters
+    ----------
+    n : int
+        Grid points per side, ≥ 4.
+    steps : int
+        Steps per trial run, ≥ 10.
+    growth : float
+        Growth of max|η| that counts as unstable, > 1.
+    tolerance : float
+        Width of the final bracket in C, in [1e-7, 0.1].
+    seed : int
+        Seed of the random initial field, ≥ 0.
+
+    Returns
+    -------
+    float
+        C*, dimensionless.
+
+    Raises
+    ------
+    RuntimeError
+        If C in [0.5, 1.0] does not bracket the boundary.
+
+    References
+    ----------
+    Kass & Miller (1990); Gomez (2000), the undamped scheme, as used by L. Baboud & X. Décoret (2006).
+    Realistic water volumes in real-time. *Eurographics Workshop on Natural Phenomena*
+    (docs/physics.md §1.7).
     """
     n = check_int("n", n, lo=4)
     steps = check_int("steps", steps, lo=10)
@@ -181,6 +295,35 @@ def fd_moving_source(n: int = 512, length: float = 40.0, wave_speed: float = 0.5
     A non-dispersive scheme can only make a Mach cone of half-angle asin(c/U) for a
     supersonic source (none for U < c), never Kelvin's 19.47° wake: the documented
     failure of this method for moving sources.
+
+    Parameters
+    ----------
+    n : int
+        Grid points per side, ≥ 16.
+    length : float
+        Side of the periodic domain, m, > 0.
+    wave_speed : float
+        c, m/s, > 0.
+    source_speed : float
+        U, m/s, > 0 (starts at x = −0.35·length, y = 0).
+    source_size : float
+        Standard deviation of the Gaussian forcing, m, > 0.
+    duration : float
+        Simulated time, s, > 0 (at most :data:`MAX_STEPS` steps).
+    courant : float
+        C = cΔt/Δx, in (0, 1/√2] (:data:`STABILITY_LIMIT`).
+
+    Returns
+    -------
+    (eta, grid, x) : (jax.Array (n, n), Grid, float)
+        The heights at the end (m, in the units of a unit-amplitude forcing), the grid and the
+        source's final x, m.
+
+    References
+    ----------
+    Kass & Miller (1990); Gomez (2000), the undamped scheme, as used by L. Baboud & X. Décoret (2006).
+    Realistic water volumes in real-time. *Eurographics Workshop on Natural Phenomena*
+    (docs/physics.md §1.7).
     """
     n = check_int("n", n, lo=16)
     for name, v in (("length", length), ("wave_speed", wave_speed), ("source_speed", source_speed),

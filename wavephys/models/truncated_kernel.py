@@ -67,6 +67,15 @@ def truncated_kernel(grid: Grid, water: Water, size: int):
     grid, water
     size : int
         P, odd, 1 ≤ P < n. P = n − 1 keeps nearly the whole kernel.
+
+    Returns
+    -------
+    jax.Array (P, P)
+        The stencil, 1/s² per point, summing to zero.
+
+    References
+    ----------
+    J. Tessendorf (2004). Interactive water surfaces (iWave) (docs/physics.md §1.7).
     """
     size = check_int("size", size, lo=1, hi=grid.n - 1)
     if size % 2 == 0:
@@ -80,7 +89,23 @@ def truncated_kernel(grid: Grid, water: Water, size: int):
 
 @validate(grid=GRID, stencil=_STENCIL)
 def stencil_symbol(stencil, grid: Grid):
-    """Fourier symbol Ĝ_P(k) of a centred stencil on the grid, 1/s², shape ``(n, n)``."""
+    """Fourier symbol Ĝ_P(k) of a centred stencil on the grid, 1/s², shape ``(n, n)``.
+
+    Parameters
+    ----------
+    stencil : array_like (P, P)
+        A centred stencil (:func:`truncated_kernel`), 1/s² per point, square, P odd, P < n.
+    grid : Grid
+
+    Returns
+    -------
+    jax.Array (n, n)
+        Ĝ_P, 1/s² (real part of the DFT of the stencil embedded at the origin).
+
+    References
+    ----------
+    J. Tessendorf (2004). Interactive water surfaces (iWave) (docs/physics.md §1.7).
+    """
     stencil = jnp.asarray(stencil)
     p = stencil.shape[-1]
     h = p // 2
@@ -91,7 +116,28 @@ def stencil_symbol(stencil, grid: Grid):
 
 @validate(grid=GRID, stencil=_STENCIL)
 def max_stable_dt(stencil, grid: Grid):
-    """Largest stable leapfrog step for the stencil, s: 2/sqrt(max Ĝ_P)."""
+    """Largest stable leapfrog step for the stencil, s: 2/sqrt(max Ĝ_P).
+
+    Parameters
+    ----------
+    stencil : array_like (P, P)
+        A centred stencil (:func:`truncated_kernel`), 1/s² per point, square, P odd, P < n.
+    grid : Grid
+
+    Returns
+    -------
+    float
+        Δt, s.
+
+    Raises
+    ------
+    ValueError
+        If the stencil has no positive Fourier symbol.
+
+    References
+    ----------
+    J. Tessendorf (2004). Interactive water surfaces (iWave) (docs/physics.md §1.7).
+    """
     top = float(jnp.max(stencil_symbol(stencil, grid)))
     if not top > 0:
         raise ValueError(f"stencil has no positive Fourier symbol (max {top:.3g} 1/s^2): it is not an omega^2 "
@@ -101,7 +147,20 @@ def max_stable_dt(stencil, grid: Grid):
 
 @validate(eta=Array(min_ndim=2), stencil=_STENCIL)
 def convolve_periodic(eta, stencil):
-    """Periodic 2-D convolution of ``eta`` (..., n, n) with a centred odd stencil (P, P)."""
+    """Periodic 2-D convolution of ``eta`` (..., n, n) with a centred odd stencil (P, P).
+
+    Parameters
+    ----------
+    eta : array_like (..., n, n)
+        The field (any unit).
+    stencil : array_like (P, P)
+        Square, P odd, smaller than the field.
+
+    Returns
+    -------
+    jax.Array (..., n, n)
+        G ∗ η, in the units of ``eta`` times those of ``stencil``.
+    """
     eta, stencil = jnp.asarray(eta), jnp.asarray(stencil)
     h = stencil.shape[-1] // 2
     lead = eta.shape[:-2]
@@ -115,7 +174,28 @@ def convolve_periodic(eta, stencil):
 @validate(eta=Array(min_ndim=2), eta_prev=Array(shape=lambda a: np.shape(a["eta"]), min_ndim=2),
           stencil=_STENCIL, dt=_DT)
 def kernel_step(eta, eta_prev, stencil, dt):
-    """One leapfrog step η^{n+1} = 2η^n − η^{n−1} − Δt²·(G_P ∗ η^n), m (Δt in (0, 1e6] s)."""
+    """One leapfrog step η^{n+1} = 2η^n − η^{n−1} − Δt²·(G_P ∗ η^n), m (Δt in (0, 1e6] s).
+
+    Parameters
+    ----------
+    eta : array_like (..., n, n)
+        η^n, m.
+    eta_prev : array_like (..., n, n)
+        η^{n−1}, m, the shape of ``eta``.
+    stencil : array_like (P, P)
+        A centred stencil (:func:`truncated_kernel`), 1/s² per point, square, P odd, P < n.
+    dt : float
+        Δt, s, in (0, 1e6] (stable up to :func:`max_stable_dt`).
+
+    Returns
+    -------
+    jax.Array (..., n, n)
+        η^{n+1}, m.
+
+    References
+    ----------
+    J. Tessendorf (2004). Interactive water surfaces (iWave) (docs/physics.md §1.7).
+    """
     return 2.0 * eta - eta_prev - dt * dt * convolve_periodic(eta, stencil)
 
 
@@ -133,6 +213,17 @@ def kernel_run(eta, eta_prev, stencil, dt, steps: int, check_stability: bool = T
         field's grid. Pass ``check_stability=False`` to explore the unstable side (it blows up).
     steps : int
         ≥ 1.
+    check_stability : bool
+        Reject Δt above :func:`max_stable_dt`, default True.
+
+    Returns
+    -------
+    (eta, eta_prev)
+        η^N and η^{N−1}, m, shape of ``eta``.
+
+    References
+    ----------
+    J. Tessendorf (2004). Interactive water surfaces (iWave) (docs/physics.md §1.7).
     """
     eta, eta_prev = check_levels(eta, eta_prev)
     check_bool("check_stability", check_stability)

@@ -39,8 +39,20 @@ def _check_axis(axis):
 def rfft2(x, mesh=None, axis: str = AXIS):
     """2-D real FFT of ``x`` (..., n, n), sharded by rows over ``mesh``'s axis ``axis``.
 
-    Returns the half spectrum: ``(..., n, n//2 + 1)`` without a mesh, the padded
-    ``(..., n, W)`` sharded by columns with one (module doc).
+    Parameters
+    ----------
+    x : array_like (..., n, n)
+        Real fields, square on their last two axes.
+    mesh : jax.sharding.Mesh, optional
+        Split the rows over its axis ``axis`` (n divisible by its size); None: one device.
+    axis : str
+        The mesh axis.
+
+    Returns
+    -------
+    jax.Array
+        The half spectrum: ``(..., n, n//2 + 1)`` without a mesh, the padded ``(..., n, W)``
+        sharded by columns with one (module doc).
     """
     _check_axis(axis)
     check_array("x", x, min_ndim=2)
@@ -64,7 +76,23 @@ def rfft2(x, mesh=None, axis: str = AXIS):
 
 
 def irfft2(spectrum, n: int, mesh=None, axis: str = AXIS):
-    """Inverse of :func:`rfft2`: real ``(..., n, n)`` (sharded by rows with a mesh)."""
+    """Inverse of :func:`rfft2`.
+
+    Parameters
+    ----------
+    spectrum : array_like (..., n, W), complex
+        A half spectrum as :func:`rfft2` returns it (W = n//2 + 1, padded with a mesh).
+    n : int
+        The grid's side, ≥ 2.
+    mesh : jax.sharding.Mesh, optional
+    axis : str
+        The mesh axis.
+
+    Returns
+    -------
+    jax.Array (..., n, n)
+        Real fields (sharded by rows with a mesh).
+    """
     n = check_int("n", n, lo=2)
     _check_axis(axis)
     check_array("spectrum", spectrum, complex_ok=True, min_ndim=2)
@@ -89,7 +117,24 @@ def irfft2(spectrum, n: int, mesh=None, axis: str = AXIS):
 def exchanged_bytes(n: int, shards: int, planes: int, itemsize: int = 8) -> int:
     """Bytes one device sends in one slab transform of ``planes`` stacked n × n fields split
     over ``shards`` devices: its (n/P) × W complex block less the part it keeps, (P − 1)/P
-    of it. ``itemsize`` 8 for complex64 (float32 fields), 16 for complex128."""
+    of it.
+
+    Parameters
+    ----------
+    n : int
+        Grid side, ≥ 2, divisible by ``shards``.
+    shards : int
+        Devices P, ≥ 1.
+    planes : int
+        Fields transformed together, ≥ 1.
+    itemsize : int
+        Bytes per complex value: 8 for complex64 (float32 fields), 16 for complex128.
+
+    Returns
+    -------
+    int
+        Bytes sent by each device.
+    """
     n, shards, planes = check_int("n", n, lo=2), check_int("shards", shards, lo=1), check_int("planes", planes, lo=1)
     itemsize = check_int("itemsize", itemsize, lo=1)
     if n % shards:
@@ -112,6 +157,16 @@ def collective_bytes(compiled_text: str) -> dict[str, int]:
     ``all-to-all`` the operand blocks it exchanges, counting the ones a device sends away
     ((P − 1) of its P blocks); other collectives (``all-gather``, ``all-reduce``,
     ``collective-permute``) are counted by their result size, so that an unexpected one shows.
+
+    Parameters
+    ----------
+    compiled_text : str
+        The optimized HLO text.
+
+    Returns
+    -------
+    dict
+        {collective kind: bytes per device per run}.
     """
     if not isinstance(compiled_text, str):
         raise TypeError(f"compiled_text must be the str of compiled.as_text(), got {describe(compiled_text)}")

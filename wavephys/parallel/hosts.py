@@ -36,7 +36,12 @@ def _env_int(name: str, text: str) -> int:
 
 
 def is_initialized() -> bool:
-    """True once ``jax.distributed`` is connected (by :func:`initialize` or by hand)."""
+    """Whether ``jax.distributed`` is connected (by :func:`initialize` or by hand).
+
+    Returns
+    -------
+    bool
+    """
     return bool(jax.distributed.is_initialized())
 
 
@@ -47,7 +52,20 @@ def initialize(coordinator_address: str | None = None, num_processes: int | None
     Arguments not given are read from ``WAVEPHYS_COORDINATOR`` ("host:port"),
     ``WAVEPHYS_NUM_PROCESSES`` and ``WAVEPHYS_PROCESS_ID``; with none of them set, JAX
     detects the cluster itself (Slurm, Open MPI, Kubernetes). On CPU the collectives
-    are gloo's. ``timeout_s``: how long to wait for the other processes.
+    are gloo's.
+
+    Parameters
+    ----------
+    coordinator_address : str, optional
+        "host:port" of process 0.
+    num_processes : int, optional
+        Processes in the run, ≥ 1.
+    process_id : int, optional
+        This process's number, in [0, num_processes).
+    local_device_ids : sequence of int, optional
+        This process's devices (JAX's default: all).
+    timeout_s : int
+        Seconds to wait for the other processes.
     """
     env = [os.environ.get(k) for k in _ENV]
     coordinator_address = coordinator_address if coordinator_address is not None else env[0]
@@ -75,8 +93,20 @@ def initialize(coordinator_address: str | None = None, num_processes: int | None
 def hosts_mesh(axis: str = AXIS):
     """One mesh axis over the devices of every process (``jax.devices()``, process by process).
 
-    RuntimeError if ``jax.distributed`` is not initialized (then only this process's
-    devices exist, and a "many hosts" run would silently be a one-host run).
+    Parameters
+    ----------
+    axis : str
+        The mesh axis's name (default ``"rows"``).
+
+    Returns
+    -------
+    jax.sharding.Mesh
+
+    Raises
+    ------
+    RuntimeError
+        If ``jax.distributed`` is not initialized (then only this process's devices exist, and
+        a "many hosts" run would silently be a one-host run).
     """
     if not is_initialized():
         raise RuntimeError("hosts_mesh needs jax.distributed: call wavephys.parallel.initialize(...) in every "
@@ -85,8 +115,18 @@ def hosts_mesh(axis: str = AXIS):
 
 
 def gather(x) -> np.ndarray:
-    """A (possibly sharded, possibly multi-process) array of finite numbers as one numpy
-    array in every process."""
+    """A (possibly sharded, possibly multi-process) array as one numpy array in every process.
+
+    Parameters
+    ----------
+    x : jax.Array or array_like
+        Finite numbers.
+
+    Returns
+    -------
+    numpy.ndarray
+        The whole array, in every process.
+    """
     if not (isinstance(x, jax.Array) or hasattr(x, "__array__") or isinstance(x, (int, float, list, tuple))):
         raise TypeError(f"x must be an array, got {describe(x)}")
     out = _gather(x)

@@ -52,13 +52,47 @@ def _dtype_name(dtype):
 
 @validate(s=_S)
 def cutoff_quadratic(s):
-    """Quadratic cutoff weight 1 − (s − 1)² at s = p/M ∈ [0, 1) (Loviscach 2003)."""
+    """Quadratic cutoff weight 1 − (s − 1)² at s = p/M ∈ [0, 1) (Loviscach 2003).
+
+    Parameters
+    ----------
+    s : array_like
+        s = p/M, the distance p (points) to the nearer edge over the margin M, dimensionless,
+        in [0, 1].
+
+    Returns
+    -------
+    array_like
+        The weights 1 − (s − 1)², dimensionless, in [0, 1], shape of ``s``.
+
+    References
+    ----------
+    J. Loviscach (2003). Complex water effects at interactive frame rates. *WSCG*, §3 (docs/physics.md
+    §1.4).
+    """
     return 1.0 - (s - 1.0) ** 2
 
 
 @validate(s=_S)
 def cutoff_linear(s):
-    """Linear cutoff weight s at s = p/M ∈ [0, 1) (Loviscach 2002)."""
+    """Linear cutoff weight s at s = p/M ∈ [0, 1) (Loviscach 2002).
+
+    Parameters
+    ----------
+    s : array_like
+        s = p/M, the distance p (points) to the nearer edge over the margin M, dimensionless,
+        in [0, 1].
+
+    Returns
+    -------
+    array_like
+        The weights s (``s`` itself), dimensionless, in [0, 1].
+
+    References
+    ----------
+    J. Loviscach (2002), the earlier choice of the margin cutoff. The quadratic one: J. Loviscach
+    (2003). Complex water effects at interactive frame rates. *WSCG*, §3 (docs/physics.md §1.4).
+    """
     return s
 
 
@@ -86,6 +120,15 @@ def cutoff_profile(n: int, margin: int, method: str = "quadratic", dtype=jnp.flo
     method : {"quadratic", "linear"}
         A name in :data:`CUTOFF_METHODS`.
     dtype : dtype of the result.
+
+    Returns
+    -------
+    jax.Array (n,)
+        h(p), dimensionless, in [0, 1], of ``dtype``.
+
+    References
+    ----------
+    J. Loviscach (2003). Complex water effects at interactive frame rates. *WSCG*, §3 (docs/physics.md §1.4).
     """
     n, margin = _check_margin(n, margin)
     shape = CUTOFF_METHODS.check(method)
@@ -98,13 +141,48 @@ def cutoff_profile(n: int, margin: int, method: str = "quadratic", dtype=jnp.flo
 
 
 def cutoff_mask(n: int, margin: int, method: str = "quadratic", dtype=jnp.float32):
-    """The 2-D weights h(q)·h(p) of shape ``(n, n)`` (rows q = y, columns p = x)."""
+    """The 2-D weights h(q)·h(p) of shape ``(n, n)`` (rows q = y, columns p = x).
+
+    Parameters
+    ----------
+    n : int
+        Grid points per side, ≥ 2.
+    margin : int
+        M, points, 0 ≤ M < n/2 (0: no cutoff, all weights 1).
+    method : {"quadratic", "linear"}
+        A name in :data:`CUTOFF_METHODS`.
+    dtype : dtype
+        Of the result, float32 or float64.
+
+    Returns
+    -------
+    jax.Array (n, n)
+        The weights h(q)·h(p), dimensionless, in [0, 1] (:func:`cutoff_profile` per axis).
+
+    References
+    ----------
+    J. Loviscach (2003). Complex water effects at interactive frame rates. *WSCG*, §3 (docs/physics.md
+    §1.4).
+    """
     h = cutoff_profile(n, margin, method, dtype)
     return h[:, None] * h[None, :]
 
 
 def interior(field, margin: int):
-    """The visible inner ``(n − 2M)²`` part of ``field`` (last two axes)."""
+    """The visible inner ``(n − 2M)²`` part of ``field`` (last two axes).
+
+    Parameters
+    ----------
+    field : array_like (..., n, n)
+        Any field on the grid, square on its last two axes (n ≥ 2).
+    margin : int
+        M, points, 0 ≤ M < n/2.
+
+    Returns
+    -------
+    array_like (..., n − 2M, n − 2M)
+        ``field[..., M:n − M, M:n − M]``, in the units of ``field``.
+    """
     check_array("field", field, min_ndim=2)
     if np.shape(field)[-1] != np.shape(field)[-2]:
         raise ValueError(f"field must be square on its last two axes, got shape {np.shape(field)}")
@@ -124,6 +202,27 @@ def cutoff_reflection(ratio: float, method: str = "quadratic", margin: int = 32,
     the energy of the left-moving components (kx < 0, weighted by K = |k|) over the
     initial energy is the reflected fraction. A y-uniform wave on the 2-D grid separates
     into exactly this 1-D problem.
+
+    Parameters
+    ----------
+    ratio : float
+        λ/M, the packet's wavelength over the margin, dimensionless, in (0, 64].
+    method : {"quadratic", "linear"}
+        A name in :data:`CUTOFF_METHODS`.
+    margin : int
+        M, cells, ≥ 1.
+    group_cells_per_step : float
+        Cells the packet's group moves per step, in (0, 8].
+
+    Returns
+    -------
+    float
+        The reflected energy fraction, dimensionless, ≥ 0.
+
+    References
+    ----------
+    J. Loviscach (2003). Complex water effects at interactive frame rates. *WSCG*, §3 (docs/physics.md
+    §1.4).
     """
     check_scalar("ratio", ratio, lo=0.0, lo_open=True, hi=64.0)
     margin = check_int("margin", margin, lo=1)
@@ -158,6 +257,34 @@ def cutoff_boundary(method: str = "quadratic", threshold: float = 1e-3, lo: floa
 
     Bisection in log(λ/M) on :func:`cutoff_reflection` (which grows with λ/M), a fixed
     number of ``iterations``; ``RuntimeError`` if [lo, hi] does not bracket the threshold.
+
+    Parameters
+    ----------
+    method : {"quadratic", "linear"}
+        A name in :data:`CUTOFF_METHODS`.
+    threshold : float
+        Reflected energy fraction, in (0, 1).
+    lo, hi : float
+        The bracket of λ/M searched, each in (0, 64], hi > lo.
+    iterations : int
+        Bisection steps, 1 … 60.
+    **kw
+        Passed on to :func:`cutoff_reflection` (``margin``, ``group_cells_per_step``).
+
+    Returns
+    -------
+    float
+        λ/M where the reflection passes ``threshold``, dimensionless.
+
+    Raises
+    ------
+    RuntimeError
+        If [lo, hi] does not bracket the threshold.
+
+    References
+    ----------
+    J. Loviscach (2003). Complex water effects at interactive frame rates. *WSCG*, §3 (docs/physics.md
+    §1.4).
     """
     check_scalar("threshold", threshold, lo=0.0, hi=1.0, lo_open=True, hi_open=True)
     check_scalar("lo", lo, lo=0.0, hi=64.0, lo_open=True)

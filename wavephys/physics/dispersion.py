@@ -64,6 +64,16 @@ def depth_factor(k, water: Water):
         Angular wavenumber magnitude, rad/m, in [0, 1e9] (:data:`K_MAX`).
     water : Water
         Supplies the depth h, m.
+
+    Returns
+    -------
+    jax.Array
+        tanh(k h), dimensionless, in [0, 1], shape of ``k``.
+
+    References
+    ----------
+    H. Lamb (1932). *Hydrodynamics*, 6th ed., §267. J. Loviscach (2003). Complex water effects at
+    interactive frame rates. *WSCG* (deep water). docs/physics.md §1.1.
     """
     deep = _deep(water)
     h = jnp.where(deep, 1.0, water.depth)
@@ -75,6 +85,23 @@ def surface_operator(k, water: Water):
     """K(k) = k·tanh(k h), rad/m: the Fourier symbol of ∂φ/∂z at the surface.
 
     Linear kinematic condition: η̂_t = K(k)·φ̂ (docs/physics.md §1.2). Deep water: K = |k|.
+
+    Parameters
+    ----------
+    k : array_like
+        Angular wavenumber magnitude, rad/m, in [0, 1e9] (:data:`K_MAX`), any shape.
+    water : Water
+        g (m/s²), ρ (kg/m³), σ (N/m), depth h (m, ``inf`` for deep water).
+
+    Returns
+    -------
+    jax.Array
+        K(k), rad/m, same shape as ``k``.
+
+    References
+    ----------
+    H. Lamb (1932). *Hydrodynamics*, 6th ed., §267. J. Loviscach (2003). Complex water effects at
+    interactive frame rates. *WSCG* (deep water). docs/physics.md §1.1.
     """
     return k * depth_factor(k, water)
 
@@ -84,6 +111,23 @@ def restoring_acceleration(k, water: Water):
     """g + (σ/ρ)k², m/s²: gravity plus the capillary restoring term of mode k.
 
     Linear dynamic condition: φ̂_t = −(g + (σ/ρ)k²)·η̂, so ω² = K·(g + (σ/ρ)k²).
+
+    Parameters
+    ----------
+    k : array_like
+        Angular wavenumber magnitude, rad/m, in [0, 1e9] (:data:`K_MAX`), any shape.
+    water : Water
+        g (m/s²), ρ (kg/m³), σ (N/m), depth h (m, ``inf`` for deep water).
+
+    Returns
+    -------
+    jax.Array
+        g + (σ/ρ)k², m/s², same shape as ``k``.
+
+    References
+    ----------
+    H. Lamb (1932). *Hydrodynamics*, 6th ed., §267. J. Loviscach (2003). Complex water effects at
+    interactive frame rates. *WSCG* (deep water). docs/physics.md §1.1.
     """
     return water.g + (water.sigma / water.rho) * k * k
 
@@ -120,6 +164,11 @@ def angular_frequency(k, water: Water):
     -----
     Valid for small-amplitude (linear) waves on inviscid water: kA ≪ 1.
     Source: docs/physics.md §1.1; Loviscach (2003), below eq. 1 (deep water).
+
+    References
+    ----------
+    H. Lamb (1932). *Hydrodynamics*, 6th ed., §267. J. Loviscach (2003). Complex water effects at
+    interactive frame rates. *WSCG* (deep water).
 
     Examples
     --------
@@ -162,6 +211,11 @@ def phase_speed(k, water: Water):
 
     Limits: deep gravity c = sqrt(g/k); shallow (kh ≪ 1) c = sqrt(g h); pure capillary
     c = sqrt(σ k / ρ).
+
+    References
+    ----------
+    H. Lamb (1932). *Hydrodynamics*, 6th ed., §267. J. Loviscach (2003). Complex water effects at
+    interactive frame rates. *WSCG* (deep water). docs/physics.md §1.1.
     """
     k, pos, ks = _positive(k)
     c = jnp.sqrt(restoring_acceleration(ks, water) * depth_factor(ks, water) / ks)
@@ -189,6 +243,11 @@ def group_speed(k, water: Water):
         c_g, m/s. At k = 0: sqrt(g h) for finite depth, ``inf`` for deep water.
 
     Limits: deep gravity c_g = c/2; pure capillary c_g = 3c/2; shallow c_g = c.
+
+    References
+    ----------
+    H. Lamb (1932). *Hydrodynamics*, 6th ed., §267. J. Loviscach (2003). Complex water effects at
+    interactive frame rates. *WSCG* (deep water). docs/physics.md §1.1.
     """
     k, pos, ks = _positive(k)
     deep = _deep(water)
@@ -243,6 +302,11 @@ def wavenumber(omega, water: Water, iterations: int = 60):
     -------
     jax.Array
         k, rad/m, same shape as ``omega``; k(0) = 0.
+
+    References
+    ----------
+    H. Lamb (1932). *Hydrodynamics*, 6th ed., §267. J. Loviscach (2003). Complex water effects at
+    interactive frame rates. *WSCG* (deep water). docs/physics.md §1.1.
 
     Examples
     --------
@@ -321,6 +385,12 @@ def min_phase_speed(water: Water = Water()):
     too; when the minimum is the long-wave limit (h² < 3σ/(ρg)) it returns
     (sqrt(g h), 0).
 
+    Parameters
+    ----------
+    water : Water
+        g (m/s²), ρ (kg/m³), σ (N/m, must be > 0 for a minimum), depth h (m, ``inf`` for deep
+        water); concrete (not traced).
+
     Returns
     -------
     (float, float)
@@ -330,6 +400,13 @@ def min_phase_speed(water: Water = Water()):
     ------
     ValueError
         If ``water.sigma`` is 0: gravity waves have no minimum phase speed.
+    TypeError
+        If the water parameters are traced.
+
+    References
+    ----------
+    J. Loviscach (2003). Complex water effects at interactive frame rates. *WSCG* (deep-water form);
+    H. Lamb (1932). *Hydrodynamics*, 6th ed., §267 (docs/physics.md §1.1).
     """
     return _minimum_speed(phase_speed, water, "min_phase_speed")
 
@@ -341,9 +418,28 @@ def min_group_speed(water: Water = Water()):
     Deep clean water: c_g,min ≈ 0.1776 m/s at λ ≈ 4.35 cm (k ≈ 144 rad/m). The slowest
     energy transport; below it no wave energy keeps up with a moving source.
 
+    Parameters
+    ----------
+    water : Water
+        g (m/s²), ρ (kg/m³), σ (N/m, must be > 0 for a minimum), depth h (m, ``inf`` for deep
+        water); concrete (not traced).
+
     Returns
     -------
     (float, float)
-        (speed in m/s, wavenumber in rad/m).
+        (speed in m/s, wavenumber in rad/m); (sqrt(g h), 0) when the minimum is the long-wave
+        limit.
+
+    Raises
+    ------
+    ValueError
+        If ``water.sigma`` is 0: gravity waves have no minimum group speed.
+    TypeError
+        If the water parameters are traced.
+
+    References
+    ----------
+    J. Loviscach (2003). Complex water effects at interactive frame rates. *WSCG* (deep-water form);
+    H. Lamb (1932). *Hydrodynamics*, 6th ed., §267 (docs/physics.md §1.1).
     """
     return _minimum_speed(group_speed, water, "min_group_speed")

@@ -43,6 +43,10 @@ class Stones:
         Crater radius R, m, ≥ the grid spacing of the grid it is dropped on.
     depth : array_like
         Crater depth D, m, ≥ 0 (the rim is highest at r = 2R, by D·e⁻² ≈ 0.135·D).
+
+    References
+    ----------
+    J. Loviscach (2003). Complex water effects at interactive frame rates. *WSCG*, §3.
     """
 
     x: jax.Array
@@ -106,6 +110,25 @@ def stone_height_spectrum(stones: Stones, grid: Grid, real: bool = True):
     """DFT of the stones' summed crater heights, m (DFT convention: sum over points).
 
     ``real=True`` gives the ``rfft2`` half spectrum ``(n, n//2 + 1)``.
+
+    Parameters
+    ----------
+    stones : Stones
+        The craters (positions, radii R and depths D, m); R ≥ the grid spacing is needed for a
+        band-limited spectrum.
+    grid : Grid
+    real : bool
+        True: the ``rfft2`` half spectrum; False: the full ``fft2`` spectrum ``(n, n)``.
+
+    Returns
+    -------
+    jax.Array (n, n//2 + 1) or (n, n), complex
+        η̂₀ = −D πR⁴k² e^{−k²R²/2}/dx² per stone, shifted to its impact point and summed, m
+        (DFT convention).
+
+    References
+    ----------
+    J. Loviscach (2003). Complex water effects at interactive frame rates. *WSCG*, §3.
     """
     k2 = grid.wavenumber_magnitude(real) ** 2
     r = stones.radius[:, None, None]
@@ -115,7 +138,24 @@ def stone_height_spectrum(stones: Stones, grid: Grid, real: bool = True):
 
 @validate(stones=Instance(Stones, "wavephys.Stones"), grid=GRID)
 def stone_height(stones: Stones, grid: Grid):
-    """The stones' crater heights in space, m, shape ``(n, n)`` (periodic images ignored)."""
+    """The stones' crater heights in space, m, shape ``(n, n)`` (periodic images ignored).
+
+    Parameters
+    ----------
+    stones : Stones
+        The craters (positions, radii R and depths D, m); R ≥ the grid spacing is needed for a
+        band-limited spectrum.
+    grid : Grid
+
+    Returns
+    -------
+    jax.Array (n, n)
+        η₀ = −D(1 − r²/(2R²))e^{−r²/(2R²)} summed over the stones, m.
+
+    References
+    ----------
+    J. Loviscach (2003). Complex water effects at interactive frame rates. *WSCG*, §3.
+    """
     x, y = grid.mesh()
     rr = ((x[None] - stones.x[:, None, None]) ** 2 + (y[None] - stones.y[:, None, None]) ** 2)
     q = rr / (2.0 * stones.radius[:, None, None] ** 2)

@@ -51,6 +51,17 @@ class Forcing:
     pushes the surface down). The simulation evaluates it at the midpoint of each of the
     ``substeps`` (≥ 1) sub-intervals of a step (module doc: the accuracy it buys).
 
+    Parameters
+    ----------
+    pressure : callable
+        ``pressure(x, y, t) -> p``: x, y in m (arrays (n, n)), t in s (scalar), p in Pa, an
+        array (n, n), finite; positive pressure pushes the surface down.
+    substeps : int
+        M, sub-intervals of a step each integrated at its own midpoint, 1 … 64 (choose ωΔt/M ≲ 0.3
+        for the fastest wave the forcing drives, module docstring).
+
+    Examples
+    --------
     >>> import jax.numpy as jnp
     >>> bump = Forcing(lambda x, y, t: 50.0 * jnp.exp(-((x - 0.5 * t) ** 2 + y ** 2) / 0.02))
     """

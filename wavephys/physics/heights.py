@@ -56,6 +56,22 @@ def height_multiplier(k, water: Water):
     """K(k)/ω(k), s/m: η̂_c = i·(K/ω)·ψ̂. Set to 0 at k = 0 (the mean level is fixed).
 
     Deep gravity waves: K/ω = sqrt(k/g).
+
+    Parameters
+    ----------
+    k : array_like
+        Angular wavenumber magnitude, rad/m, ≥ 0, any shape.
+    water : Water
+        g (m/s²), ρ (kg/m³), σ (N/m), depth h (m, ``inf`` for deep water).
+
+    Returns
+    -------
+    jax.Array
+        K/ω, s/m, shape of ``k``; 0 where ω = 0.
+
+    References
+    ----------
+    J. Loviscach (2003). Complex water effects at interactive frame rates. *WSCG*, eq. 3 (docs/physics.md §1.2).
     """
     K = surface_operator(k, water)
     omega = angular_frequency(k, water)
@@ -75,14 +91,48 @@ def _complex_height(psi_hat, grid, water):
 
 @validate(grid=GRID, water=WATER, psi=COMPLEX_FIELD)
 def first_order_height(psi, grid: Grid, water: Water):
-    """Linear height η = Re F⁻¹[(iK/ω)ψ̂], m, from a complex field ψ (m²/s), ``(..., n, n)``."""
+    """Linear height η = Re F⁻¹[(iK/ω)ψ̂], m, from a complex field ψ (m²/s), ``(..., n, n)``.
+
+    Parameters
+    ----------
+    psi : array_like (..., n, n)
+        Complex wave field ψ = φ + iχ on ``grid``, m²/s (a real array is read as complex).
+    grid : Grid
+    water : Water
+
+    Returns
+    -------
+    jax.Array (..., n, n)
+        η, m.
+
+    References
+    ----------
+    J. Loviscach (2003). Complex water effects at interactive frame rates. *WSCG*, eq. 3 (docs/physics.md §1.2).
+    """
     psi = _check_field(psi, grid)
     return _complex_height(jnp.fft.fft2(psi), grid, water).real
 
 
 @validate(grid=GRID, water=WATER, psi=COMPLEX_FIELD)
 def height_rate(psi, grid: Grid, water: Water):
-    """Linear vertical surface velocity η̇ = Re F⁻¹[K ψ̂], m/s (= ∂φ/∂z at the surface)."""
+    """Linear vertical surface velocity η̇ = Re F⁻¹[K ψ̂], m/s (= ∂φ/∂z at the surface).
+
+    Parameters
+    ----------
+    psi : array_like (..., n, n)
+        Complex wave field ψ = φ + iχ on ``grid``, m²/s (a real array is read as complex).
+    grid : Grid
+    water : Water
+
+    Returns
+    -------
+    jax.Array (..., n, n)
+        η̇, m/s.
+
+    References
+    ----------
+    J. Loviscach (2003). Complex water effects at interactive frame rates. *WSCG*, eq. 3 (docs/physics.md §1.2).
+    """
     psi = _check_field(psi, grid)
     k = grid.wavenumber_magnitude()
     return jnp.fft.ifft2(surface_operator(k, water) * jnp.fft.fft2(psi)).real
@@ -100,7 +150,27 @@ def second_order_correction(eta, q, lam_eta, lam_q):
 
 @validate(grid=GRID, water=WATER, psi=COMPLEX_FIELD)
 def second_order_height(psi, grid: Grid, water: Water):
-    """Height to second order η + η₂, m (Loviscach 2003 eq. 3, generalized; module doc)."""
+    """Height to second order η + η₂, m (Loviscach 2003 eq. 3, generalized; module doc).
+
+    η₂ = ½·Re[η_c·Λη_c], Λ = F⁻¹|k|F: exact for a single wave, a deep-water formula
+    (docs/physics.md §1.5).
+
+    Parameters
+    ----------
+    psi : array_like (..., n, n)
+        Complex wave field ψ = φ + iχ on ``grid``, m²/s (a real array is read as complex).
+    grid : Grid
+    water : Water
+
+    Returns
+    -------
+    jax.Array (..., n, n)
+        η + η₂, m.
+
+    References
+    ----------
+    J. Loviscach (2003). Complex water effects at interactive frame rates. *WSCG*, eq. 3.
+    """
     psi = _check_field(psi, grid)
     eta_c = _complex_height(jnp.fft.fft2(psi), grid, water)
     lam = jnp.fft.ifft2(grid.wavenumber_magnitude() * jnp.fft.fft2(eta_c))
@@ -128,6 +198,10 @@ def potential_from_height(eta, grid: Grid, water: Water, travelling: bool = Fals
     -------
     jax.Array
         Complex ψ, m²/s.
+
+    References
+    ----------
+    J. Loviscach (2003). Complex water effects at interactive frame rates. *WSCG*, eq. 3 (docs/physics.md §1.2).
     """
     check_array("eta", eta, complex_ok=travelling, min_ndim=2, shape_tail=(grid.n, grid.n))
     k = grid.wavenumber_magnitude()
@@ -146,8 +220,21 @@ def monochromatic_wave(grid: Grid, water: Water, steepness: float, mode: int = 4
     """ψ = a·e^{ik(x + L/2)} travelling in +x with first-order height amplitude A = steepness/k.
 
     ``mode`` wavelengths fit the grid (k = 2π·mode/L). Its first-order height is
-    η = −A sin(k(x + L/2)). Returns ``(psi, k, A)``: complex ψ (m²/s) on the grid,
-    k (rad/m) and A (m).
+    η = −A sin(k(x + L/2)).
+
+    Parameters
+    ----------
+    grid : Grid
+    water : Water
+    steepness : float
+        kA, dimensionless, > 0.
+    mode : int
+        Wavelengths across the grid, 1 … n/2 − 1.
+
+    Returns
+    -------
+    (psi, k, A) : (jax.Array (n, n), float, float)
+        Complex ψ (m²/s) on the grid, k (rad/m) and A (m).
     """
     mode = check_int("mode", mode, lo=1, hi=grid.n // 2 - 1)
     k = 2 * math.pi * mode / float(grid.length)
@@ -165,8 +252,25 @@ def second_order_error(steepness: float, water: Water = Water(sigma=0.0), n: int
     A wave of first-harmonic amplitude A (kA = ``steepness``) is built in ψ
     (:func:`monochromatic_wave`); its second-order height is compared with the exact
     steady Stokes wave whose η(x) has the same first harmonic
-    (:func:`wavephys.physics.stokes.stokes_wave`), at the same phase. Returns
-    ``{"first": max|η₁ − η_exact|/A, "second": max|η₁ + η₂ − η_exact|/A}``.
+    (:func:`wavephys.physics.stokes.stokes_wave`), at the same phase.
+
+    Parameters
+    ----------
+    steepness : float
+        kA, dimensionless, in (0, 0.33].
+    water : Water
+        Deep water is assumed by the comparison (default: gravity only, σ = 0).
+    n : int
+        Grid points per side, even, 32 … 4096.
+
+    Returns
+    -------
+    dict
+        ``{"first": max|η₁ − η_exact|/A, "second": max|η₁ + η₂ − η_exact|/A}``, dimensionless.
+
+    References
+    ----------
+    J. Loviscach (2003). Complex water effects at interactive frame rates. *WSCG*, eq. 3.
     """
     from wavephys.physics.stokes import stokes_wave
 
@@ -189,6 +293,22 @@ def second_order_breakdown(tolerance: float = 0.1, steepness=STEEPNESS) -> float
     """Smallest kA at which the second-order height error (max |Δη| / A) reaches ``tolerance``.
 
     Linear interpolation between the sampled ``steepness`` values; ``inf`` if never.
+
+    Parameters
+    ----------
+    tolerance : float
+        Relative error max |Δη|/A, in (0, 1].
+    steepness : array_like (m,)
+        kA values tried, each in (0, 0.33], at least two, increasing (default :data:`STEEPNESS`).
+
+    Returns
+    -------
+    float
+        kA, dimensionless; ``inf`` if the error stays below ``tolerance``.
+
+    References
+    ----------
+    J. Loviscach (2003). Complex water effects at interactive frame rates. *WSCG*, eq. 3.
     """
     if len(steepness) < 2 or np.any(np.diff(steepness) <= 0):
         raise ValueError(f"steepness must hold at least two increasing values, got {steepness!r}")

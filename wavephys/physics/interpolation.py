@@ -25,7 +25,23 @@ __all__ = ["hermite_weights", "hermite_frame", "hermite_error"]
 
 @validate(s=Array(lo=0.0, hi=1.0))
 def hermite_weights(s):
-    """Cubic Hermite basis (h00, h01, h10, h11) at s ∈ [0, 1] (dimensionless)."""
+    """Cubic Hermite basis (h00, h01, h10, h11) at s ∈ [0, 1] (dimensionless).
+
+    Parameters
+    ----------
+    s : array_like
+        Fraction of the step, dimensionless, in [0, 1], any shape.
+
+    Returns
+    -------
+    (h00, h01, h10, h11) : tuple of jax.Array
+        The four weights, dimensionless, each of the shape of ``s``.
+
+    References
+    ----------
+    J. Loviscach (2003). Complex water effects at interactive frame rates. *WSCG*, §3 (docs/physics.md
+    §1.6).
+    """
     s = jnp.asarray(s, dtype=jnp.result_type(float, s))
     s2, s3 = s * s, s * s * s
     return 2 * s3 - 3 * s2 + 1, -2 * s3 + 3 * s2, s3 - 2 * s2 + s, s3 - s2
@@ -45,6 +61,16 @@ def hermite_frame(eta0, eta1, eta_dot0, eta_dot1, dt, s):
         Δt, s, > 0.
     s : float
         Fraction of the step, in [0, 1].
+
+    Returns
+    -------
+    array_like
+        η(t + sΔt), m, the shape of ``eta0``.
+
+    References
+    ----------
+    J. Loviscach (2003). Complex water effects at interactive frame rates. *WSCG*, §3 (printed without
+    the factor Δt on the η̇ terms; corrected here, module docstring).
     """
     shapes = {jnp.shape(a) for a in (eta0, eta1, eta_dot0, eta_dot1)}
     if len(shapes) != 1:
@@ -58,6 +84,23 @@ def hermite_error(omega_dt: float, s: float = 1.0 / 3.0) -> float:
 
     Exact for one Fourier mode e^{−iωt}: compares h00 + h01·e^{−ix} + (−ix)(h10 + h11·e^{−ix})
     with e^{−isx}, x = ωΔt. The worst case over a field is its largest ωΔt.
+
+    Parameters
+    ----------
+    omega_dt : float
+        ωΔt, rad, ≥ 0.
+    s : float
+        Fraction of the step, in [0, 1] (default 1/3).
+
+    Returns
+    -------
+    float
+        |error|/amplitude, dimensionless.
+
+    References
+    ----------
+    J. Loviscach (2003). Complex water effects at interactive frame rates. *WSCG*, §3 (docs/physics.md
+    §1.6).
     """
     check_scalar("omega_dt", omega_dt, lo=0.0)
     check_scalar("s", s, lo=0.0, hi=1.0)

@@ -47,6 +47,10 @@ def propagator(grid: Grid, water: Water, dt, real: bool = False):
     -------
     jax.Array
         Complex multiplier (complex64 for float32 grids).
+
+    References
+    ----------
+    J. Loviscach (2003). Complex water effects at interactive frame rates. *WSCG*, eq. 1.
     """
     omega = angular_frequency(grid.wavenumber_magnitude(real), water)
     return jnp.exp(-1j * omega * dt)
@@ -59,7 +63,23 @@ def kernel(grid: Grid, water: Water, dt):
 
     Discrete and periodic: ``propagate(f)`` is the circular convolution of f with Ψ,
     entry ``[n//2 + a, n//2 + b]`` being the weight of the sample ``a`` rows and ``b``
-    columns away. Complex, shape ``(n, n)``; dimensionless (a weight per sample).
+    columns away.
+
+    Parameters
+    ----------
+    grid : Grid
+    water : Water
+    dt : float
+        Time step Δt, s, finite and > 0.
+
+    Returns
+    -------
+    jax.Array (n, n), complex
+        Ψ = F⁻¹[e^{−iωΔt}], fftshifted; dimensionless (a weight per sample).
+
+    References
+    ----------
+    J. Loviscach (2003). Complex water effects at interactive frame rates. *WSCG*, eq. 1.
     """
     psi = jnp.fft.ifft2(propagator(grid, water, dt))
     return jnp.fft.fftshift(psi, axes=(-2, -1))
@@ -82,6 +102,10 @@ def propagate(field, grid: Grid, water: Water, dt):
     -------
     jax.Array
         ψ(t + Δt), complex, same shape.
+
+    References
+    ----------
+    J. Loviscach (2003). Complex water effects at interactive frame rates. *WSCG*, eq. 1.
 
     Examples
     --------

@@ -82,6 +82,20 @@ def resonance_quotients(alpha):
     """(Q1, Q2) = ((e^{−iα} + iα − 1)/α², (e^{iα} − iα − 1)/α²), cancellation-free.
 
     Taylor series Σ_{j≥2} (∓iα)^j / (j! α²) for |α| < 1/2, the closed form elsewhere.
+
+    Parameters
+    ----------
+    alpha : array_like
+        α = (k·v − ω)Δt, rad, real or complex, any shape.
+
+    Returns
+    -------
+    (Q1, Q2) : tuple of jax.Array
+        Complex, dimensionless, shape of ``alpha``; Q1, Q2 → −1/2 at α = 0.
+
+    References
+    ----------
+    J. Loviscach (2003). Complex water effects at interactive frame rates. *WSCG*, eq. 2 (docs/physics.md §1.3).
     """
     alpha = jnp.asarray(alpha)
     small = jnp.abs(alpha) < _SERIES_RADIUS
@@ -102,9 +116,25 @@ def resonance_quotients(alpha):
 
 @validate(alpha=Array(hi=1e6, lo=-1e6))
 def resonance_quotients_exact(alpha):
-    """Reference (Q1, Q2) for float64 inputs, independent of :func:`resonance_quotients`:
-    exact rational arithmetic on the Taylor series (41 terms: below double precision for
-    |α| ≤ 2), rounded once at the end. Slow; for tests and checks."""
+    """Reference (Q1, Q2) for float64 inputs, independent of :func:`resonance_quotients`.
+
+    Exact rational arithmetic on the Taylor series (41 terms: below double precision for
+    |α| ≤ 2), rounded once at the end. Slow; for tests and checks.
+
+    Parameters
+    ----------
+    alpha : array_like
+        α, rad, real, in [−1e6, 1e6] (accurate for |α| ≤ 2).
+
+    Returns
+    -------
+    (Q1, Q2) : tuple of numpy.ndarray (m,)
+        Complex, dimensionless, over ``alpha`` flattened to 1-D (at least one entry).
+
+    References
+    ----------
+    J. Loviscach (2003). Complex water effects at interactive frame rates. *WSCG*, eq. 2 (docs/physics.md §1.3).
+    """
     from fractions import Fraction
 
     out = []
@@ -155,6 +185,24 @@ def ship_multipliers(grid: Grid, water: Water, velocity, dt):
 
     Complex arrays ``(n, n)`` on the grid's full ``fft2`` spectrum; dimensionless.
     Stable near the resonance α = 0 in float32 and float64 (module doc).
+
+    Parameters
+    ----------
+    grid : Grid
+    water : Water
+    velocity : array_like (2,)
+        (vx, vy) of the hull over the step, m/s, each in [−1e4, 1e4].
+    dt : float
+        Δt, s, in (0, 1e4].
+
+    Returns
+    -------
+    (M1, M2) : tuple of jax.Array (n, n)
+        Complex, dimensionless.
+
+    References
+    ----------
+    J. Loviscach (2003). Complex water effects at interactive frame rates. *WSCG*, eq. 2 (docs/physics.md §1.3).
     """
     velocity = _check_velocity(velocity)
     kv, omega = _k_dot_v_omega(grid, water, velocity)
@@ -163,7 +211,26 @@ def ship_multipliers(grid: Grid, water: Water, velocity, dt):
 
 @validate(grid=GRID, water=WATER, velocity=_VELOCITY, dt=_DT)
 def ship_multipliers_naive(grid: Grid, water: Water, velocity, dt):
-    """(M1, M2) with the quotients evaluated as written: a documented failure near α = 0."""
+    """(M1, M2) with the quotients evaluated as written: a documented failure near α = 0.
+
+    Parameters
+    ----------
+    grid : Grid
+    water : Water
+    velocity : array_like (2,)
+        (vx, vy) of the hull over the step, m/s, each in [−1e4, 1e4].
+    dt : float
+        Δt, s, in (0, 1e4].
+
+    Returns
+    -------
+    (M1, M2) : tuple of jax.Array (n, n)
+        Complex, dimensionless; inaccurate (or NaN at α = 0) near the resonance.
+
+    References
+    ----------
+    J. Loviscach (2003). Complex water effects at interactive frame rates. *WSCG*, eq. 2 (docs/physics.md §1.3).
+    """
     velocity = _check_velocity(velocity)
     kv, omega = _k_dot_v_omega(grid, water, velocity)
 
@@ -182,6 +249,9 @@ HULL_KINDS = ("ellipse", "gaussian", "mask")
 class Hull:
     """A ship's footprint f in its own frame (x forward, y to port), dimensionless.
 
+    Hulls compare and hash by value (the mask by its bytes), so compiled patch kernels
+    are shared by equal hulls.
+
     Parameters
     ----------
     kind : {"ellipse", "gaussian", "mask"}
@@ -195,8 +265,9 @@ class Hull:
     mask : array, optional
         For ``kind="mask"``.
 
-    Hulls compare and hash by value (the mask by its bytes), so compiled patch kernels
-    are shared by equal hulls.
+    References
+    ----------
+    J. Loviscach (2003). Complex water effects at interactive frame rates. *WSCG*, eq. 2 (docs/physics.md §1.3).
     """
 
     kind: str = "ellipse"
@@ -253,7 +324,16 @@ class Hull:
 # -- paths ------------------------------------------------------------------------------
 @dataclass(frozen=True)
 class Path:
-    """A ship's pose over time: ``pose(t) → (x, y, heading)`` in m, m, rad (grid frame)."""
+    """A ship's pose over time: ``pose(t) → (x, y, heading)`` in m, m, rad (grid frame).
+
+    Calling the path with t (s) returns the pose as three floats, ValueError if ``pose``
+    returns anything else or a non-finite value.
+
+    Parameters
+    ----------
+    pose : callable
+        ``pose(t) -> (x, y, heading)``: t in s; x, y in m, heading in rad, all finite.
+    """
 
     pose: Callable[[float], tuple]
 
@@ -273,7 +353,19 @@ class Path:
 
 
 def straight_path(start, velocity) -> Path:
-    """Straight line from ``start`` (x, y; m, at t = 0) at constant ``velocity`` (m/s)."""
+    """Straight line from ``start`` (x, y; m, at t = 0) at constant ``velocity`` (m/s).
+
+    Parameters
+    ----------
+    start : array_like (2,)
+        (x, y) at t = 0, m.
+    velocity : array_like (2,)
+        (vx, vy), m/s; the heading is its direction.
+
+    Returns
+    -------
+    Path
+    """
     check_array("start", start, ndim=1, shape_tail=(2,))
     check_array("velocity", velocity, ndim=1, shape_tail=(2,))
     (x0, y0), (vx, vy) = np.asarray(start, float), np.asarray(velocity, float)
@@ -282,7 +374,23 @@ def straight_path(start, velocity) -> Path:
 
 
 def turning_path(center, radius: float, speed: float, start_angle: float = 0.0) -> Path:
-    """Circle of ``radius`` (m) about ``center`` at ``speed`` (m/s, > 0: counter-clockwise)."""
+    """Circle of ``radius`` (m) about ``center`` at ``speed`` (m/s, > 0: counter-clockwise).
+
+    Parameters
+    ----------
+    center : array_like (2,)
+        (x, y) of the circle's centre, m.
+    radius : float
+        m, > 0.
+    speed : float
+        m/s along the circle; > 0 counter-clockwise, < 0 clockwise.
+    start_angle : float
+        Polar angle of the position at t = 0, rad.
+
+    Returns
+    -------
+    Path
+    """
     check_array("center", center, ndim=1, shape_tail=(2,))
     check_scalar("radius", radius, lo=0.0, lo_open=True)
     check_scalar("speed", speed)
@@ -304,6 +412,19 @@ class Ship:
     A source of the simulation (``wavephys.simulation.Source``): after each step's cutoff
     it adds the waves it made over [t, t + Δt] on its patch, by the model's
     ``ship_method``.
+
+    Parameters
+    ----------
+    hull : Hull
+        The footprint f.
+    path : Path
+        Its pose over time.
+    strength : float
+        s, m²/s (any real number).
+
+    References
+    ----------
+    J. Loviscach (2003). Complex water effects at interactive frame rates. *WSCG*, eq. 2 (docs/physics.md §1.3).
     """
 
     hull: Hull
@@ -364,7 +485,28 @@ _SHIP = Instance(Ship, "wavephys.physics.ship_waves.Ship")
 def hull_spectrum(hull: Hull, patch: Grid, center, pose):
     """FFT of the hull at ``pose`` = (x, y, heading) on a patch grid centred at ``center``, blurred.
 
-    Pure ``jnp`` (poses may be traced)."""
+    Pure ``jnp`` (poses may be traced).
+
+    Parameters
+    ----------
+    hull : Hull
+    patch : Grid
+        The patch grid (n_p × n_p points).
+    center : array_like (2,)
+        (x, y) of the patch centre in the grid frame, m.
+    pose : array_like (3,)
+        (x, y, heading) of the hull, m, m, rad.
+
+    Returns
+    -------
+    jax.Array (n_p, n_p), complex
+        ``fft2`` of f, multiplied by exp(−k²·blur²/2) when ``hull.blur`` > 0; dimensionless
+        (DFT convention).
+
+    References
+    ----------
+    J. Loviscach (2003). Complex water effects at interactive frame rates. *WSCG*, eq. 2 (docs/physics.md §1.3).
+    """
     x, y = patch.mesh()
     dxp, dyp = pose[0] - center[0], pose[1] - center[1]
     c, s = jnp.cos(pose[2]), jnp.sin(pose[2])
@@ -383,6 +525,28 @@ def ship_waves_kernels(f0_hat, f1_hat, patch: Grid, water: Water, velocity, dt):
 
     ``f0_hat``, ``f1_hat``: FFTs of the hull at the step's start and end on ``patch``;
     ``velocity`` (m/s, (vx, vy)) its straight motion over the step, ``dt`` the step (s).
+
+    Parameters
+    ----------
+    f0_hat, f1_hat : array_like (2M, 2M), complex
+        FFTs of the hull at the step's start and end on ``patch`` (:func:`hull_spectrum`),
+        dimensionless (DFT convention).
+    patch : Grid
+        The 2M × 2M patch grid.
+    water : Water
+    velocity : array_like (2,)
+        (vx, vy), the hull's straight motion over the step, m/s, each in [−1e4, 1e4].
+    dt : float
+        Δt, s, in (0, 1e4].
+
+    Returns
+    -------
+    jax.Array (2M, 2M), complex
+        The new waves per unit strength, m²/s per m²/s.
+
+    References
+    ----------
+    J. Loviscach (2003). Complex water effects at interactive frame rates. *WSCG*, eq. 2 (docs/physics.md §1.3).
     """
     kv, omega = _k_dot_v_omega(patch, water, velocity)
     m1, m2 = _multipliers(kv, omega, dt, resonance_quotients)
@@ -393,7 +557,31 @@ def ship_waves_kernels(f0_hat, f1_hat, patch: Grid, water: Water, velocity, dt):
           velocity=_VELOCITY, dt=_DT)
 def ship_waves_impulses(f0_hat, f1_hat, patch: Grid, water: Water, velocity, dt):
     """The naive way: the change f_{t+Δt} − f_t added at once, a row of dropped stones
-    without the time integration (the paper's warning; documented failure)."""
+    without the time integration (the paper's warning; documented failure).
+
+    Parameters
+    ----------
+    f0_hat, f1_hat : array_like (2M, 2M), complex
+        FFTs of the hull at the step's start and end on ``patch`` (:func:`hull_spectrum`),
+        dimensionless (DFT convention).
+    patch : Grid
+        The 2M × 2M patch grid.
+    water : Water
+    velocity : array_like (2,)
+        (vx, vy), the hull's straight motion over the step, m/s, each in [−1e4, 1e4].
+    dt : float
+        Δt, s, in (0, 1e4]. ``water``, ``velocity`` and ``dt`` are checked but not used: the
+        signature is that of :func:`ship_waves_kernels`.
+
+    Returns
+    -------
+    jax.Array (2M, 2M), complex
+        F⁻¹[f̂_{t+Δt} − f̂_t], per unit strength.
+
+    References
+    ----------
+    J. Loviscach (2003). Complex water effects at interactive frame rates. *WSCG*, eq. 2 (docs/physics.md §1.3).
+    """
     return jnp.fft.ifft2(f1_hat - f0_hat)
 
 
@@ -425,9 +613,37 @@ def ship_patch_waves(ship: Ship, grid: Grid, water: Water, t: float, dt: float, 
                      method: str = "kernels"):
     """Complex waves the ship adds over [t, t + Δt], on its 2M × 2M patch (M = ``half``).
 
-    ``method`` is a name in :data:`SHIP_METHODS`. Returns ``(waves, (row0, col0))``: the
-    ``(2M, 2M)`` complex field (m²/s) and the grid index of its first row and column
-    (wrap them modulo n to add it to the field).
+    ``method`` is a name in :data:`SHIP_METHODS`.
+
+    Parameters
+    ----------
+    ship : Ship
+    grid : Grid
+    water : Water
+    t : float
+        Start of the step, s.
+    dt : float
+        Δt, s, in (0, 1e4].
+    half : int
+        M, the patch's half-size, points, ≥ 2 (2M ≤ n).
+    method : {"kernels", "impulses"}
+        A name in :data:`SHIP_METHODS`.
+
+    Returns
+    -------
+    (waves, (row0, col0))
+        The ``(2M, 2M)`` complex field (m²/s) and the grid index of its first row and column
+        (wrap them modulo n to add it to the field).
+
+    Raises
+    ------
+    ValueError
+        If the ship is more than a grid length from the centre, or the hull and its motion
+        over Δt do not fit in the patch.
+
+    References
+    ----------
+    J. Loviscach (2003). Complex water effects at interactive frame rates. *WSCG*, eq. 2 (docs/physics.md §1.3).
     """
     p0, p1, r0, c0, center = _patch_place(ship, grid, t, dt, half)
     kernel = _kernels(ship.hull, half, float(grid.dx), water, method)[0]
@@ -445,6 +661,33 @@ def add_ship_waves(fields, ship: Ship, grid: Grid, water: Water, t: float, dt: f
     The same waves as :func:`ship_patch_waves`, computed and added (indices wrapping)
     without a round trip through Python; ``interior`` = (lo, hi) restricts the patch to
     rows and columns in [lo, hi) (ValueError otherwise).
+
+    Parameters
+    ----------
+    fields : jax.Array (..., 2, n, n)
+        Stacked (Re ψ, Im ψ) = (φ, χ), m²/s; donated.
+    ship : Ship
+    grid : Grid
+    water : Water
+    t : float
+        Start of the step, s.
+    dt : float
+        Δt, s, in (0, 1e4].
+    half : int
+        M, the patch's half-size, points, ≥ 2 (2M ≤ n).
+    method : {"kernels", "impulses"}
+        A name in :data:`SHIP_METHODS`.
+    interior : (int, int), optional
+        (lo, hi): the rows and columns the patch must stay within.
+
+    Returns
+    -------
+    jax.Array
+        ``fields`` with the waves added, same shape and dtype, m²/s.
+
+    References
+    ----------
+    J. Loviscach (2003). Complex water effects at interactive frame rates. *WSCG*, eq. 2 (docs/physics.md §1.3).
     """
     p0, p1, r0, c0, center = _patch_place(ship, grid, t, dt, half)
     if interior is not None:
@@ -489,9 +732,35 @@ def _patch_kernel(hull: Hull, half: int, dx: float, water: Water, method: str):
 @validate(ship=_SHIP, grid=GRID, water=WATER, t=REAL, dt=_DT, half=Int(lo=2), method=Choice(("kernels", "impulses")))
 def patch_leak(ship: Ship, grid: Grid, water: Water, t: float, dt: float, half: int,
                method: str = "kernels") -> float:
-    """Fraction of one step's new waves a 2M × 2M patch gets wrong: relative energy of the
-    difference from the same waves computed on a patch twice as large (4M × 4M; the whole
-    grid when 4M > n, and 0 when the patch already is the whole grid)."""
+    """Fraction of one step's new waves a 2M × 2M patch gets wrong.
+
+    The relative energy of the difference from the same waves computed on a patch twice as
+    large (4M × 4M; the whole grid when 4M > n, and 0 when the patch already is the whole
+    grid).
+
+    Parameters
+    ----------
+    ship : Ship
+    grid : Grid
+    water : Water
+    t : float
+        Start of the step, s.
+    dt : float
+        Δt, s, in (0, 1e4].
+    half : int
+        M, the patch's half-size, points, ≥ 2 (2M ≤ n).
+    method : {"kernels", "impulses"}
+        A name in :data:`SHIP_METHODS`.
+
+    Returns
+    -------
+    float
+        Relative energy, dimensionless, ≥ 0; 1 when the hull itself does not fit the patch.
+
+    References
+    ----------
+    J. Loviscach (2003). Complex water effects at interactive frame rates. *WSCG*, eq. 2 (docs/physics.md §1.3).
+    """
     try:
         small, (r0, c0) = ship_patch_waves(ship, grid, water, t, dt, half, method)
     except ValueError:
@@ -511,7 +780,38 @@ def patch_leak(ship: Ship, grid: Grid, water: Water, t: float, dt: float, half: 
           lo=Real(lo=0.0, hi=1e4, lo_open=True), hi=Real(lo=0.0, hi=1e4, lo_open=True), iterations=Int(lo=1, hi=60))
 def max_patch_dt(ship: Ship, grid: Grid, water: Water, half: int, tolerance: float = 1e-3,
                  lo: float = 1e-4, hi: float = 10.0, iterations: int = 20) -> float:
-    """The largest Δt (s) whose :func:`patch_leak` stays below ``tolerance`` (bisection in log Δt)."""
+    """The largest Δt (s) whose :func:`patch_leak` stays below ``tolerance`` (bisection in log Δt).
+
+    The leak is measured at t = 0 with the ``"kernels"`` method.
+
+    Parameters
+    ----------
+    ship : Ship
+    grid : Grid
+    water : Water
+    half : int
+        M, the patch's half-size, points, ≥ 2.
+    tolerance : float
+        Largest leak, in (0, 1).
+    lo, hi : float
+        The bracket of Δt searched, s, each in (0, 1e4], hi > lo.
+    iterations : int
+        Bisection steps, 1 … 60.
+
+    Returns
+    -------
+    float
+        Δt, s; ``hi`` if the leak stays below ``tolerance`` there.
+
+    Raises
+    ------
+    ValueError
+        If the patch leaks more than ``tolerance`` even at Δt = ``lo``.
+
+    References
+    ----------
+    J. Loviscach (2003). Complex water effects at interactive frame rates. *WSCG*, eq. 2 (docs/physics.md §1.3).
+    """
     if hi <= lo:
         raise ValueError(f"hi must be larger than lo = {lo} s, got {hi}")
     if patch_leak(ship, grid, water, 0.0, lo, half) > tolerance:

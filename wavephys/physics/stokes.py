@@ -77,8 +77,28 @@ def _solve_babenko(b1: float, modes: int, guess=None):
 class StokesWave:
     """A solved Stokes wave: evaluate η(x) (m) with ``wave(x)``; crest at x = 0.
 
-    Attributes: ``amplitude`` (first-harmonic amplitude A of η(x), m), ``wavenumber``
-    (k, rad/m), ``speed_factor`` (c/sqrt(g/k)), ``height`` (crest-to-trough, m).
+    Made by :func:`stokes_wave`; calling it with positions x (m, array_like) returns η(x), m,
+    interpolated periodically on the solved profile.
+
+    Parameters
+    ----------
+    amplitude : float
+        First-harmonic amplitude A of η(x), m.
+    wavenumber : float
+        k, rad/m.
+    speed_factor : float
+        c/sqrt(g/k), dimensionless.
+    height : float
+        Crest-to-trough height, m.
+    _x, _y : numpy.ndarray
+        The solved profile, nondimensional (g = k = 1): abscissae x(u) in increasing order and
+        elevations y there.
+
+    References
+    ----------
+    K. I. Babenko (1987). Some remarks on the theory of surface waves of finite amplitude.
+    *Soviet Math. Dokl.* 35; with Dyachenko, Lushnikov & Korotkevich (2016), *Stud. Appl. Math.*
+    137, for the conformal form used to solve Stokes waves (docs/physics.md).
     """
 
     amplitude: float
@@ -129,6 +149,22 @@ def stokes_wave(steepness: float, wavenumber: float = 1.0, modes: int = 128) -> 
         k, rad/m, > 0.
     modes : int
         Cosine modes of y(u) (≥ 16; more for steeper waves).
+
+    Returns
+    -------
+    StokesWave
+        The solved wave (crest at x = 0); cached by arguments.
+
+    Raises
+    ------
+    RuntimeError
+        If the solver or the amplitude iteration does not converge.
+
+    References
+    ----------
+    K. I. Babenko (1987). Some remarks on the theory of surface waves of finite amplitude.
+    *Soviet Math. Dokl.* 35; with Dyachenko, Lushnikov & Korotkevich (2016), *Stud. Appl. Math.*
+    137, for the conformal form used to solve Stokes waves.
     """
     check_scalar("steepness", steepness, lo=0.0, hi=0.33, lo_open=True)
     check_scalar("wavenumber", wavenumber, lo=0.0, lo_open=True)

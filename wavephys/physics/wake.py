@@ -63,7 +63,20 @@ KELVIN_ANGLE = math.degrees(math.asin(1.0 / 3.0))
 
 
 def transverse_wavelength(speed, water: Water = Water(sigma=0.0)):
-    """Deep-water gravity wavelength of the transverse waves on the track, 2πU²/g, m."""
+    """Deep-water gravity wavelength of the transverse waves on the track, 2πU²/g, m.
+
+    Parameters
+    ----------
+    speed : float
+        U, m/s, > 0.
+    water : Water
+        Uses g (default: gravity only, σ = 0).
+
+    Returns
+    -------
+    float
+        2πU²/g, m.
+    """
     check_scalar("speed", speed, lo=0.0, lo_open=True)
     check_instance("water", water, Water, "wavephys.Water")
     return 2 * math.pi * speed**2 / float(water.g)
@@ -71,9 +84,20 @@ def transverse_wavelength(speed, water: Water = Water(sigma=0.0)):
 
 @dataclass(frozen=True)
 class CuspLine:
-    """The outer edge of a steady wake: ray ``angle`` (degrees) behind the source, carried by
-    waves of wavenumber ``wavenumber`` (rad/m) whose crests make ``wave_angle`` (degrees,
-    between wavevector and track)."""
+    """The outer edge of a steady wake, as found by :func:`cusp_line`.
+
+    Ray ``angle`` (degrees) behind the source, carried by waves of wavenumber ``wavenumber``
+    (rad/m) whose crests make ``wave_angle`` (degrees, between wavevector and track).
+
+    Parameters
+    ----------
+    angle : float
+        φ, the half-angle of the wake's edge behind the source, degrees.
+    wavenumber : float
+        k_c of the waves along it, rad/m.
+    wave_angle : float
+        θ between their wavevector and the track, degrees.
+    """
 
     angle: float
     wavenumber: float
@@ -81,9 +105,25 @@ class CuspLine:
 
 
 def stationary_wavenumber(target_speed, water: Water):
-    """Gravity-branch k (rad/m) with phase speed c(k) = ``target_speed`` (m/s, array; NaN where
-    none exists): the waves that stand still behind a source whose speed along their
-    wavevector is the target. Bisection in log k, 80 steps (float64)."""
+    """Gravity-branch k (rad/m) with phase speed c(k) = ``target_speed``.
+
+    ``target_speed`` in m/s (array; NaN where none exists): the waves that stand still behind a
+    source whose speed along their wavevector is the target. Bisection in log k, 80 steps
+    (float64).
+
+    Parameters
+    ----------
+    target_speed : array_like
+        c, m/s, ≥ 0.
+    water : Water
+        Any depth and surface tension.
+
+    Returns
+    -------
+    numpy.ndarray
+        k, rad/m, float64, shape of ``target_speed``; NaN where no gravity-branch wave has that
+        speed (at or below c_min, at or above the long-wave speed, or past :data:`K_MAX`).
+    """
     check_array("target_speed", target_speed, lo=0.0)
     check_instance("water", water, Water, "wavephys.Water")
     target = np.asarray(target_speed, np.float64)
@@ -124,6 +164,20 @@ def cusp_line(speed, water: Water = Water(sigma=0.0), samples: int = 4001) -> Cu
     water : Water
     samples : int
         Directions θ tried in (0, π/2); the maximum is then refined parabolically.
+
+    Returns
+    -------
+    CuspLine
+        The edge's ray angle φ (degrees), its wavenumber k_c (rad/m) and wave angle θ (degrees).
+
+    Raises
+    ------
+    ValueError
+        If no stationary gravity wave exists at ``speed`` (below c_min): there is no wake.
+
+    References
+    ----------
+    Havelock (finite depth widens the wedge), as cited in docs/physics.md §1.3.
     """
     check_scalar("speed", speed, lo=0.0, lo_open=True)
     check_instance("water", water, Water, "wavephys.Water")
@@ -161,6 +215,11 @@ class GaussianPressure:
         p0, Pa (positive pushes the surface down).
     size : float
         σ, m, > 0 (resolved: ≥ the grid spacing).
+
+    References
+    ----------
+    A. Darmon, M. Benzaquen & E. Raphaël (2014). Kelvin wake pattern at large Froude numbers.
+    *J. Fluid Mech.* 738, R3 (the Gaussian source, :func:`froude_number`).
     """
 
     amplitude: float = 100.0
@@ -186,6 +245,17 @@ class HullSource:
     A hull f (``wavephys.ship_waves.Hull``) of strength s (m²/s) moving at U in +x feeds
     ψ at the rate ∂(s f)/∂t = −s U ∂f/∂x; as a pressure, p = ρ s U ∂f/∂x (a dipole).
     Use it to compare :class:`~wavephys.simulation.Simulation` ships with their steady wake.
+
+    Parameters
+    ----------
+    hull : Hull
+        A :class:`wavephys.physics.ship_waves.Hull`, the footprint f (dimensionless).
+    strength : float
+        s, m²/s (any real number).
+
+    References
+    ----------
+    J. Loviscach (2003). Complex water effects at interactive frame rates. *WSCG*, eq. 2.
     """
 
     hull: object
@@ -216,6 +286,25 @@ def froude_number(speed, size, water: Water = Water(sigma=0.0)) -> float:
     The length is b = π·sqrt(2)·σ, the width in p0·exp(−π²r²/b²) = p0·exp(−r²/(2σ²)), the
     form Darmon, Benzaquen & Raphaël (2014) use for an axisymmetric source (docs/physics.md
     §1.3). ``speed`` U in m/s (> 0), ``size`` σ in m (> 0).
+
+    Parameters
+    ----------
+    speed : float
+        U, m/s, > 0.
+    size : float
+        σ, m, > 0.
+    water : Water
+        Uses g (default: gravity only, σ = 0).
+
+    Returns
+    -------
+    float
+        Fr, dimensionless.
+
+    References
+    ----------
+    A. Darmon, M. Benzaquen & E. Raphaël (2014). Kelvin wake pattern at large Froude numbers.
+    *J. Fluid Mech.* 738, R3.
     """
     check_scalar("speed", speed, lo=0.0, lo_open=True)
     check_scalar("size", size, lo=0.0, lo_open=True)
@@ -224,8 +313,29 @@ def froude_number(speed, size, water: Water = Water(sigma=0.0)) -> float:
 
 
 def gaussian_size(froude, speed, water: Water = Water(sigma=0.0)) -> float:
-    """The size σ (m) of the :class:`GaussianPressure` that has Froude number ``froude`` at
-    ``speed`` (m/s): the inverse of :func:`froude_number`, σ = U²/(g·Fr²·π·sqrt(2))."""
+    """The size σ (m) of the :class:`GaussianPressure` that has Froude number ``froude`` at ``speed``.
+
+    ``speed`` in m/s: the inverse of :func:`froude_number`, σ = U²/(g·Fr²·π·sqrt(2)).
+
+    Parameters
+    ----------
+    froude : float
+        Fr, dimensionless, > 0.
+    speed : float
+        U, m/s, > 0.
+    water : Water
+        Uses g (default: gravity only, σ = 0).
+
+    Returns
+    -------
+    float
+        σ, m.
+
+    References
+    ----------
+    A. Darmon, M. Benzaquen & E. Raphaël (2014). Kelvin wake pattern at large Froude numbers.
+    *J. Fluid Mech.* 738, R3.
+    """
     check_scalar("froude", froude, lo=0.0, lo_open=True)
     check_scalar("speed", speed, lo=0.0, lo_open=True)
     check_instance("water", water, Water, "wavephys.Water")
@@ -238,6 +348,20 @@ def mach_like_angle(froude) -> float:
     The ray of the longest divergent waves a source of length b makes (k ≈ 2π/b): for
     θ → 90°, tan φ ≈ 1/(2 tan θ) and k = g sec²θ/U², so φ ≈ sqrt(g/k)/(2U). Valid for
     Fr ≳ 0.6 (below, Kelvin's 19.47°); a scaling law, not an exact result.
+
+    Parameters
+    ----------
+    froude : float
+        Fr (as :func:`froude_number`), dimensionless, > 0.
+
+    Returns
+    -------
+    float
+        α, degrees.
+
+    References
+    ----------
+    M. Rabaud & F. Moisy (2013). Ship wakes: Kelvin or Mach angle? *Phys. Rev. Lett.* 110.
     """
     check_scalar("froude", froude, lo=0.0, lo_open=True)
     return math.degrees(1.0 / (2.0 * math.sqrt(2.0 * math.pi) * float(froude)))
@@ -259,16 +383,16 @@ def _stationary_waves(speed, water: Water, t):
 
 def wake_envelope(distance, lateral, speed, source: "GaussianPressure", water: Water = Water(sigma=0.0),
                   damping: float = 0.0):
-    """Amplitude envelope (m) of the far-field steady wake of a Gaussian pressure source.
+    r"""Amplitude envelope (m) of the far-field steady wake of a Gaussian pressure source.
 
     The wave part of the linear steady wake (Havelock's integral over wave directions θ,
     evaluated independently of any grid): behind a source moving at U in +x,
 
     .. math::
 
-        W(x, y) = -\\frac{i}{2\\pi\\rho}\\int_{-\\pi/2}^{\\pi/2}
-            \\frac{k_0 H(k_0)\\,\\hat p(k_0)}{|c_g(k_0) - U\\cos\\theta|}
-            e^{i k_0 (x\\cos\\theta + y\\sin\\theta)}\\,d\\theta, \\qquad \\eta = \\mathrm{Re}\\,W,
+        W(x, y) = -\frac{i}{2\pi\rho}\int_{-\pi/2}^{\pi/2}
+            \frac{k_0 H(k_0)\,\hat p(k_0)}{|c_g(k_0) - U\cos\theta|}
+            e^{i k_0 (x\cos\theta + y\sin\theta)}\,d\theta, \qquad \eta = \mathrm{Re}\,W,
 
     with k₀(θ) the stationary wavenumber (c(k₀) = U cos θ), H = K/ω and p̂ the source's
     Fourier transform (2πσ²p0·e^{−k²σ²/2}); |W| is the envelope, since W holds only waves
@@ -295,6 +419,11 @@ def wake_envelope(distance, lateral, speed, source: "GaussianPressure", water: W
     -------
     numpy.ndarray (m, p)
         |W| at (−d, y), m.
+
+    References
+    ----------
+    Havelock's integral over wave directions (docs/physics.md §1.3). A. Darmon, M. Benzaquen &
+    E. Raphaël (2014). Kelvin wake pattern at large Froude numbers. *J. Fluid Mech.* 738, R3.
     """
     check_array("distance", distance, ndim=1, lo=0.0, lo_open=True)
     check_array("lateral", lateral, ndim=1)
@@ -360,6 +489,11 @@ def steady_wake(grid: Grid, water: Water, speed: float, source, damping: float |
         The pressure distribution (its size must be ≥ the grid spacing).
     damping : float, optional
         ε, 1/s, > 0 (default 8U/L: the wake fades to e⁻⁴ over half the grid).
+
+    Returns
+    -------
+    jax.Array (n, n)
+        η, m, with the source at the grid's centre.
     """
     if not isinstance(grid, Grid):
         raise TypeError(f"grid must be a wavephys.Grid, got {type(grid).__name__}")

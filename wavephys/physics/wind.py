@@ -86,6 +86,15 @@ def phillips_spectrum(kx, ky, water: Water, wind_speed, direction=0.0, amplitude
         Dimensionless constant A, > 0.
     small_wave_length : float
         ℓ, m, ≥ 0: suppresses waves shorter than ℓ by exp(−k²ℓ²).
+
+    Returns
+    -------
+    jax.Array
+        F, m⁴, of the broadcast shape of ``kx`` and ``ky``; 0 at k = 0 and against the wind.
+
+    References
+    ----------
+    J. Tessendorf (2001). Simulating ocean water, eq. 40 (docs/physics.md §1.7).
     """
     _check_k(kx, ky, water)
     check_scalar("wind_speed", wind_speed, lo=0.0, lo_open=True)
@@ -117,6 +126,16 @@ def jonswap_frequency_spectrum(omega, water: Water, wind_speed, fetch, gamma=3.3
         Fetch F, m, > 0.
     gamma : float
         Peak enhancement γ ≥ 1 (3.3; 1 gives Pierson–Moskowitz's shape).
+
+    Returns
+    -------
+    jax.Array
+        S(ω), m²·s, shape of ``omega``.
+
+    References
+    ----------
+    K. Hasselmann et al. (1973). Measurements of wind-wave growth and swell decay (JONSWAP)
+    (docs/physics.md §1.7).
     """
     check_array("omega", omega, lo=0.0)
     check_instance("water", water, Water, "wavephys.Water")
@@ -135,7 +154,36 @@ def jonswap_frequency_spectrum(omega, water: Water, wind_speed, fetch, gamma=3.3
 
 
 def jonswap_spectrum(kx, ky, water: Water, wind_speed, fetch, direction=0.0, gamma=3.3):
-    """JONSWAP as a wavenumber spectrum F(k), m⁴, with cos² spreading (module doc)."""
+    """JONSWAP as a wavenumber spectrum F(k), m⁴, with cos² spreading (module doc).
+
+    F(k, θ) = S(ω(k))·c_g(k)·D(θ)/k, D(θ) = (2/π)cos²(θ − θ_w) on |θ − θ_w| < π/2 (0 against
+    the wind), S from :func:`jonswap_frequency_spectrum`.
+
+    Parameters
+    ----------
+    kx, ky : array_like
+        Wavenumber components, rad/m (broadcastable).
+    water : Water
+        g (m/s²) and the dispersion relation ω(k), c_g(k) (any depth and surface tension).
+    wind_speed : float
+        U₁₀, m/s, > 0.
+    fetch : float
+        Fetch F, m, > 0.
+    direction : float
+        Wind direction θ_w, rad (0 = +x).
+    gamma : float
+        Peak enhancement γ ≥ 1 (3.3; 1 gives Pierson–Moskowitz's shape).
+
+    Returns
+    -------
+    jax.Array
+        F, m⁴, of the broadcast shape of ``kx`` and ``ky``; 0 at k = 0.
+
+    References
+    ----------
+    K. Hasselmann et al. (1973). Measurements of wind-wave growth and swell decay (JONSWAP)
+    (docs/physics.md §1.7).
+    """
     _check_k(kx, ky, water)
     check_scalar("direction", direction)
     k = jnp.sqrt(kx * kx + ky * ky)
@@ -152,7 +200,28 @@ SPECTRA = Methods("wind spectrum", phillips=phillips_spectrum, jonswap=jonswap_s
 
 
 def wind_spectrum(kx, ky, water: Water, method: str = "phillips", **params):
-    """F(k) (m⁴) of the wind spectrum ``method`` in :data:`SPECTRA` with its own ``params``."""
+    """F(k) (m⁴) of the wind spectrum ``method`` in :data:`SPECTRA` with its own ``params``.
+
+    Parameters
+    ----------
+    kx, ky : array_like
+        Wavenumber components, rad/m (broadcastable).
+    water : Water
+    method : {"phillips", "jonswap"}
+        A name in :data:`SPECTRA`: :func:`phillips_spectrum` or :func:`jonswap_spectrum`.
+    **params
+        That spectrum's own parameters (``wind_speed``, ``fetch``, ``direction``, …).
+
+    Returns
+    -------
+    jax.Array
+        F, m⁴, of the broadcast shape of ``kx`` and ``ky``.
+
+    References
+    ----------
+    J. Tessendorf (2001). Simulating ocean water (Phillips spectrum); K. Hasselmann et al. (1973).
+    Measurements of wind-wave growth and swell decay (JONSWAP) (docs/physics.md §1.7).
+    """
     return SPECTRA(method, kx, ky, water, **params)
 
 
@@ -160,9 +229,25 @@ def synthesize_height(spectrum, grid: Grid, key):
     """A random travelling sea with variance density ``spectrum``: complex height, m.
 
     ``spectrum`` is F on the full ``fft2`` grid ``(n, n)``, m⁴. Amplitudes are complex
-    Gaussian, ĥ = n²·sqrt(F Δk²)·(ξ₁ + iξ₂), so that E[Var Re η] = Σ F Δk². Returns the
-    complex field F⁻¹[ĥ] (its real part is the height; pass it to
-    ``potential_from_height(..., travelling=True)``).
+    Gaussian, ĥ = n²·sqrt(F Δk²)·(ξ₁ + iξ₂), so that E[Var Re η] = Σ F Δk².
+
+    Parameters
+    ----------
+    spectrum : array_like (n, n)
+        F on the full ``fft2`` grid, m⁴, ≥ 0.
+    grid : Grid
+    key : jax.random key
+        Seed of the random amplitudes.
+
+    Returns
+    -------
+    jax.Array (n, n), complex
+        F⁻¹[ĥ], m (its real part is the height; pass it to
+        ``potential_from_height(..., travelling=True)``).
+
+    References
+    ----------
+    J. Tessendorf (2001). Simulating ocean water (docs/physics.md §1.7).
     """
     check_instance("grid", grid, Grid, "wavephys.Grid")
     check_array("spectrum", spectrum, ndim=2, shape_tail=(grid.n, grid.n), lo=0.0)
@@ -183,6 +268,11 @@ class WindSea:
     params : dict
         The spectrum's own parameters, e.g. ``dict(wind_speed=5.0, fetch=2e3)`` (numbers:
         they are static parameters of the compiled step; stored as sorted pairs).
+
+    References
+    ----------
+    J. Tessendorf (2001). Simulating ocean water (Phillips spectrum); K. Hasselmann et al. (1973).
+    Measurements of wind-wave growth and swell decay (JONSWAP) (docs/physics.md §1.7).
     """
 
     key: jax.Array

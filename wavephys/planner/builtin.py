@@ -19,13 +19,40 @@ BUILTIN_SCENES = ("ripples", "ocean", "pond", "lake", "harbour")
 
 
 def builtin_path(name: str):
-    """The TOML file of a built-in scene (a path inside the installed package)."""
+    """The TOML file of a built-in scene.
+
+    Parameters
+    ----------
+    name : str
+        A name in :data:`BUILTIN_SCENES`.
+
+    Returns
+    -------
+    importlib.resources.abc.Traversable
+        The file inside the installed package (``str()`` of it is a path on disk).
+    """
     check_choice("name", name, BUILTIN_SCENES)
     return resources.files("wavephys.planner").joinpath("data", "scenes", f"{name}.toml")
 
 
 def builtin_scene(name: str):
-    """A built-in scene by name (:data:`BUILTIN_SCENES`)."""
+    """A built-in scene by name.
+
+    Parameters
+    ----------
+    name : str
+        A name in :data:`BUILTIN_SCENES` (``ripples``, ``ocean``, ``pond``, ``lake``, ``harbour``).
+
+    Returns
+    -------
+    Scene
+        The scene read from its TOML file (:func:`builtin_path`).
+
+    Examples
+    --------
+    >>> builtin_scene("pond").texels
+    128
+    """
     from wavephys.planner.scene import Scene
 
     path = builtin_path(name)

@@ -6,10 +6,24 @@ __all__ = ["plot_plan"]
 
 
 def plot_plan(p, measured: dict | None = None):
-    """A figure with two panels: predicted cost against predicted error of every candidate (the
-    Pareto front joined, the tolerance and the chosen model marked; ``measured``: optional
-    {Choices: measured error} drawn as crosses), and the error budget of the chosen model by
-    term (each term's error alone, against the tolerance). Returns a matplotlib Figure."""
+    """A plan's two charts: cost against error of every candidate, and its error budget.
+
+    The first panel draws predicted cost against predicted error of every candidate (the
+    Pareto front joined, the tolerance and the chosen model marked); the second the error
+    budget of the chosen model by term (each term's error alone, against the tolerance).
+
+    Parameters
+    ----------
+    p : Plan
+        A plan (:func:`wavephys.planner.plan`).
+    measured : dict, optional
+        {Choices: measured max-norm height error, m}, drawn as crosses.
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+        Drawn without pyplot (no backend is chosen).
+    """
     import matplotlib.figure
 
     from wavephys.core.inputs import check_instance

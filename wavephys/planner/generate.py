@@ -31,7 +31,23 @@ KINDS = ("pool", "shore", "open_sea", "ship", "ripples")
 
 
 def generate_scenes(count: int, seed: int = 0, kinds=KINDS, texels=(32, 48, 64, 96, 128)) -> list:
-    """``count`` scenes drawn with ``numpy.random.default_rng(seed)``, cycling through ``kinds``."""
+    """Seeded scenes nobody picked: the planner's proof runs on them (docs/planner.md §6).
+
+    Parameters
+    ----------
+    count : int
+        How many, in [1, 10000].
+    seed : int
+        Seed of ``numpy.random.default_rng``, ≥ 0.
+    kinds : sequence of str
+        Kinds of scene to cycle through (names in :data:`KINDS`).
+    texels : sequence of int
+        Visible texels per side to draw from.
+
+    Returns
+    -------
+    list of Scene
+    """
     count = check_int("count", count, lo=1, hi=10000)
     seed = check_int("seed", seed, lo=0)
     for name, items in (("kinds", kinds), ("texels", texels)):

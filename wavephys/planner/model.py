@@ -175,9 +175,19 @@ class Choices:
 
 
 def full_choices(scene: Scene | None = None) -> Choices:
-    """The most complete configuration (the reference every plan is measured against); for a
-    ``scene`` that shows no caustics, with the caustics term 0 (nothing to trace), and whose
-    ships' doubled patch would leave the visible square, with the single patch."""
+    """The most complete configuration: the reference every plan is measured against.
+
+    Parameters
+    ----------
+    scene : Scene, optional
+        For a scene that shows no caustics the caustics term is 0 (nothing to trace); where a
+        ship's doubled patch would leave the visible square, the single patch.
+
+    Returns
+    -------
+    Choices
+        ``Choices()`` without a scene.
+    """
     if scene is None:
         return Choices()
     check_instance("scene", scene, Scene, "wavephys.planner.Scene")
@@ -201,7 +211,14 @@ class SceneModel:
 
     Attributes are derived on use: :attr:`simulation` (a :class:`wavephys.simulation.Model`),
     :attr:`grid` (the simulated square), :attr:`output_grid`, :attr:`dt`, :attr:`steps`.
-    ``dtype`` is the simulation's (float64 needs ``jax_enable_x64``; the planner plans float32).
+
+    Parameters
+    ----------
+    scene : Scene
+    choices : Choices
+        One setting per term (default the full model's).
+    dtype : {"float32", "float64"}
+        The simulation's (float64 needs ``jax_enable_x64``; the planner plans float32).
     """
 
     scene: Scene

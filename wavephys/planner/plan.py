@@ -50,11 +50,30 @@ class Infeasible(ValueError):
 
 @dataclass(frozen=True)
 class Plan:
-    """The planner's answer (module doc). ``model`` is the configuration to run
-    (:class:`SceneModel`; ``model.simulation`` is the pure step's model), ``predicted_error``
-    the height bound (m), ``predicted_colour_error`` the colour bound ([0, 1]), ``cost`` the
-    predicted seconds (``height_cost`` of it for the heights), ``full_cost`` those of the full
-    model, ``terms`` the model card, ``front`` the Pareto front of the height candidates."""
+    """The planner's answer (module doc), as :func:`plan` returns it.
+
+    Parameters
+    ----------
+    scene : Scene
+    tolerance, colour_tolerance : float
+        The tolerances planned for: m, and the image's [0, 1] scale.
+    model : SceneModel
+        The configuration to run (``model.simulation`` is the pure step's model).
+    bounds : HeightBounds
+        The height configuration's error bounds, m.
+    predicted_colour_error : float
+        The colour bound, [0, 1].
+    cost, full_cost : float
+        Predicted seconds of the plan and of the full model.
+    terms : tuple of Term
+        The model card, one row per term.
+    height_cost : float
+        The heights' share of ``cost``, s.
+    front : tuple of Candidate
+        The Pareto front of the height candidates.
+    texture_error : float
+        The height texture's rounding, m (added to ``bounds.total`` in :attr:`predicted_error`).
+    """
 
     scene: Scene
     tolerance: float
@@ -136,32 +155,72 @@ def _quanta(x: float) -> str:
 
 
 def full_model(scene: Scene) -> SceneModel:
-    """The most complete configuration of ``scene``: the reference every plan is measured against."""
+    """The most complete configuration of a scene: the reference every plan is measured against.
+
+    Parameters
+    ----------
+    scene : Scene
+
+    Returns
+    -------
+    SceneModel
+        With :func:`wavephys.planner.model.full_choices` of the scene.
+    """
     check_instance("scene", scene, Scene, "wavephys.planner.Scene")
     return SceneModel(scene, full_choices(scene))
 
 
 def candidates(scene: Scene, calibration: Optional[dict] = None) -> list:
-    """Every height configuration the scene can run, with predicted bounds and cost (the
-    colour choices set to the full model's): the product of the height terms' options
-    (:mod:`wavephys.planner.terms`). ``calibration``: the cost calibration (default the shipped
-    one, :func:`wavephys.planner.cost.calibration`)."""
+    """Every height configuration the scene can run, with predicted bounds and cost.
+
+    The product of the height terms' options (:mod:`wavephys.planner.terms`), less what cannot
+    run; the colour choices are the full model's.
+
+    Parameters
+    ----------
+    scene : Scene
+    calibration : dict, optional
+        The cost calibration (default the shipped one, :func:`wavephys.planner.cost.calibration`).
+
+    Returns
+    -------
+    list of Candidate
+    """
     check_instance("scene", scene, Scene, "wavephys.planner.Scene")
     return list(plan_context(scene, calibration).candidates)
 
 
 def plan_context(scene: Scene, calibration: Optional[dict] = None) -> PlanContext:
-    """The one per-scene context every term reads (:class:`wavephys.planner.terms.PlanContext`):
-    the candidates, the full model's, the colour and caustics errors. Built once per scene and
-    calibration (kept for the shipped calibration, so planning a scene at several tolerances
-    computes its bounds once)."""
+    """The one per-scene context every term reads.
+
+    Parameters
+    ----------
+    scene : Scene
+    calibration : dict, optional
+        The cost calibration (default the shipped one). Contexts of the shipped calibration are
+        kept, so planning a scene at several tolerances computes its bounds once.
+
+    Returns
+    -------
+    wavephys.planner.terms.PlanContext
+        The candidates, the full model's, the colour and caustics errors.
+    """
     check_instance("scene", scene, Scene, "wavephys.planner.Scene")
     if calibration is None:
         return _shipped_context(scene)
     if not isinstance(calibration, dict):
         raise TypeError(f"calibration must be a dict (the shape of planner/data/calibration.json), got "
                         f"{type(calibration).__name__}")
+    missing = sorted(CALIBRATION_KEYS - set(calibration))
+    if missing:
+        raise ValueError(f"calibration lacks {missing} (python -m bench calibrate writes every table)")
+    check_scalar("calibration['kappa']", calibration["kappa"], lo=0.0)
     return _context(scene, calibration)
+
+
+CALIBRATION_KEYS = frozenset({"step", "ship", "ship_impulses", "frame", "blend", "refine", "fresnel", "absorption",
+                              "kappa", "caustics", "shade", "texture", "surface"})
+"""The tables a calibration must hold (:mod:`wavephys.planner.cost`)."""
 
 
 @lru_cache(maxsize=32)
@@ -209,9 +268,40 @@ def plan(scene: Scene, tolerance: float, colour_tolerance: Optional[float] = Non
     per texel whose cheapest model costs at most ``texture_slack`` (relative) more than the
     cheapest model with any format; its rounding adds to the height bound.
 
-    ``budget``: largest acceptable predicted cost, s (None: any). ``calibration``: the cost
-    calibration (default the shipped one). Raises :class:`Infeasible` (a ValueError) when
-    nothing meets the tolerance, saying what the full model reaches.
+    Parameters
+    ----------
+    scene : Scene
+    tolerance : float
+        Largest height error, m, > 0 (max norm over every frame and texel; the scene's
+        ``height_quantum`` is one texture quantum).
+    colour_tolerance : float, optional
+        Largest colour error on the image's [0, 1] scale, in (0, 1] (default one image quantum).
+    budget : float, optional
+        Largest acceptable predicted cost, s, > 0 (None: any).
+    texture_slack : float
+        In [0, 10]: how much more (relative) a smaller texture's model may cost.
+    calibration : dict, optional
+        The cost calibration (default the shipped one, :func:`wavephys.planner.cost.calibration`).
+
+    Returns
+    -------
+    Plan
+        The model to run (``.model``), its predicted errors and cost, the model card.
+
+    Raises
+    ------
+    Infeasible
+        (a ValueError) when nothing meets the tolerance, saying what the full model reaches.
+
+    References
+    ----------
+    docs/planner.md: how each term's error is bounded and its cost calibrated.
+
+    Examples
+    --------
+    >>> from wavephys.planner import builtin_scene                     # doctest: +SKIP
+    >>> scene = builtin_scene("pond")                                  # doctest: +SKIP
+    >>> print(plan(scene, scene.height_quantum).card())                # doctest: +SKIP
     """
     check_instance("scene", scene, Scene, "wavephys.planner.Scene")
     check_scalar("tolerance", tolerance, lo=0.0, lo_open=True)

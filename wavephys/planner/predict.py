@@ -158,12 +158,9 @@ def margin_errors(scene: Scene) -> dict:
     difference on the visible square, over every frame, between the full model's linear heights
     with that cutoff margin and with n/8 (:data:`wavephys.planner.model.MARGINS`), × 1.25.
 
-    Evaluated, not bounded: the planner runs the scene's linear model three times. A bound
-    through the free (infinite-ocean) solution — each step adds at most the mask's bite on it and
-    what lies outside the square — came out 10⁴–10⁵ times the measured differences (the lake:
-    735 height quanta against 0.03), because long waves of every source reach the margin and
-    the bound counts every bite. Scenes larger than :data:`MARGIN_TEXELS` keep n/8 (inf for the
-    others)."""
+    Evaluated, not bounded: the planner runs the scene's linear model three times (why a bound
+    does not serve: docs/planner.md §2, the margin). Scenes larger than :data:`MARGIN_TEXELS`
+    keep n/8 (inf for the others)."""
     return dict(_margin_errors(scene))  # a copy: the cached result stays as measured
 
 

@@ -30,9 +30,19 @@ FLOOR_ALBEDO = 0.6
 
 @dataclass(frozen=True)
 class Output:
-    """What a scene shows: ``heights`` (F, n, n) m on the output texels at 1/fps … duration,
-    ``image`` (n, n, 3) of the last frame on a [0, 1] scale, and the wall ``seconds`` the
-    simulation and frames took (``shade_seconds`` for the image)."""
+    """What a scene shows, as :func:`run` returns it.
+
+    Parameters
+    ----------
+    heights : numpy.ndarray (F, n, n)
+        Heights on the output texels at 1/fps … duration, m.
+    image : numpy.ndarray (n, n, 3)
+        The last frame shaded (:func:`shade`), [0, 1].
+    seconds : float
+        Wall seconds the simulation and frames took, finite, ≥ 0.
+    shade_seconds : float
+        Wall seconds of the image, finite, ≥ 0.
+    """
 
     heights: np.ndarray
     image: np.ndarray
@@ -74,8 +84,26 @@ def _wind_psi(model: SceneModel):
 
 
 def run(scene: Scene, model: SceneModel) -> Output:
-    """Simulate ``scene`` with ``model`` (a :class:`SceneModel` of that scene): heights on the
-    output texels at every frame, and the shaded last frame."""
+    """Simulate ``scene`` with ``model``: heights on the output texels at every frame, and the
+    shaded last frame.
+
+    Parameters
+    ----------
+    scene : Scene
+    model : SceneModel
+        A configuration of that same scene (``plan(...).model``, :func:`full_model`).
+
+    Returns
+    -------
+    Output
+        Heights stored in and read back from the configuration's texture format.
+
+    Examples
+    --------
+    >>> from wavephys.planner import builtin_scene, full_model, plan   # doctest: +SKIP
+    >>> scene = builtin_scene("pond")                                  # doctest: +SKIP
+    >>> out = run(scene, plan(scene, scene.height_quantum).model)      # doctest: +SKIP
+    """
     check_instance("scene", scene, Scene, "wavephys.planner.Scene")
     check_instance("model", model, SceneModel, "wavephys.planner.SceneModel")
     if model.scene != scene:
@@ -140,10 +168,22 @@ def _assemble(eta, eta_dot, index, s, dt, factor):
 
 
 def surface_frames(model: SceneModel) -> np.ndarray:
-    """Frames (F, n, n), m, of a wind scene by its configuration's surface model other than the
-    spectral step (:data:`wavephys.planner.model.SURFACES`), each evaluated at t = j/fps on the
-    output texels: the strongest waves summed directly, the sea in closed form displaced by
-    Tessendorf's λD and resampled, or the procedural fBm."""
+    """Frames of a wind scene by a surface model other than the spectral step.
+
+    Each frame is evaluated at t = j/fps on the output texels: the strongest waves summed
+    directly, the sea in closed form displaced by Tessendorf's λD and resampled, or the
+    procedural fBm (:data:`wavephys.planner.model.SURFACES`).
+
+    Parameters
+    ----------
+    model : SceneModel
+        A wind-only scene's configuration whose ``choices.surface`` is not ``"spectral"``.
+
+    Returns
+    -------
+    numpy.ndarray (F, n, n)
+        Heights, m, float32.
+    """
     check_instance("model", model, SceneModel, "wavephys.planner.SceneModel")
     name = model.choices.surface
     if name == "spectral":
@@ -186,10 +226,24 @@ def _sea_at(w, omega, t):
 
 
 def encode_texture(heights, fmt: str, grid):
-    """Frames ``heights`` (F, n, n), m, stored in the height texture format ``fmt``
-    (:data:`wavephys.planner.model.TEXTURES`): a float32 or float16 array, or for ``u16`` /
-    ``u8`` one :class:`optics.rendering.textures.EncodedHeight` per frame (its own minimum to
-    maximum onto the codes). :func:`decode_texture` reads it back."""
+    """Frames stored in a height texture format (:func:`decode_texture` reads them back).
+
+    Parameters
+    ----------
+    heights : array_like (F, n, n)
+        Heights, m, finite.
+    fmt : {"f32", "f16", "u16", "u8"}
+        :data:`wavephys.planner.model.TEXTURES`.
+    grid : Grid
+        The texels' grid (the extent goes with integer codes).
+
+    Returns
+    -------
+    numpy.ndarray or list of EncodedHeight
+        A float32 or float16 array, or for ``u16`` / ``u8`` one
+        :class:`optics.rendering.textures.EncodedHeight` per frame (its own minimum to maximum
+        onto the codes).
+    """
     from optics.rendering.textures import encode_height
     from wavephys.core.inputs import check_array, check_choice
     from wavephys.planner.model import TEXTURES
@@ -206,8 +260,19 @@ def encode_texture(heights, fmt: str, grid):
 
 
 def decode_texture(stored) -> np.ndarray:
-    """Heights (F, n, n), m, from :func:`encode_texture`'s result (float32 for the float formats,
-    float64 for the integer ones: their exact decoded values)."""
+    """Heights from :func:`encode_texture`'s result.
+
+    Parameters
+    ----------
+    stored : numpy.ndarray or list of EncodedHeight
+        What :func:`encode_texture` returned.
+
+    Returns
+    -------
+    numpy.ndarray (F, n, n)
+        Heights, m: float32 for the float formats, float64 for the integer ones (their exact
+        decoded values).
+    """
     from optics.rendering.textures import EncodedHeight, decode_height
 
     if isinstance(stored, np.ndarray) and stored.dtype in (np.float32, np.float16):
@@ -247,7 +312,21 @@ def shade(scene: Scene, model: SceneModel, heights):
     configuration's Fresnel form at the facet's incidence angle, T the absorption over the path
     d down to the floor and straight back up (0 in deep water), and E/E₀ the floor's
     irradiance relative to flat water's (:func:`floor_light`; 1 where the scene shows no
-    caustics). [0, 1] scale, shape (n, n, 3)."""
+    caustics).
+
+    Parameters
+    ----------
+    scene : Scene
+    model : SceneModel
+        A configuration of ``scene`` (its Fresnel form, absorption and caustics).
+    heights : array_like (n, n)
+        One frame on the output texels, m.
+
+    Returns
+    -------
+    numpy.ndarray (n, n, 3)
+        Linear colour, [0, 1].
+    """
     from optics.light.directions import sun_direction
     from optics.light.fresnel import N_WATER, reflectance
     from wavephys.core.inputs import check_array
@@ -279,7 +358,21 @@ def floor_light(scene: Scene, model: SceneModel, heights) -> np.ndarray:
     """E/E₀ on the output texels: the floor irradiance under ``heights`` relative to flat water's
     (:func:`optics.caustics.floor_irradiance_beam` at the configuration's ``caustics`` refinement,
     the sun at the scene's elevation behind the viewer); 1 where the scene shows no caustics or
-    the term is off."""
+    the term is off.
+
+    Parameters
+    ----------
+    scene : Scene
+    model : SceneModel
+        A configuration of ``scene``.
+    heights : array_like (n, n)
+        One frame on the output texels, m.
+
+    Returns
+    -------
+    numpy.ndarray (n, n)
+        E/E₀, ≥ 0, float64.
+    """
     from wavephys.core.inputs import check_array
 
     check_instance("scene", scene, Scene, "wavephys.planner.Scene")
@@ -336,8 +429,19 @@ def path_range(scene: Scene) -> tuple[float, float]:
 
 
 def compare(output, reference) -> dict:
-    """Errors of ``output`` against ``reference`` (two :class:`Output`): heights (max norm over
-    every frame and texel, m, and RMS) and the image (max over texels and channels, [0, 1])."""
+    """Errors of one run against another of the same scene.
+
+    Parameters
+    ----------
+    output, reference : Output
+        Two :func:`run` results of the same scene (the reference usually :func:`full_model`'s).
+
+    Returns
+    -------
+    dict
+        ``height_max`` (max norm over every frame and texel, m), ``height_rms`` (m) and
+        ``colour_max`` (max over texels and channels of the last frame's image, [0, 1]).
+    """
     check_instance("output", output, Output, "wavephys.planner.Output")
     check_instance("reference", reference, Output, "wavephys.planner.Output")
     if output.heights.shape != reference.heights.shape:

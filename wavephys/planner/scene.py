@@ -73,8 +73,17 @@ def _float(table_name: str, key: str, value, **limits) -> float:
 
 @dataclass(frozen=True)
 class StoneSpec:
-    """A stone dropped at t = 0: centre (x, y) m in scene coordinates (0 at the centre),
-    crater radius and depth, m (the crater of :class:`wavephys.Stones`)."""
+    """A stone dropped at t = 0: the crater of :class:`wavephys.Stones` in scene coordinates.
+
+    Parameters
+    ----------
+    x, y : float
+        Centre, m, from the centre of the visible square (inside it).
+    radius : float
+        Crater radius, m, > 0 (a scene refuses one below 2 pixels or above extent/4).
+    depth : float
+        Crater depth, m, ≥ 0.
+    """
 
     x: float
     y: float
@@ -90,8 +99,25 @@ class StoneSpec:
 
 @dataclass(frozen=True)
 class ShipSpec:
-    """A ship on a straight course from (x, y) m at ``speed`` m/s along ``heading`` degrees
-    (0 = +x), with a Gaussian hull of ``length`` × ``width`` m and a source strength in m²/s."""
+    """A ship on a straight course with a Gaussian hull (:class:`wavephys.physics.ship_waves.Ship`).
+
+    Parameters
+    ----------
+    x, y : float
+        Start of the hull's centre at t = 0, m, from the centre of the visible square.
+    speed : float
+        m/s, in (0, 50].
+    heading : float
+        Direction of travel, degrees anticlockwise from +x.
+    length, width : float
+        Hull size, m, > 0 (the Gaussian's 4σ along and across the course).
+    strength : float
+        Source strength s of the hull's ∂(s f)/∂t, m²/s (Loviscach 2003, eq. 2).
+
+    References
+    ----------
+    J. Loviscach, "Complex water effects at interactive frame rates", WSCG 2003.
+    """
 
     x: float
     y: float
@@ -123,8 +149,23 @@ class ShipSpec:
 
 @dataclass(frozen=True)
 class WindSpec:
-    """A Phillips wind sea added at t = 0: wind ``speed`` m/s from ``direction`` degrees,
-    ``amplitude`` the Phillips constant, ``seed`` of its random phases."""
+    """A Phillips wind sea added at t = 0 (:func:`wavephys.physics.wind.phillips_spectrum`).
+
+    Parameters
+    ----------
+    speed : float
+        Wind speed, m/s, in [0.1, 40].
+    direction : float
+        Wind direction, degrees anticlockwise from +x (the sea runs downwind).
+    amplitude : float
+        The Phillips constant A, in (0, 1].
+    seed : int
+        Seed of the random phases, in [0, 2³¹ − 1].
+
+    References
+    ----------
+    J. Tessendorf, "Simulating ocean water", SIGGRAPH course notes, 2001 (eq. 40).
+    """
 
     speed: float
     direction: float = 0.0

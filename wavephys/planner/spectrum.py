@@ -48,14 +48,16 @@ MAX_EVALUATED_FRAMES = 24
 
 
 def mode_dispersion(k, water: Water):
-    """(ω, m = K/ω) in float64 on a numpy wavenumber array (the library's formulas)."""
-    from wavephys.physics.dispersion import angular_frequency, surface_operator
+    """(ω, m = K/ω) in float64 on a numpy wavenumber array: the library's own formulas
+    (:func:`wavephys.physics.dispersion.angular_frequency`,
+    :func:`wavephys.physics.heights.height_multiplier`)."""
+    from wavephys.physics.dispersion import angular_frequency
+    from wavephys.physics.heights import height_multiplier
 
     with jax.enable_x64(True):
         kj = jnp.asarray(k, jnp.float64)
         omega = np.asarray(angular_frequency(kj, water), np.float64)
-        big_k = np.asarray(surface_operator(kj, water), np.float64)
-    m = np.where(omega > 0, big_k / np.where(omega > 0, omega, 1.0), 0.0)
+        m = np.asarray(height_multiplier(kj, water), np.float64)
     return omega, m
 
 

@@ -17,10 +17,22 @@ class Simulation:
     """Exact linear water waves on a periodic grid, stepped by Δt (any size).
 
     Every method calls the pure functions of :mod:`wavephys.simulation.step` with
-    :attr:`model`; ``step(sim.model, state)`` equals ``sim.step(state)``. Parameters are
-    those of :class:`~wavephys.simulation.Model` (``dtype`` as a numpy/JAX dtype or its name),
-    and ``devices``: a sequence of jax devices to shard the grid's rows over (a one-axis
-    mesh named ``mesh_axis``; or give a ``mesh`` directly; :mod:`wavephys.parallel`).
+    :attr:`model`; ``step(sim.model, state)`` equals ``sim.step(state)``.
+
+    Parameters
+    ----------
+    grid, water, dt, margin, cutoff, second_order, ship_patch, leak_tolerance, ship_method
+        As :class:`~wavephys.simulation.Model` (grid; water; Δt in s, > 0; margin in samples,
+        0 ≤ M < n/2; …).
+    dtype : numpy/JAX dtype or its name
+        float32 (default) or float64 (needs ``jax_enable_x64``).
+    devices : sequence of jax devices, optional
+        Shard the grid's rows over them (a one-axis mesh named ``mesh_axis``;
+        :mod:`wavephys.parallel`).
+    mesh : jax.sharding.Mesh, optional
+        Or give the mesh directly.
+    mesh_axis : str
+        The mesh axis the rows are split over (default ``"rows"``).
 
     Examples
     --------

@@ -174,6 +174,12 @@ class Operators(NamedTuple):
     ``omega`` = ω(|k|) (rad/s);
     ``duhamel_sin`` = sin(ωΔt)/ω and ``duhamel_cos`` = (1 − cos ωΔt)/ω (s) for
     continuous sources; ``mask`` the cutoff weights ``(n, n)`` or None.
+
+    Attributes
+    ----------
+    cos, sin, height, inverse_height, K, k, omega, duhamel_sin, duhamel_cos : jax.Array
+        As above, each on the half spectrum.
+    mask : jax.Array or None
     """
 
     cos: jax.Array
@@ -249,7 +255,17 @@ def _build_float64(model: Model) -> Operators:
 
 
 def operators(model: Model) -> Operators:
-    """The Fourier multipliers of ``model`` (cached for concrete models, traced otherwise)."""
+    """The Fourier multipliers of a model (cached for concrete models, traced otherwise).
+
+    Parameters
+    ----------
+    model : Model
+
+    Returns
+    -------
+    Operators
+        In the model's layout (padded and split by columns when sharded).
+    """
     check_instance("model", model, Model, "wavephys.simulation.Model")
     if is_traced(model):
         return _build(model, model.dtype)

@@ -35,6 +35,15 @@ class State:
     (Kahan/Møller two-sum on every step), so float32 time does not drift over long runs
     (:attr:`exact_time`; docs/physics.md §1.2). Values are checked (finite) when a State is
     built by hand; states made by the step are not re-checked.
+
+    Parameters
+    ----------
+    fields : jax.Array (..., 2, n, n)
+        (φ, χ), m²/s, finite.
+    time : jax.Array
+        t, s (a scalar, or one per batch entry).
+    time_error : jax.Array
+        The part of t that ``time`` leaves out, s (default 0).
     """
 
     fields: jax.Array
@@ -71,7 +80,15 @@ class State:
 
 @dataclass(frozen=True)
 class Surface:
-    """The water surface at one time: ``fields`` = (η in m, η̇ in m/s) stacked, ``time`` in s."""
+    """The water surface at one time.
+
+    Parameters
+    ----------
+    fields : jax.Array (..., 2, n, n)
+        (η in m, η̇ in m/s) stacked, finite.
+    time : jax.Array
+        t, s.
+    """
 
     fields: jax.Array
     time: jax.Array

@@ -209,6 +209,11 @@ def step(model: Model, state: State, sources=()):
         (``Stones``, ``WindSea``) are added at t, before the surface is taken; continuous
         sources (``Forcing``) act over [t, t + Δt]; ships add their waves after the cutoff.
 
+    Returns
+    -------
+    (State, Surface)
+        The state at t + Δt, and the surface (η in m, η̇ in m/s) at t.
+
     Examples
     --------
     >>> from wavephys import Grid, Water, Stones
@@ -243,6 +248,23 @@ def run(model: Model, state: State, steps: int, sources=()):
     The surfaces are those at t, t + Δt, …, t + (steps − 1)Δt (shape ``(steps, n, n)``).
     Only continuous sources (``rate``: forcing functions) can act in the loop; add
     impulses with :func:`add_source` first, and step ships one :func:`step` at a time.
+
+    Parameters
+    ----------
+    model : Model
+        The pure step's model (grid, water, Δt).
+    state : State
+        A state of that model (:func:`initial_state`).
+    steps : int
+        Steps, ≥ 1.
+    sources : sequence
+        Continuous sources (with a ``rate`` hook, e.g. :class:`wavephys.physics.forcing.Forcing`).
+
+    Returns
+    -------
+    (State, Surface)
+        The state after ``steps`` steps, and the surfaces at each step's start stacked on a
+        leading axis (``eta`` and ``eta_dot`` of shape ``(steps, n, n)``, m and m/s).
     """
     _check_model(model)
     _check_state(model, state)
@@ -262,7 +284,20 @@ def _surface(model, ops, fields, time):
 
 
 def surface(model: Model, state: State) -> Surface:
-    """The surface (η, η̇) of ``state``, without stepping."""
+    """The surface of a state, without stepping.
+
+    Parameters
+    ----------
+    model : Model
+        The pure step's model (grid, water, Δt).
+    state : State
+        A state of that model (:func:`initial_state`).
+
+    Returns
+    -------
+    Surface
+        η (m) and η̇ (m/s), each ``(n, n)``.
+    """
     _check_model(model)
     _check_state(model, state)
     return _surface(model, operators(model), _laid(model, state).fields, state.time)
@@ -273,6 +308,18 @@ def energy(model: Model, state: State):
 
     E = ½ρ⟨φ·Kφ + χ·Kχ⟩, which equals potential + capillary + kinetic energy of the
     first-order surface (docs/physics.md §1.8); conserved exactly by propagation.
+
+    Parameters
+    ----------
+    model : Model
+        The pure step's model (grid, water, Δt).
+    state : State
+        A state of that model (:func:`initial_state`).
+
+    Returns
+    -------
+    jax.Array
+        A scalar, J/m².
     """
     _check_model(model)
     _check_state(model, state)
@@ -282,7 +329,21 @@ def energy(model: Model, state: State):
 
 
 def frame(model: Model, before: Surface, after: Surface, s: float):
-    """Hermite-interpolated height (m) at t + sΔt between two consecutive surfaces."""
+    """The height between two consecutive steps, by cubic Hermite interpolation.
+
+    Parameters
+    ----------
+    model : Model
+    before, after : Surface
+        The surfaces at t and t + Δt (from :func:`step` or :func:`run`).
+    s : float
+        Fraction of the step, in [0, 1].
+
+    Returns
+    -------
+    jax.Array (n, n)
+        η at t + sΔt, m (from η and η̇ at both ends: docs/physics.md, Hermite frames).
+    """
     _check_model(model)
     check_instance("before", before, Surface, "wavephys.simulation.Surface")
     check_instance("after", after, Surface, "wavephys.simulation.Surface")
@@ -290,7 +351,19 @@ def frame(model: Model, before: Surface, after: Surface, s: float):
 
 
 def initial_state(model: Model, time: float = 0.0) -> State:
-    """Still water at ``time`` (s)."""
+    """Still water.
+
+    Parameters
+    ----------
+    model : Model
+    time : float
+        The state's time, s, finite.
+
+    Returns
+    -------
+    State
+        Zero fields, laid out like the model (split over its mesh when sharded).
+    """
     _check_model(model)
     check_scalar("time", time)
     n = model.grid.n
@@ -307,7 +380,20 @@ def _zeros(n: int, dtype: str, sharding):
 
 
 def state_from_psi(model: Model, psi, time: float = 0.0) -> State:
-    """A state from a complex field ψ (m²/s, shape ``(n, n)``)."""
+    """A state from the complex wave field ψ = φ + iχ.
+
+    Parameters
+    ----------
+    model : Model
+    psi : array_like (n, n), complex
+        ψ, m²/s.
+    time : float
+        The state's time, s.
+
+    Returns
+    -------
+    State
+    """
     _check_model(model)
     n = model.grid.n
     check_array("psi", psi, complex_ok=True, ndim=2, shape_tail=(n, n))
@@ -327,7 +413,21 @@ def _check_height_units(eta, grid):
 
 
 def add_height(model: Model, state: State, eta) -> State:
-    """Add a height disturbance η (m, ``(n, n)``, below L/10) with the fluid at rest (its mean drops)."""
+    """Add a height disturbance with the fluid at rest (its mean drops).
+
+    Parameters
+    ----------
+    model : Model
+        The pure step's model (grid, water, Δt).
+    state : State
+        A state of that model (:func:`initial_state`).
+    eta : array_like (n, n)
+        The disturbance, m, below L/10 (larger is refused as a units mistake).
+
+    Returns
+    -------
+    State
+    """
     _check_model(model)
     _check_state(model, state)
     n = model.grid.n
@@ -356,7 +456,21 @@ def _apply(model, ops, fields, time, impulses):
 
 
 def add_source(model: Model, state: State, source) -> State:
-    """Apply an impulse source (stones, a wind sea) to ``state`` now, without stepping."""
+    """Apply an impulse source to a state now, without stepping.
+
+    Parameters
+    ----------
+    model : Model
+        The pure step's model (grid, water, Δt).
+    state : State
+        A state of that model (:func:`initial_state`).
+    source : object
+        An impulse source (with an ``impulse`` hook: :class:`wavephys.Stones`, a wind sea).
+
+    Returns
+    -------
+    State
+    """
     _check_model(model)
     _check_state(model, state)
     impulses, rates, adders = sort_sources(model, (source,))
@@ -378,6 +492,16 @@ def checked(fn):
     >>> from wavephys import Grid, Water
     >>> model = Model(Grid(16, 1.0), Water(), dt=0.01)
     >>> new, surf = checked(step)(model, initial_state(model))
+
+    Parameters
+    ----------
+    fn : callable
+        Any JAX-traceable function.
+
+    Returns
+    -------
+    callable
+        ``fn``'s results, after raising ``ValueError`` if a check failed inside it.
     """
     import functools
 

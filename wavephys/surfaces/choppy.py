@@ -72,6 +72,24 @@ def displacement(height, grid: Grid, choppiness: float = 1.0):
 
     ``height`` (..., n, n), m, is a real periodic field on ``grid``; its mean is ignored.
     Points are displaced to X = x + λD (module doc: D = F⁻¹[i k̂ ĥ], crests sharpened).
+
+    Parameters
+    ----------
+    height : array_like (..., n, n)
+        Real periodic height field on ``grid``, m (its mean is ignored).
+    grid : Grid
+    choppiness : float
+        λ, dimensionless, in [0, 100] (:data:`MAX_CHOPPINESS`).
+
+    Returns
+    -------
+    jax.Array (2, ..., n, n)
+        λD, the (x, y) displacements, m.
+
+    References
+    ----------
+    J. Tessendorf (2001). Simulating ocean water (docs/physics.md §1.10). Tessendorf prints D with
+    the opposite sign (module docstring).
     """
     spec, kx, ky, _, inv = _spectra(height, grid)
     s = (grid.n, grid.n)
@@ -82,7 +100,25 @@ def displacement(height, grid: Grid, choppiness: float = 1.0):
 
 @validate(grid=_GRID, height=_HEIGHT, choppiness=_LAMBDA)
 def jacobian(height, grid: Grid, choppiness: float = 1.0):
-    """J (..., n, n) of the map x ↦ x + λD at each grid point (module doc; ≤ 0 where it folds)."""
+    """J (..., n, n) of the map x ↦ x + λD at each grid point (module doc; ≤ 0 where it folds).
+
+    Parameters
+    ----------
+    height : array_like (..., n, n)
+        Real periodic height field on ``grid``, m (its mean is ignored).
+    grid : Grid
+    choppiness : float
+        λ, dimensionless, in [0, 100] (:data:`MAX_CHOPPINESS`).
+
+    Returns
+    -------
+    jax.Array (..., n, n)
+        J, dimensionless (1 undisturbed, < 1 compressed, ≤ 0 folded).
+
+    References
+    ----------
+    J. Tessendorf (2001). Simulating ocean water (docs/physics.md §1.10).
+    """
     spec, kx, ky, _, inv = _spectra(height, grid)
     s = (grid.n, grid.n)
     dxx = jnp.fft.irfft2(-kx * kx * inv * spec, s=s)
@@ -94,7 +130,23 @@ def jacobian(height, grid: Grid, choppiness: float = 1.0):
 
 @validate(grid=_GRID, height=_HEIGHT)
 def jacobian_std(height, grid: Grid) -> float:
-    """σ₁ = rms of F⁻¹[|k| ĥ] (dimensionless): J ≈ 1 − λ·(that field), so λσ₁ is the spread of J."""
+    """σ₁ = rms of F⁻¹[|k| ĥ] (dimensionless): J ≈ 1 − λ·(that field), so λσ₁ is the spread of J.
+
+    Parameters
+    ----------
+    height : array_like (..., n, n)
+        Real periodic height field on ``grid``, m (its mean is ignored).
+    grid : Grid
+
+    Returns
+    -------
+    float
+        σ₁, dimensionless.
+
+    References
+    ----------
+    J. Tessendorf (2001). Simulating ocean water (docs/physics.md §1.10).
+    """
     spec, _, _, k, _ = _spectra(height, grid)
     field = jnp.fft.irfft2(k * spec, s=(grid.n, grid.n))
     return float(jnp.sqrt(jnp.mean(field * field)))
@@ -102,8 +154,25 @@ def jacobian_std(height, grid: Grid) -> float:
 
 @validate(grid=_GRID, height=_HEIGHT)
 def fold_choppiness(height, grid: Grid) -> float:
-    """The smallest λ at which the surface folds somewhere (min J = 0), by bisection on
-    :func:`jacobian` (relative accuracy 1e-4; ``inf`` for a flat field)."""
+    """The smallest λ at which the surface folds somewhere (min J = 0).
+
+    By bisection on :func:`jacobian` (relative accuracy 1e-4; ``inf`` for a flat field).
+
+    Parameters
+    ----------
+    height : array_like (..., n, n)
+        Real periodic height field on ``grid``, m (its mean is ignored).
+    grid : Grid
+
+    Returns
+    -------
+    float
+        λ, dimensionless; ``inf`` if no λ ≤ :data:`MAX_CHOPPINESS` folds it.
+
+    References
+    ----------
+    J. Tessendorf (2001). Simulating ocean water (docs/physics.md §1.10).
+    """
     def jmin(lam):
         return float(jnp.min(jacobian(height, grid, lam)))
 
@@ -129,6 +198,20 @@ def foam(jacobian, threshold: float = 0.3, softness: float = 0.1):
     ``threshold``: foam where the surface is compressed below this fraction of its rest
     area (J < threshold; 0 = folds only). ``softness`` (≥ 0): width of the ramp in J
     from none to full cover (0: a hard mask).
+
+    Parameters
+    ----------
+    jacobian : array_like
+        J (:func:`jacobian`), dimensionless, finite, any shape.
+    threshold : float
+        J below which foam appears, in [−10, 10].
+    softness : float
+        Width of the ramp in J, in [0, 10] (0: a hard mask).
+
+    Returns
+    -------
+    jax.Array
+        Foam coverage, dimensionless, in [0, 1], shape of ``jacobian``.
     """
     j = jnp.asarray(jacobian)
     if softness == 0:
@@ -143,6 +226,22 @@ def accumulate_foam(previous, coverage, dt: float, decay_time: float = 2.0):
 
     New foam appears at once where ``coverage`` (this frame's :func:`foam`) is high; old
     foam fades with time constant ``decay_time`` τ, s (a crest's foam outlives the crest).
+
+    Parameters
+    ----------
+    previous : array_like
+        Last frame's foam map, in [0, 1].
+    coverage : array_like
+        This frame's :func:`foam`, in [0, 1], shape of ``previous``.
+    dt : float
+        Time since the last frame, s, in (0, 1e6].
+    decay_time : float
+        τ, s, in (0, 1e6].
+
+    Returns
+    -------
+    jax.Array
+        The new foam map, dimensionless, in [0, 1], shape of ``previous``.
     """
     p, c = jnp.asarray(previous), jnp.asarray(coverage)
     if np.shape(p) != np.shape(c):
@@ -159,6 +258,27 @@ def foam_fraction_estimate(height, grid: Grid, choppiness: float, threshold: flo
     jointly Gaussian with the covariance of the field, by a fixed-seed Monte Carlo of 2·10⁵
     draws (±0.001). Both treat the sea as Gaussian and infinite; a grid holding few
     dominant waves departs from them (measured over seeded Phillips seas: docs/physics.md §1.9).
+
+    Parameters
+    ----------
+    height : array_like (..., n, n)
+        Real periodic height field on ``grid``, m (its mean is ignored).
+    grid : Grid
+    choppiness : float
+        λ, dimensionless, in [0, 100] (:data:`MAX_CHOPPINESS`).
+    threshold : float
+        J below which a point counts, in [−10, 10].
+    order : {1, 2}
+        1: the linear Gaussian estimate; 2: the full J by Monte Carlo.
+
+    Returns
+    -------
+    float
+        The predicted fraction, dimensionless, in [0, 1].
+
+    References
+    ----------
+    J. Tessendorf (2001). Simulating ocean water (docs/physics.md §1.10).
     """
     lam = choppiness
     if order == 1:
@@ -180,7 +300,22 @@ def sea_height(sea, grid: Grid, water: Water, t: float):
     """Height (n, n), m, of a travelling linear sea at time ``t``, s: Re F⁻¹[F[sea]·e^{−iω(k)t}].
 
     ``sea`` is the complex field of :func:`wavephys.physics.wind.synthesize_height` (each
-    Fourier component travels along its own k); ω(k) from the dispersion relation."""
+    Fourier component travels along its own k); ω(k) from the dispersion relation.
+
+    Parameters
+    ----------
+    sea : array_like (..., n, n), complex
+        The complex sea at t = 0, m.
+    grid : Grid
+    water : Water
+    t : float
+        Time, s, in [−1e6, 1e6].
+
+    Returns
+    -------
+    jax.Array (..., n, n)
+        The height at ``t``, m.
+    """
     s = jnp.asarray(sea)
     dtype = jnp.result_type(s.dtype, jnp.complex64)
     k = grid.wavenumber_magnitude().astype(jnp.finfo(dtype).dtype)

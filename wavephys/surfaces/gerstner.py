@@ -54,7 +54,16 @@ _POINTS = Array()
 
 
 class FoldWarning(UserWarning):
-    """A Gerstner sum steep enough that its crests may fold where they meet (Σ Q c k A ≥ 1)."""
+    """A Gerstner sum steep enough that its crests may fold where they meet (Σ Q c k A ≥ 1).
+
+    Raised (as a warning) by :class:`GerstnerWaves`; :meth:`GerstnerWaves.fold_fraction`
+    measures how much of a grid folds.
+
+    Parameters
+    ----------
+    *args
+        The warning message, as for any :class:`UserWarning`.
+    """
 
 
 @dataclass(frozen=True, eq=False)
@@ -306,6 +315,26 @@ def crest_comparison(steepness: float, wavenumber: float = 1.0) -> dict:
     (:func:`wavephys.physics.stokes.stokes_wave`) and the trochoid of the same H (its
     vertical amplitude H/2). Returns crest and trough elevations about each mean level (m)
     and their relative differences.
+
+    Parameters
+    ----------
+    steepness : float
+        kA of the Stokes wave, dimensionless, in (0, 0.33] (checked by ``stokes_wave``).
+    wavenumber : float
+        k, rad/m, > 0.
+
+    Returns
+    -------
+    dict
+        ``steepness``; ``height`` H, m; ``stokes_crest``, ``stokes_trough``, ``gerstner_crest``,
+        ``gerstner_trough`` (elevations about each wave's mean level, m); ``gerstner_mean`` (the
+        trochoid's Eulerian mean level, m); ``crest_error``, ``trough_error`` (Gerstner over
+        Stokes − 1, dimensionless).
+
+    References
+    ----------
+    K. I. Babenko (1987), with Dyachenko, Lushnikov & Korotkevich (2016), for the exact Stokes wave
+    (docs/physics.md §1.5, §1.10).
     """
     from wavephys.physics.stokes import stokes_wave
 

@@ -191,6 +191,10 @@ def gradient_noise(x, y, z=None, *, seed: int = 0, period: int | None = None, de
     Returns
     -------
     n, or (n, gradient) : arrays of the broadcast shape; |n| < 1, n = 0 on the lattice.
+
+    References
+    ----------
+    K. Perlin (1985). An image synthesizer. *SIGGRAPH*; (2002) Improving noise. *ACM TOG* 21(3).
     """
     _check_coords(x, y, z)
     coords = (x, y) if z is None else (x, y, z)
@@ -200,8 +204,31 @@ def gradient_noise(x, y, z=None, *, seed: int = 0, period: int | None = None, de
 
 @validate(x=_POINTS, y=_POINTS, z=Maybe(_POINTS), seed=_SEED, period=_PERIOD, derivatives=Bool())
 def value_noise(x, y, z=None, *, seed: int = 0, period: int | None = None, derivatives: bool = False):
-    """Value noise (random lattice values in [−1, 1], quintic-faded) at lattice coordinates;
-    the same arguments and returns as :func:`gradient_noise`."""
+    """Value noise (random lattice values in [−1, 1], quintic-faded) at lattice coordinates.
+
+    The same arguments and returns as :func:`gradient_noise`.
+
+    Parameters
+    ----------
+    x, y, z : array_like
+        Lattice coordinates (one cell = 1), broadcastable; ``z`` (a third axis, e.g. time)
+        optional. |coordinate| ≤ 1e6.
+    seed : int
+        Picks the permutation table and the lattice values (0 ≤ seed < 2³¹).
+    period : int, optional
+        Lattice cells after which the noise repeats on every axis (1–256); default the
+        table size, 256.
+    derivatives : bool
+        Also return the analytic gradient (∂n/∂x, ∂n/∂y[, ∂n/∂z]).
+
+    Returns
+    -------
+    n, or (n, gradient) : arrays of the broadcast shape; |n| ≤ 1.
+
+    References
+    ----------
+    K. Perlin (1985). An image synthesizer. *SIGGRAPH*; (2002) Improving noise. *ACM TOG* 21(3).
+    """
     _check_coords(x, y, z)
     coords = (x, y) if z is None else (x, y, z)
     return _noise(jnp.broadcast_arrays(*[jnp.asarray(c) for c in coords]), _tables(seed), period or TABLE_SIZE,
@@ -308,6 +335,16 @@ def fbm(x, y, t=None, *, octaves: int = 2, hurst: float = 1.0, frequency: float 
         Side (m) of a square the surface must tile (f₀·tile whole; each octave ≤ 256 cells).
     derivatives : bool
         Also return the exact gradient (∂h/∂x, ∂h/∂y), dimensionless.
+
+    Returns
+    -------
+    h, or (h, (gx, gy)) : jax.Array of the broadcast shape of ``x`` and ``y``
+        Heights, m; with ``derivatives`` also ∂h/∂x, ∂h/∂y, dimensionless.
+
+    References
+    ----------
+    J. Schneider & R. Westermann (2001). Towards real-time visual simulation of water surfaces.
+    *VMV*. K. Perlin (1985). An image synthesizer. *SIGGRAPH*; (2002) Improving noise. *ACM TOG* 21(3).
     """
     shape = _check_coords(x, y, None)
     dtype = jnp.result_type(jnp.asarray(x).dtype, jnp.asarray(y).dtype, jnp.float32)
@@ -336,7 +373,22 @@ def fbm_spectrum_slope(hurst: float) -> float:
     """Slope d ln F / d ln k of fBm's 2-D height spectrum F(k), m⁴: −(2H + 2).
 
     Octave i carries variance ∝ 2^{−2H i} over a wavenumber band of area ∝ 4^i, so the
-    variance density per unit k-area falls as k^{−2H−2}."""
+    variance density per unit k-area falls as k^{−2H−2}.
+
+    Parameters
+    ----------
+    hurst : float
+        H, dimensionless, in [0, 4] (as in :func:`fbm`).
+
+    Returns
+    -------
+    float
+        −(2H + 2), dimensionless.
+
+    References
+    ----------
+    J. Schneider & R. Westermann (2001). Towards real-time visual simulation of water surfaces. *VMV*.
+    """
     return -(2.0 * hurst + 2.0)
 
 
@@ -383,6 +435,32 @@ def noise_gradient(x, y, t=None, *, method: str = "exact", step: float = 0.01, *
 
     ``step`` (m) is the difference step of ``shifted`` and ``central`` (ignored by
     ``exact``). The unit normal is (−∂h/∂x, −∂h/∂y, 1)/norm.
+
+    Parameters
+    ----------
+    x, y : array_like
+        Points, m (broadcastable).
+    t : float, optional
+        Time, s; None gives a still 2-D surface.
+    method : {"exact", "shifted", "central"}
+        A name in :data:`NORMAL_METHODS`.
+    step : float
+        Difference step, m, in (0, 1e3].
+    **params
+        :func:`fbm`'s keyword parameters (``octaves``, ``hurst``, ``frequency``, ``amplitude``,
+        ``seed``, ``basis``, ``animation``, ``evolution``, ``time_exponent``, ``tile``), checked
+        as there; unknown names raise TypeError.
+
+    Returns
+    -------
+    (gx, gy) : tuple of jax.Array
+        ∂h/∂x and ∂h/∂y, dimensionless, of the broadcast shape of ``x`` and ``y``.
+
+    References
+    ----------
+    J. Schneider & R. Westermann (2001). Towards real-time visual simulation of water surfaces.
+    *VMV* (the ``shifted`` differences). K. Perlin (1985). An image synthesizer. *SIGGRAPH*;
+    (2002) Improving noise. *ACM TOG* 21(3).
     """
     params = {**dict(octaves=2, hurst=1.0, frequency=1.0, amplitude=1.0, seed=0, basis="gradient",
                      animation="dimension", evolution=1.0, time_exponent=1.0, tile=None), **params}
@@ -410,6 +488,27 @@ def bspline_surface(control, length: float, x, y, *, derivatives: bool = False):
     square [−L/2, L/2)², point (i, j) at the cell centre −L/2 + (j + ½)L/m (the grid
     convention). The surface is C², tiles the square, and lies within the control
     values' range. With ``derivatives`` also returns (∂h/∂x, ∂h/∂y).
+
+    Parameters
+    ----------
+    control : array_like (m, m)
+        Control-point heights, m, square, m ≥ 4.
+    length : float
+        L, side of the square, m, in (0, 1e7].
+    x, y : array_like
+        Points, m (broadcastable), |x|, |y| ≤ 1e6.
+    derivatives : bool
+        Also return the exact gradient (keyword only).
+
+    Returns
+    -------
+    h, or (h, (gx, gy)) : jax.Array of the broadcast shape
+        Heights, m; gradient ∂h/∂x, ∂h/∂y, dimensionless.
+
+    References
+    ----------
+    J. Schneider & R. Westermann (2001). Towards real-time visual simulation of water surfaces.
+    *VMV* (a smooth base surface from an 8 × 8 control grid).
     """
     c = jnp.asarray(control)
     m = c.shape[0]
@@ -440,9 +539,31 @@ def bspline_surface(control, length: float, x, y, *, derivatives: bool = False):
 @validate(length=Real(lo=0.0, lo_open=True, hi=1e7), size=Int(lo=4, hi=TABLE_SIZE), amplitude=Real(lo=0.0, lo_open=True, hi=1e6),
           seed=_SEED)
 def base_control_grid(length: float, size: int = 8, amplitude: float = 1.0, seed: int = 0):
-    """S&W's control grid: one low-frequency octave of gradient noise on ``size`` × ``size``
-    points over a square of side ``length`` (m), two lattice cells across (periodic), times
-    ``amplitude`` (m). Draw it with :func:`bspline_surface`."""
+    """S&W's control grid: one low-frequency octave of gradient noise on ``size`` × ``size`` points.
+
+    Over a square of side ``length`` (m), two lattice cells across (periodic), times
+    ``amplitude`` (m). Draw it with :func:`bspline_surface`.
+
+    Parameters
+    ----------
+    length : float
+        Side of the square, m, in (0, 1e7] (checked; the grid itself depends only on ``size``).
+    size : int
+        Control points per side, 4 … 256 (:data:`TABLE_SIZE`).
+    amplitude : float
+        m, in (0, 1e6].
+    seed : int
+        Picks the noise (0 ≤ seed < 2³¹).
+
+    Returns
+    -------
+    jax.Array (size, size)
+        Control-point heights, m.
+
+    References
+    ----------
+    J. Schneider & R. Westermann (2001). Towards real-time visual simulation of water surfaces. *VMV*.
+    """
     c = (jnp.arange(size) + 0.5) / size * 2.0  # lattice coordinates, period 2 cells
     n = gradient_noise(c[None, :], c[:, None] + 0.37, seed=seed, period=2)
     return amplitude * n
@@ -465,6 +586,11 @@ class NoiseSea:
         As :func:`fbm`.
     base_amplitude : float
         Height scale of the base surface, m (0: none).
+
+    References
+    ----------
+    J. Schneider & R. Westermann (2001). Towards real-time visual simulation of water surfaces.
+    *VMV*.
     """
 
     length: float = 16.0

@@ -39,7 +39,19 @@ def _derivatives(disp, dx):
 
 @validate(grid=_GRID, displacement=_DISP)
 def map_jacobian(displacement, grid: Grid):
-    """J = det ∂(x₀ + Δ)/∂x₀ (n, n) of a periodic horizontal displacement Δ (2, n, n), m, on ``grid``."""
+    """J = det ∂(x₀ + Δ)/∂x₀ (n, n) of a periodic horizontal displacement Δ (2, n, n), m, on ``grid``.
+
+    Parameters
+    ----------
+    displacement : array_like (2, n, n)
+        Δ = (Δx, Δy), m, of the surface point resting at each grid point; periodic.
+    grid : Grid
+
+    Returns
+    -------
+    jax.Array (n, n)
+        J, dimensionless, from spectral derivatives (≤ 0 where the map folds).
+    """
     dxx, dxy, dyx, dyy = _derivatives(jnp.asarray(displacement), grid.dx)
     return (1 + dxx) * (1 + dyy) - dxy * dyx
 
@@ -61,9 +73,17 @@ def resample_heights(displacement, heights, grid: Grid, *, refine: int = 2, iter
         error under 1 % of the height range for fold choppiness up to 0.9 of the folding
         value (measured, tests), 1 is cheapest.
     iterations : int
-        Newton steps (6 converges the map to float32 rounding unless J is near 0).
+        Newton steps, 1–100 (6 converges the map to float32 rounding unless J is near 0).
 
-    Raises ValueError if the map folds (J ≤ 0 anywhere): lower the choppiness.
+    Returns
+    -------
+    jax.Array (n, n)
+        η at ``grid``'s points, m.
+
+    Raises
+    ------
+    ValueError
+        If the map folds (J ≤ 0 anywhere): lower the choppiness.
     """
     d = jnp.asarray(displacement)
     z = jnp.asarray(heights)
