@@ -297,7 +297,20 @@ def _secondary(scene, p, d, medium, steps, refine):
 
 
 def ray_directions(camera, width: int, height: int):
-    """Unit view directions (height, width, 3) through pixel centres, row 0 at the top."""
+    """Unit view directions (height, width, 3) through pixel centres, row 0 at the top.
+
+    Parameters
+    ----------
+    camera : Camera
+        The camera (eye, target, up and vertical field of view).
+    width, height : int
+        Image size, pixels, each in [1, ``MAX_PIXELS``] (16384).
+
+    Returns
+    -------
+    numpy.ndarray (height, width, 3)
+        Unit direction vectors (world frame, dimensionless), float64.
+    """
     check_instance("camera", camera, Camera, "optics.rendering.Camera")
     width, height = check_int("width", width, lo=1, hi=MAX_PIXELS), check_int("height", height, lo=1, hi=MAX_PIXELS)
     f, r, u = camera.basis()
@@ -313,6 +326,27 @@ def trace(scene: Scene, width: int = 160, height: int = 120, *, steps: int = 256
 
     ``steps`` and ``refine`` are the march and bisection counts of the joint search (the
     renderer's defaults); raise ``steps`` for a converged image.
+
+    Parameters
+    ----------
+    scene : Scene
+        What is drawn: height fields, camera, lighting and effects.
+    width, height : int, optional
+        Image size, pixels, each in [1, ``MAX_PIXELS``] (16384) (defaults 160 × 120).
+    steps : int, optional, keyword-only
+        Equal march steps along each ray, >= 1 (default 256).
+    refine : int, optional, keyword-only
+        Bisection steps after the first crossing, >= 0 (default 10).
+
+    Returns
+    -------
+    numpy.ndarray (height, width, 3)
+        Linear RGB radiance, float32 (row 0 at the top).
+
+    References
+    ----------
+    L. Baboud & X. Décoret (2006). Realistic water volumes in real-time. *Eurographics Workshop on Natural
+    Phenomena* (the two-height-field model, docs/physics.md §2.5).
     """
     check_instance("scene", scene, Scene, "optics.rendering.Scene")
     width, height = check_int("width", width, lo=1), check_int("height", height, lo=1)
@@ -369,7 +403,25 @@ def trace(scene: Scene, width: int = 160, height: int = 120, *, steps: int = 256
 
 def psnr(image, reference, peak: float = 1.0) -> float:
     """Peak signal-to-noise ratio (dB) of ``image`` against ``reference``, both clipped to [0, peak]
-    (``peak`` > 0, at most 1e6); inf for identical images."""
+    (``peak`` > 0, at most 1e6); inf for identical images.
+
+    Parameters
+    ----------
+    image, reference : array_like
+        Images of one shape (at least 1-D), in the same units as ``peak``.
+    peak : float, optional
+        Peak signal value, in (0, 1e6] (default 1.0).
+
+    Returns
+    -------
+    float
+        PSNR, dB (inf when the clipped images are identical).
+
+    Raises
+    ------
+    ValueError
+        When the shapes of ``image`` and ``reference`` differ.
+    """
     check_array("image", image, min_ndim=1)
     check_array("reference", reference, min_ndim=1)
     check_scalar("peak", peak, lo=0.0, hi=1e6, lo_open=True)

@@ -473,7 +473,18 @@ class Renderer:
 
 
 def to_srgb8(image) -> np.ndarray:
-    """Linear RGB in [0, 1] (clipped; ±inf clip too, NaN is refused) → 8-bit sRGB (IEC 61966-2-1)."""
+    """Linear RGB in [0, 1] (clipped; ±inf clip too, NaN is refused) → 8-bit sRGB (IEC 61966-2-1).
+
+    Parameters
+    ----------
+    image : array_like
+        Linear RGB values of any shape, dimensionless; clipped to [0, 1]; no NaN (±inf allowed).
+
+    Returns
+    -------
+    numpy.ndarray
+        sRGB-encoded values, uint8 in [0, 255], the shape of ``image``.
+    """
     check_array("image", image, allow_inf=True)
     x = np.clip(np.asarray(image, np.float64), 0.0, 1.0)
     s = np.where(x <= 0.0031308, 12.92 * x, 1.055 * np.power(x, 1 / 2.4) - 0.055)
@@ -481,7 +492,25 @@ def to_srgb8(image) -> np.ndarray:
 
 
 def save_png(image, path) -> Path:
-    """Write a linear-RGB image as an 8-bit sRGB PNG, atomically; returns the path."""
+    """Write a linear-RGB image as an 8-bit sRGB PNG, atomically; returns the path.
+
+    Parameters
+    ----------
+    image : array_like (height, width, 3)
+        Linear RGB, dimensionless, clipped to [0, 1]; no NaN (±inf allowed).
+    path : str or os.PathLike
+        Output file; must end in ``.png``.
+
+    Returns
+    -------
+    pathlib.Path
+        The path written.
+
+    Raises
+    ------
+    ValueError
+        When ``image`` does not have shape (height, width, 3).
+    """
     from PIL import Image
 
     check_array("image", image, ndim=3, allow_inf=True)
@@ -502,6 +531,35 @@ def render_sequence(renderer: Renderer, scenes, out_dir, *, count: int | None = 
     ``video`` (a file name in ``out_dir``, e.g. ``"water.mp4"``) also writes a video when
     imageio with imageio-ffmpeg is installed; otherwise a note says so and frames remain.
     Returns the frame paths.
+
+    Parameters
+    ----------
+    renderer : Renderer
+        The renderer that draws each scene.
+    scenes : iterable of Scene
+        The frames' scenes (a list, or any iterable when ``count`` is given; not a string).
+    out_dir : str or os.PathLike
+        Folder the frames (and the video) are written to.
+    count : int, optional, keyword-only
+        Number of frames to render, >= 1; at most this many scenes are taken from ``scenes`` (default: all,
+        ``len(scenes)``).
+    video : str, optional, keyword-only
+        File name of a video in ``out_dir``, non-empty, ending in one of ``VIDEO_SUFFIXES`` (.mp4, .gif, .webm,
+        .mov, .mkv, .avi) (default: no video).
+    fps : int, optional, keyword-only
+        Frames per second of the video, >= 1 (default 30).
+    progress : bool, optional, keyword-only
+        Whether to show progress on stderr (default True).
+
+    Returns
+    -------
+    list of pathlib.Path
+        The frame paths, ``out_dir/frame_0000.png`` …, in order.
+
+    Raises
+    ------
+    TypeError
+        When ``scenes`` is not an iterable, or ``video`` is not a non-empty file name.
     """
     check_instance("renderer", renderer, Renderer, "optics.rendering.Renderer")
     out = output_folder(out_dir, "out_dir")

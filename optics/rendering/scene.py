@@ -41,6 +41,21 @@ def texture_sample(field, length: float, x, y):
 
     Texel centres follow the grid convention; points outside clamp to the border texels.
     NumPy float64 for NumPy input.
+
+    Parameters
+    ----------
+    field : array_like (ny, nx) or (ny, nx, c)
+        The texture, finite, any unit.
+    length : float
+        Side L of the square the texture covers, m, in (0, ``MAX_LENGTH``] (1e7).
+    x, y : array_like
+        Sample positions, m, finite, broadcastable to one shape (empty arrays are allowed).
+
+    Returns
+    -------
+    numpy.ndarray or jax.Array
+        The samples, shape of the broadcast ``x``, ``y`` (with a trailing channel axis c for a 3-D ``field``),
+        in the unit of ``field``; float64 for NumPy input.
     """
     _check_field("field", field)
     check_scalar("length", length, lo=0.0, lo_open=True, hi=MAX_LENGTH)
@@ -92,7 +107,24 @@ def _colour(name, v):
 
 @dataclass(frozen=True)
 class Camera:
-    """A pinhole camera at ``eye`` looking at ``target`` (m), vertical field of view ``fov`` (degrees)."""
+    """A pinhole camera at ``eye`` looking at ``target`` (m), vertical field of view ``fov`` (degrees).
+
+    Parameters
+    ----------
+    eye : tuple of 3 float
+        Camera position (x, y, z), m, finite (default (0, −6, 4)).
+    target : tuple of 3 float
+        Point looked at, m, finite and different from ``eye`` (default (0, 0, −0.5)).
+    up : tuple of 3 float
+        Up direction, finite, any length, not parallel to the view direction (default +z).
+    fov : float
+        Vertical field of view, degrees, in (0, 179] (default 50).
+
+    Raises
+    ------
+    ValueError
+        When ``target`` equals ``eye``, ``up`` is parallel to the view direction, or a value is out of range.
+    """
 
     eye: tuple = (0.0, -6.0, 4.0)
     target: tuple = (0.0, 0.0, -0.5)
@@ -118,7 +150,27 @@ class Camera:
 
 
 def look_at(eye, target, fov: float = 50.0) -> Camera:
-    """A camera with z up (or y up when looking straight up or down)."""
+    """A camera with z up (or y up when looking straight up or down).
+
+    Parameters
+    ----------
+    eye : array_like (3,)
+        Camera position, m, finite.
+    target : array_like (3,)
+        Point looked at, m, finite and different from ``eye``.
+    fov : float, optional
+        Vertical field of view, degrees, in (0, 179] (default 50).
+
+    Returns
+    -------
+    Camera
+        The camera at ``eye`` looking at ``target``.
+
+    Raises
+    ------
+    ValueError
+        When ``target`` equals ``eye`` or a value is out of range.
+    """
     eye, target = _vec3("eye", eye), _vec3("target", target)
     check_scalar("fov", fov, lo=0.0, hi=179.0, lo_open=True)
     f = target - eye
@@ -130,13 +182,21 @@ def look_at(eye, target, fov: float = 50.0) -> Camera:
 class Effects:
     """Switches for each term of the water model (all on by default).
 
-    refraction : bend the transmitted ray by Snell's law (off: it goes straight on).
-    reflection : trace the reflected ray to the ground (off: the reflection is the
+    Parameters
+    ----------
+    refraction : bool
+        Bend the transmitted ray by Snell's law (off: it goes straight on).
+    reflection : bool
+        Trace the reflected ray to the ground (off: the reflection is the
         environment only, the cheap shader's choice).
-    fresnel : exact Fresnel weights (off: the normal-incidence value everywhere, and 1 under TIR).
-    absorption : Beer–Lambert along every underwater path (off: clear water).
-    caustics : light the underwater ground with the caustics map (off: flat-surface light).
-    foam : whiten the water surface by the scene's foam coverage (off: no foam drawn).
+    fresnel : bool
+        Exact Fresnel weights (off: the normal-incidence value everywhere, and 1 under TIR).
+    absorption : bool
+        Beer–Lambert along every underwater path (off: clear water).
+    caustics : bool
+        Light the underwater ground with the caustics map (off: flat-surface light).
+    foam : bool
+        Whiten the water surface by the scene's foam coverage (off: no foam drawn).
     """
 
     refraction: bool = True
@@ -181,23 +241,26 @@ class Scene:
     ----------
     ground, water : array_like (ny, nx)
         Heights, m. They may differ in resolution; ``water`` may be a number (flat).
+        Finite, at least 2×2 and at most 16384 texels a side.
     length : float
-        Side of the square both cover, m.
+        Side of the square both cover, m, in (0, ``MAX_LENGTH``] (1e7).
     camera : Camera
+        The view (default :class:`Camera`'s); its eye must not be inside the ground.
     sun : 3 numbers
         Direction toward the sun (normalized here), z > 0.
     sun_color, ambient : RGB
-        Irradiance of the sun on a surface facing it, and the sky's diffuse light, linear RGB.
+        Irradiance of the sun on a surface facing it, and the sky's diffuse light, linear RGB
+        (3 finite numbers ≥ 0, as for every RGB below).
     sky_zenith, sky_horizon : RGB
         Sky radiance overhead and at the horizon (used without ``environment``).
     sun_glow : float
-        Strength of a smooth glow around the sun in the sky, 0 to switch off.
+        Strength of a smooth glow around the sun in the sky, >= 0; 0 to switch off.
     sky : {"gradient", "preetham"}
         The background and reflected sky without ``environment``: a zenith-to-horizon
         gradient, or Preetham et al.'s analytic daylight with the sun
         (:func:`optics.light.sky.preetham_sky`, zenith luminance ``sky_brightness``).
     turbidity, sky_brightness : float
-        Preetham's turbidity T (1.7–10) and the zenith luminance in scene units.
+        Preetham's turbidity T (1.7–10) and the zenith luminance in scene units (in [0, 1e6]).
     surroundings : {"none", "extend", "tile"}
         What lies beyond the square: nothing (the sky or backdrop, as drawn inside a
         studio), the ground and water extended from their border texels (a pool deck, a
@@ -208,11 +271,12 @@ class Scene:
         smaller than a pixel do not alias), and past that the ray meets flat water and
         ground planes at the levels under its last point, to the horizon.
     environment : array_like (h, w, 3), optional
-        Equirectangular environment map (row 0 = zenith, column 0 = azimuth −π), linear RGB.
+        Equirectangular environment map (row 0 = zenith, column 0 = azimuth −π), linear RGB;
+        finite, ≥ 0, h, w ≥ 2.
     albedo : array_like (ny, nx, 3), optional
-        Ground colour over the same square (default: a sand colour).
+        Ground colour over the same square (default: a sand colour); finite, ≥ 0.
     caustics : array_like (ny, nx), optional
-        Irradiance on the underwater ground relative to a flat surface (1 = flat); see
+        Irradiance on the underwater ground relative to a flat surface (1 = flat), ≥ 0; see
         :func:`optics.caustics.floor_irradiance`. ``None`` = 1 everywhere.
     foam : array_like (ny, nx), optional
         Foam coverage of the water surface in [0, 1] over the same square (e.g.
@@ -226,8 +290,19 @@ class Scene:
     deep_color : RGB
         Radiance of an underwater ray that leaves the scene without meeting the ground.
     n_air, n_water : float
-        Refractive indices.
+        Refractive indices, 1 ≤ n_air < n_water ≤ 10 (default air 1.000293, water 1.333).
     effects : Effects
+        Which terms of the model are drawn (default: all).
+
+    Raises
+    ------
+    ValueError
+        When a field is out of range (above), or the camera's eye is inside the ground.
+
+    References
+    ----------
+    L. Baboud & X. Décoret (2006). Realistic water volumes in real-time. *Eurographics Workshop on Natural
+    Phenomena* (docs/physics.md §2.5).
     """
 
     ground: np.ndarray
@@ -335,7 +410,27 @@ class Scene:
 def sun_in_water(sun, n_air: float, n_water: float):
     """Direction toward the sun as seen under a flat surface (refracted, unit, z > 0).
 
-    ``sun`` points toward the sun (3 numbers, z > 0, any length); 1 ≤ n_air < n_water ≤ 10."""
+    ``sun`` points toward the sun (3 numbers, z > 0, any length); 1 ≤ n_air < n_water ≤ 10.
+
+    Parameters
+    ----------
+    sun : array_like (3,)
+        Direction toward the sun, finite, z > 0, any length.
+    n_air : float
+        Refractive index above the surface, dimensionless, in [1, 10], less than ``n_water``.
+    n_water : float
+        Refractive index of the water, dimensionless, in [1, 10], greater than ``n_air``.
+
+    Returns
+    -------
+    numpy.ndarray (3,)
+        Unit direction toward the refracted sun, z > 0, float64.
+
+    Raises
+    ------
+    ValueError
+        When the sun is not above the horizon, or ``n_water`` does not exceed ``n_air``.
+    """
     s = _vec3("sun", sun)
     if s[2] <= 0:
         raise ValueError(f"sun must point above the horizon (z > 0), got {s.tolist()}")

@@ -45,6 +45,28 @@ class EncodedHeight:
     value = offset + amplitude · data / (2^bits − 1) for integers; data itself for 32.
     ``length`` is the side length of the square it covers, m; ``units`` those of the
     decoded value ("m" for heights; caustics maps hold irradiance relative to E0).
+
+    Parameters
+    ----------
+    data : numpy.ndarray (ny, nx)
+        The stored texels: uint8 for ``bits=8``, uint16 for 16, float32 for 32.
+    bits : {8, 16, 32}
+        Bits per texel (32: float32, stored as is).
+    offset : float
+        Decoded value of q = 0, in ``units``, finite.
+    amplitude : float
+        Decoded range, in ``units``, > 0 (value = offset + amplitude · q / (2^bits − 1)).
+    length : float
+        Side length of the square the texture covers, m, > 0.
+    units : str, optional
+        Units of the decoded value, a non-empty string (default ``"m"``).
+
+    Raises
+    ------
+    ValueError
+        When ``data``'s dtype does not match ``bits``, or a value is out of range.
+    TypeError
+        When ``units`` is not a non-empty string.
     """
 
     data: np.ndarray
@@ -75,7 +97,32 @@ class EncodedHeight:
 
 def encode_height(eta, grid: Grid, bits: int = 16, units: str = "m") -> EncodedHeight:
     """Encode a height field (m, ``(n, n)``) as float32 (``bits=32``) or normalized integers
-    (any other field with its ``units``, e.g. a caustics map)."""
+    (any other field with its ``units``, e.g. a caustics map).
+
+    Integers span the field's range: offset = min, amplitude = max − min (1 for a constant field), rounded to the
+    nearest of 2^bits − 1 levels.
+
+    Parameters
+    ----------
+    eta : array_like (n, n)
+        The field on ``grid``, in ``units``, finite.
+    grid : Grid
+        The grid of ``eta`` (its length becomes the texture's).
+    bits : {8, 16, 32}, optional
+        Bits per texel (default 16; 32 stores float32).
+    units : str, optional
+        Units of the field (default ``"m"``).
+
+    Returns
+    -------
+    EncodedHeight
+        The texture with its decoding offset and amplitude.
+
+    References
+    ----------
+    L. Baboud & X. Décoret (2006). Realistic water volumes in real-time. *Eurographics Workshop on Natural
+    Phenomena* (heights normalized by an offset and an amplitude).
+    """
     check_choice("bits", bits, BITS)
     check_instance("grid", grid, Grid, "wavephys.Grid")
     check_array("eta", eta, ndim=2, shape_tail=(grid.n, grid.n))
@@ -90,7 +137,18 @@ def encode_height(eta, grid: Grid, bits: int = 16, units: str = "m") -> EncodedH
 
 
 def decode_height(tex: EncodedHeight) -> np.ndarray:
-    """Heights in m (float64) from an :class:`EncodedHeight`."""
+    """Heights in m (float64) from an :class:`EncodedHeight`.
+
+    Parameters
+    ----------
+    tex : EncodedHeight
+        The texture to decode.
+
+    Returns
+    -------
+    numpy.ndarray (ny, nx)
+        Decoded values, float64, in ``tex.units`` (m for heights).
+    """
     check_instance("tex", tex, EncodedHeight, "optics.rendering.textures.EncodedHeight")
     if tex.bits == 32:
         return tex.data.astype(np.float64)
@@ -98,7 +156,20 @@ def decode_height(tex: EncodedHeight) -> np.ndarray:
 
 
 def normal_map(eta, grid: Grid) -> np.ndarray:
-    """Unit surface normals (n, n, 3) from spectral slopes, float32."""
+    """Unit surface normals (n, n, 3) from spectral slopes, float32.
+
+    Parameters
+    ----------
+    eta : array_like (n, n)
+        Heights, m, on ``grid``, finite.
+    grid : Grid
+        The periodic grid of ``eta``.
+
+    Returns
+    -------
+    numpy.ndarray (n, n, 3)
+        Unit normals (−∂η/∂x, −∂η/∂y, 1)/|·|, z up, dimensionless, float32.
+    """
     check_instance("grid", grid, Grid, "wavephys.Grid")
     check_array("eta", eta, ndim=2, shape_tail=(grid.n, grid.n))
     gx, gy = spectral_gradient(np.asarray(eta, np.float64), float(grid.dx))
@@ -118,6 +189,28 @@ def height_precision(eta, grid: Grid, bits: int, norm: str = "max") -> dict:
     (λ/Δx)²: measured for 16 bits (RMS), 7.6e-5 at 8 texels per wavelength, 4.8e-4 at 16,
     1.5e-3 at 32, 2.4e-2 at 128. 16 bits meet 0.1 % on curvature up to about 20 texels
     per wavelength; longer swells need float32 (1e-4 at 128 texels).
+
+    Parameters
+    ----------
+    eta : array_like (n, n)
+        Heights, m, on ``grid``, finite.
+    grid : Grid
+        The grid of ``eta``.
+    bits : {8, 16, 32}
+        The encoding to measure.
+    norm : {"max", "rms"}, optional
+        "max" (worst texel over largest value) or "rms" (default "max").
+
+    Returns
+    -------
+    dict
+        ``bits``, ``norm`` and the relative errors ``height``, ``slope`` and ``curvature`` (floats,
+        dimensionless).
+
+    References
+    ----------
+    L. Baboud & X. Décoret (2006). Realistic water volumes in real-time. *Eurographics Workshop on Natural
+    Phenomena* (heights normalized by an offset and an amplitude).
     """
     check_choice("norm", norm, ("max", "rms"))
     tex = encode_height(eta, grid, bits)
@@ -141,13 +234,39 @@ def height_precision(eta, grid: Grid, bits: int, norm: str = "max") -> dict:
 
 
 def fresnel_texture(size: int = 256, n1: float = N_AIR, n2: float = N_WATER) -> np.ndarray:
-    """Exact reflectance at ``size`` cos θ samples in [0, 1], float32 (a 1-D texture)."""
+    """Exact reflectance at ``size`` cos θ samples in [0, 1], float32 (a 1-D texture).
+
+    Parameters
+    ----------
+    size : int, optional
+        Table entries, in [2, 2²⁰] (default 256).
+    n1, n2 : float, optional
+        Refractive indices of the incident and transmitting media, in [1, 10] (default air to water).
+
+    Returns
+    -------
+    numpy.ndarray (size,)
+        Unpolarized Fresnel reflectance R at cos θ = 0, 1/(size − 1), …, 1, dimensionless, float32.
+    """
     return np.asarray(fresnel_lut(n1, n2, check_int("size", size, lo=2)), np.float32)
 
 
 def absorption_texture(max_distance: float = 20.0, size: int = 256) -> np.ndarray:
     """Linear sRGB transmittance of pure water at ``size`` distances in [0, max_distance] m,
-    shape (size, 3) float32 (spectral, colour-science; clipped gamut)."""
+    shape (size, 3) float32 (spectral, colour-science; clipped gamut).
+
+    Parameters
+    ----------
+    max_distance : float, optional
+        Longest path length through water, m, > 0 (default 20).
+    size : int, optional
+        Table entries, >= 2 (default 256).
+
+    Returns
+    -------
+    numpy.ndarray (size, 3)
+        Transmittance per RGB channel, dimensionless, in [0, 1] (exactly 1 at d = 0), float32.
+    """
     check_scalar("max_distance", max_distance, lo=0.0, lo_open=True)
     size = check_int("size", size, lo=2)
     t = water_srgb(np.linspace(0.0, max_distance, size))
@@ -187,6 +306,30 @@ def save_exr(path, channels: dict, *, half: bool = False, attributes: dict | Non
     digits: 5e-4 m steps on a 1 m swell) instead of 32-bit. ``attributes`` (str, int or
     float values) go into the header, so units, extent and conventions travel with the
     file. Read back with :func:`load_exr` or any EXR reader.
+
+    Parameters
+    ----------
+    path : str or os.PathLike
+        Output file; must end in ``.exr``.
+    channels : dict of str to array_like (ny, nx)
+        Non-empty; non-empty channel names to finite 2-D arrays of one shape (any unit).
+    half : bool, optional, keyword-only
+        Store 16-bit floats instead of 32-bit (default False).
+    attributes : dict, optional, keyword-only
+        Header entries: str keys not already in the header, str, int or float values (not bool) (default none).
+
+    Returns
+    -------
+    pathlib.Path
+        The path written.
+
+    Raises
+    ------
+    TypeError
+        When ``channels`` is not a non-empty dict with non-empty string names, or an attribute is not a str, int
+        or float under a new name.
+    ValueError
+        When the channels differ in shape.
     """
     import OpenEXR
 
@@ -224,6 +367,22 @@ def save_vector_displacement(path, displacement, grid: Grid, *, half: bool = Fal
     ``GerstnerWaves.displacement(*grid.mesh(), t)``. Channels R, G, B = Δx, Δy, z
     (:data:`DISPLACEMENT_CONVENTION` in the header, with the units, extent and the grid
     convention); 32-bit float, or 16-bit with ``half``. Atomic.
+
+    Parameters
+    ----------
+    path : str or os.PathLike
+        Output file; must end in ``.exr``.
+    displacement : array_like (3, n, n)
+        (Δx, Δy, z) of the surface point resting at each texel, m, finite.
+    grid : Grid
+        The grid of the texels.
+    half : bool, optional, keyword-only
+        Store 16-bit floats instead of 32-bit (default False).
+
+    Returns
+    -------
+    pathlib.Path
+        The path written.
     """
     check_instance("grid", grid, Grid, "wavephys.Grid")
     check_array("displacement", displacement, ndim=3, shape_tail=(3, grid.n, grid.n))
@@ -236,7 +395,25 @@ def save_vector_displacement(path, displacement, grid: Grid, *, half: bool = Fal
 
 def load_exr(path) -> tuple[dict, dict]:
     """(channels, attributes) of an OpenEXR file: float arrays in the grid convention (rows
-    flipped back, row 0 = lowest y) and the header's own attributes."""
+    flipped back, row 0 = lowest y) and the header's own attributes.
+
+    Parameters
+    ----------
+    path : str or os.PathLike
+        An existing OpenEXR file.
+
+    Returns
+    -------
+    channels : dict of str to numpy.ndarray (ny, nx)
+        The channels by name, in the grid convention.
+    attributes : dict
+        The header entries with str, int or float values.
+
+    Raises
+    ------
+    ValueError
+        When ``path`` is not a file.
+    """
     import OpenEXR
 
     from wavephys.core.files import _as_path
@@ -251,7 +428,25 @@ def load_exr(path) -> tuple[dict, dict]:
 
 
 def save_height_png(tex: EncodedHeight, path) -> Path:
-    """Write an 8- or 16-bit height texture as a grayscale PNG and its metadata as JSON beside it."""
+    """Write an 8- or 16-bit height texture as a grayscale PNG and its metadata as JSON beside it.
+
+    Parameters
+    ----------
+    tex : EncodedHeight
+        The texture, with ``bits`` 8 or 16.
+    path : str or os.PathLike
+        Output file; must end in ``.png`` (the JSON goes to the same name with ``.json``).
+
+    Returns
+    -------
+    pathlib.Path
+        The PNG's path.
+
+    Raises
+    ------
+    ValueError
+        When ``tex.bits`` is 32.
+    """
     check_instance("tex", tex, EncodedHeight, "optics.rendering.textures.EncodedHeight")
     if tex.bits == 32:
         raise ValueError("tex.bits must be 8 or 16 for PNG, got 32 (use save_npz for float32)")
@@ -263,7 +458,25 @@ def save_height_png(tex: EncodedHeight, path) -> Path:
 
 
 def save_npz(path, **textures) -> Path:
-    """Save textures (arrays or EncodedHeight) and their decoding metadata in one .npz (atomically)."""
+    """Save textures (arrays or EncodedHeight) and their decoding metadata in one .npz (atomically).
+
+    Parameters
+    ----------
+    path : str or os.PathLike
+        Output file; must end in ``.npz``.
+    **textures : array_like or EncodedHeight
+        At least one; each by its name. Arrays have no NaN (±inf allowed).
+
+    Returns
+    -------
+    pathlib.Path
+        The path written.
+
+    Raises
+    ------
+    ValueError
+        When no texture is given.
+    """
     path = output_file(path, "path", (".npz",))
     if not textures:
         raise ValueError("textures: give at least one array to save, as name=array")
@@ -281,7 +494,23 @@ def save_npz(path, **textures) -> Path:
 
 
 def load_npz(path) -> dict:
-    """Load what :func:`save_npz` wrote; EncodedHeight entries are decoded to metres."""
+    """Load what :func:`save_npz` wrote; EncodedHeight entries are decoded to metres.
+
+    Parameters
+    ----------
+    path : str or os.PathLike
+        An existing ``.npz`` file written by :func:`save_npz`.
+
+    Returns
+    -------
+    dict of str to numpy.ndarray
+        The textures by name; EncodedHeight entries decoded (float64, in their units), other arrays as stored.
+
+    Raises
+    ------
+    ValueError
+        When ``path`` is not a file, or has no metadata (not written by :func:`save_npz`).
+    """
     from wavephys.core.files import _as_path
 
     path = _as_path("path", path)
@@ -326,6 +555,27 @@ def export_scene(scene, out_dir, *, exr: bool = True, half: bool = False) -> dic
     ``absorption.exr`` (one-row images along their table axis), each with units, extent,
     axes and conventions in its header (docs/textures.md).
     Returns {name: path}.
+
+    Parameters
+    ----------
+    scene : optics.rendering.Scene
+        The scene; its water and ground height fields must be square.
+    out_dir : str or os.PathLike
+        Folder the files are written to.
+    exr : bool, optional, keyword-only
+        Also write every texture as OpenEXR (default True).
+    half : bool, optional, keyword-only
+        OpenEXR in 16-bit floats instead of 32-bit (default False).
+
+    Returns
+    -------
+    dict of str to pathlib.Path
+        The files written, by name (``water_height``, ``water_normals``, ``fresnel``, ``npz``, ...).
+
+    Raises
+    ------
+    ValueError
+        When the water or ground height field is not square.
     """
     from optics.rendering.scene import Scene
 

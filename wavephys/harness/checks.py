@@ -115,7 +115,37 @@ class Check:
 @validate(quantity=_QUANTITY, unit=_TEXT, note=_TEXT)
 def compare(quantity: str, measured, expected, *, rtol: Optional[float] = None, atol: Optional[float] = None,
             unit: str = "", note: str = "") -> Check:
-    """A ``"~="`` row: ``measured`` agrees with ``expected`` within ``rtol`` (relative) or ``atol``."""
+    """A ``"~="`` row: ``measured`` agrees with ``expected`` within ``rtol`` (relative) or ``atol``.
+
+    Parameters
+    ----------
+    quantity : str
+        What is measured (non-empty; a sentence fragment, with its conditions).
+    measured : float
+        The measured value, a real scalar in ``unit``; NaN or inf are accepted and make a failed row.
+    expected : float
+        The expected value in ``unit``, real (±inf allowed).
+    rtol : float, optional, keyword-only
+        Relative tolerance, >= 0 (dimensionless). Give exactly one of ``rtol`` and ``atol``.
+    atol : float, optional, keyword-only
+        Absolute tolerance, >= 0, in ``unit``. Give exactly one of ``rtol`` and ``atol``.
+    unit : str, optional, keyword-only
+        Unit of ``measured`` and ``expected`` (default ``""``).
+    note : str, optional, keyword-only
+        What the row covered, in words (default ``""``).
+
+    Returns
+    -------
+    Check
+        The row, with ``relation="~="`` and ``relative`` true when ``rtol`` was given.
+
+    Raises
+    ------
+    ValueError
+        When neither or both of ``rtol`` and ``atol`` are given, or a tolerance is negative.
+    TypeError
+        When ``measured`` is not a real number.
+    """
     if (rtol is None) == (atol is None):
         raise ValueError("give exactly one of rtol, atol")
     tol = rtol if rtol is not None else atol
@@ -127,13 +157,55 @@ def compare(quantity: str, measured, expected, *, rtol: Optional[float] = None, 
 
 @validate(quantity=_QUANTITY, limit=Real(allow_inf=True), unit=_TEXT, note=_TEXT)
 def bound(quantity: str, measured, limit, *, relation: str = "<=", unit: str = "", note: str = "") -> Check:
-    """A bound row: ``measured`` <= ``limit`` (or >= with ``relation=">="``)."""
+    """A bound row: ``measured`` <= ``limit`` (or >= with ``relation=">="``).
+
+    Parameters
+    ----------
+    quantity : str
+        What is measured (non-empty; a sentence fragment, with its conditions).
+    measured : float
+        The measured value, a real scalar in ``unit``; NaN or inf are accepted and make a failed row.
+    limit : float
+        The bound in ``unit``, real (±inf allowed).
+    relation : {"<=", ">="}, optional, keyword-only
+        Direction of the bound (default ``"<="``).
+    unit : str, optional, keyword-only
+        Unit of ``measured`` and ``limit`` (default ``""``).
+    note : str, optional, keyword-only
+        What the row covered, in words (default ``""``).
+
+    Returns
+    -------
+    Check
+        The row, with ``expected=limit``, ``tolerance=0`` and ``relative=False``.
+
+    Raises
+    ------
+    ValueError
+        When ``relation`` is not ``"<="`` or ``">="``.
+    """
     check_choice("relation", relation, ("<=", ">="))
     return Check(quantity, _measured("measured", measured), float(limit), 0.0, relation, False, unit, note)
 
 
 def assert_check(check: Check) -> Check:
-    """Raise ``AssertionError`` with the row's report unless it is ok; return it."""
+    """Raise ``AssertionError`` with the row's report unless it is ok; return it.
+
+    Parameters
+    ----------
+    check : Check
+        The row to assert.
+
+    Returns
+    -------
+    Check
+        ``check`` itself, when it is ok.
+
+    Raises
+    ------
+    AssertionError
+        When ``check.ok`` is false; the message is :meth:`Check.report`.
+    """
     check_instance("check", check, Check, "wavephys.harness.Check")
     if not check.ok:
         raise AssertionError(check.report())

@@ -85,15 +85,22 @@ def measure_dispersion(eta, dx: float, dt: float, *, min_relative_power: float =
         Grid spacing, m, > 0 (the same along x and y).
     dt : float
         Time between frames, s, > 0. Frequencies above π/Δt alias: sample fast enough.
-    min_relative_power : float
-        Shells whose ridge power is below this fraction of the strongest are dropped.
-    min_bins : float
-        Ridges closer than this many frequency bins to ω = 0 or to π/Δt are dropped
+    min_relative_power : float, optional, keyword-only
+        Shells whose ridge power is below this fraction of the strongest are dropped; in [0, 1] (default 1e-6).
+    min_bins : float, optional, keyword-only
+        In [0, n_t/4] (default 4). Ridges closer than this many frequency bins to ω = 0 or to π/Δt are dropped
         (they cannot be located reliably).
 
     Returns
     -------
     DispersionSamples
+        One measured (k, ω, power) per shell of equal |k| (k ascending, rad/m; ω in rad/s), with the frequency
+        resolution 2π/(n_t Δt), rad/s.
+
+    Raises
+    ------
+    ValueError
+        When ``eta`` has fewer than 8 time samples on its first axis, or an argument is out of range.
     """
     check_array("eta", eta, ndim=3)
     eta = np.asarray(eta, dtype=np.float64)
@@ -146,7 +153,20 @@ def measure_dispersion(eta, dx: float, dt: float, *, min_relative_power: float =
 
 
 def dispersion_error(samples: DispersionSamples, water: Water) -> np.ndarray:
-    """Relative error of measured ω against ω(k) of linear theory for ``water`` (signed)."""
+    """Relative error of measured ω against ω(k) of linear theory for ``water`` (signed).
+
+    Parameters
+    ----------
+    samples : DispersionSamples
+        Measured (k, ω) points, e.g. from :func:`measure_dispersion`.
+    water : Water
+        The water whose linear dispersion relation ω(k) is the theory.
+
+    Returns
+    -------
+    numpy.ndarray (n,)
+        ω_measured/ω_theory − 1 per sample, dimensionless, float64 (positive: measured too fast).
+    """
     from wavephys.physics.dispersion import angular_frequency
 
     check_instance("samples", samples, DispersionSamples, "wavephys.harness.DispersionSamples")
@@ -206,6 +226,34 @@ def dispersion_check(samples: DispersionSamples, water: Water, dt: float, *, rto
     one is recognizable (aliased sampling, no dispersion, wrong depth, surface tension,
     a constant factor). Fewer than ``min_samples`` shells in the band fail the row too.
     ``dt`` (s) is the time between frames of the record.
+
+    Parameters
+    ----------
+    samples : DispersionSamples
+        Measured (k, ω) points, e.g. from :func:`measure_dispersion`.
+    water : Water
+        The water whose linear dispersion relation ω(k) is the theory.
+    dt : float
+        Time between frames of the record, s, > 0 (used to recognize aliased sampling).
+    rtol : float, optional, keyword-only
+        Allowed max relative error |ω_measured/ω_theory − 1|, dimensionless, >= 0 (default 0.005).
+    k_range : (float, float), optional, keyword-only
+        Band (k_min, k_max) of shells checked, rad/m, both >= 0 (k_max may be inf), k_min < k_max
+        (default: all shells).
+    min_samples : int, optional, keyword-only
+        Fewest shells in the band for the row to pass, >= 1 (default 3).
+
+    Returns
+    -------
+    Check
+        A ``"~="`` row of the worst relative error against 0 with ``atol=rtol`` (its note names the band, the
+        worst k and, on failure, the likely cause), or, when fewer than ``min_samples`` shells lie in the band,
+        a failed ``">="`` bound row on their number.
+
+    Raises
+    ------
+    ValueError
+        When ``k_range`` does not have k_min < k_max, or an argument is out of range.
     """
     from wavephys.harness.checks import bound, compare
 

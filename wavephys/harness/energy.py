@@ -16,7 +16,21 @@ __all__ = ["Energy", "measure_energy"]
 
 @dataclass(frozen=True)
 class Energy:
-    """Mean wave energy per unit area, J/m² (linear theory)."""
+    """Mean wave energy per unit area, J/m² (linear theory).
+
+    Each field is a float, or an array of the leading shape of the heights given to :func:`measure_energy`.
+
+    Attributes
+    ----------
+    potential : float or numpy.ndarray
+        Potential energy ½ρg⟨η²⟩, J/m², >= 0.
+    capillary : float or numpy.ndarray
+        Capillary (surface tension) energy ½σ⟨|∇η|²⟩, J/m², >= 0.
+    kinetic : float or numpy.ndarray
+        Kinetic energy ½ρ⟨φ·Kφ⟩, J/m², >= 0.
+    total : float or numpy.ndarray
+        potential + capillary + kinetic, J/m² (a property).
+    """
 
     potential: float
     capillary: float
@@ -50,10 +64,23 @@ def measure_energy(eta, eta_dot, dx: float, water: Water) -> Energy:
     Parameters
     ----------
     eta, eta_dot : array_like
-        Same shape ``(..., n_y, n_x)``; leading axes give one Energy of arrays each.
+        Height η, m, and its rate η̇, m/s; same shape ``(..., n_y, n_x)`` (at least 2-D, finite); leading axes
+        give one Energy of arrays each.
     dx : float
         Grid spacing, m, > 0.
     water : Water
+        Density ρ, gravity g, surface tension σ and depth h of the water.
+
+    Returns
+    -------
+    Energy
+        Potential, capillary and kinetic energy per unit area, J/m², float64 (arrays of the leading shape when
+        the inputs have leading axes).
+
+    Raises
+    ------
+    ValueError
+        When ``eta`` and ``eta_dot`` differ in shape, or ``dx`` is not > 0.
     """
     check_array("eta", eta, min_ndim=2)
     check_array("eta_dot", eta_dot, min_ndim=2)

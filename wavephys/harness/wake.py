@@ -41,7 +41,20 @@ __all__ = ["WakeAngle", "wake_angle", "wake_angle_max", "wake_angle_cusp", "WAKE
 
 @dataclass(frozen=True)
 class WakeAngle:
-    """A measured wake half-angle: ``angle`` ± ``uncertainty`` (degrees), by ``method``."""
+    """A measured wake half-angle: ``angle`` ± ``uncertainty`` (degrees), by ``method``.
+
+    Attributes
+    ----------
+    angle : float
+        Wake half-angle, degrees (mean of the two sides of the track; 0 on the track).
+    uncertainty : float
+        Its uncertainty, degrees, >= 0 (the fit's standard error or half the disagreement of the two sides,
+        whichever is larger).
+    method : str
+        The estimator: ``"max"``, ``"cusp"`` or ``"max (linear theory)"``.
+    points : int
+        Number of sections used by the fits, both sides together.
+    """
 
     angle: float
     uncertainty: float
@@ -266,6 +279,39 @@ def wake_angle_max(eta, grid: Grid, *, source=(0.0, 0.0), direction: float = 0.0
     the angle is then 0). Sections whose maximum lies at the edge of the strip or of the
     section have no ridge; too few of them raise ``ValueError``. The linear theory's value
     for a Gaussian source through the same fit: :func:`max_amplitude_angle_theory`.
+
+    Parameters
+    ----------
+    eta : array_like (n, n)
+        Heights η, m, on ``grid``, ordered (y, x), finite.
+    grid : Grid
+        The periodic grid of ``eta``.
+    source : (float, float), optional, keyword-only
+        Position (x, y) of the source, m (default the origin).
+    direction : float, optional, keyword-only
+        Direction of travel of the source, rad, 0 = +x, in [−2π, 2π] (default 0).
+    near, far : float, keyword-only
+        Distances behind ``source`` of the first and last section, m, 0 < near < far ≤ L/2.
+    exclude : float, optional, keyword-only
+        Half-width of the strip along the track that is ignored, m, in [0, L/2) (default 0).
+    tolerance : float, optional, keyword-only
+        Relative tolerance that sets each section's spread, in (0, 0.5] (default 0.01).
+
+    Returns
+    -------
+    WakeAngle
+        The angle of maximum amplitude, degrees ± uncertainty, ``method="max"``.
+
+    Raises
+    ------
+    ValueError
+        When too few sections have a clear maximum, or an argument is out of range.
+
+    References
+    ----------
+    A. Darmon, M. Benzaquen & E. Raphaël (2014). Kelvin wake pattern at large Froude numbers.
+    *J. Fluid Mech.* 738, R3.
+    M. Rabaud & F. Moisy (2013). Ship wakes: Kelvin or Mach angle? *Phys. Rev. Lett.* 110.
     """
     eta, ds, ys = _lattice(eta, grid, source, near, far, exclude)
     check_scalar("direction", direction, lo=-2 * math.pi, hi=2 * math.pi)
@@ -284,11 +330,50 @@ def max_amplitude_angle_theory(speed, source: GaussianPressure, *, near: float, 
     The envelope is the far-field integral :func:`wavephys.physics.wake.wake_envelope`
     (independent of any grid), sampled on ``sections`` sections from ``near`` to ``far`` m
     behind the source, ``spacing``/2 apart across the track (use the grid spacing of the
-    field you compare with; at most 800 points a section). Compare a measured :class:`WakeAngle` with this one at the same
-    ``near``, ``far``, ``exclude`` and ``tolerance``: the angle of maximum amplitude of a
+    field you compare with; at most 800 points a section). Compare a measured :class:`WakeAngle`
+    with this one at the same ``near``, ``far``, ``exclude`` and ``tolerance``: the angle of maximum amplitude of a
     finite source still moves with distance, so only the same sections compare. ``damping``
     (1/s, default 0) is Rayleigh's ε of a damped steady wake (:func:`~wavephys.physics.wake.steady_wake`
     uses 8U/L); it fades slow diverging waves first, so it moves the angle too.
+
+    Parameters
+    ----------
+    speed : float
+        Source speed U, m/s, > 0.
+    source : GaussianPressure
+        The Gaussian pressure source.
+    near, far : float, keyword-only
+        Distances behind the source of the first and last section, m, 0 < near < far; far at most 1000
+        transverse wavelengths 2πU²/g.
+    exclude : float, optional, keyword-only
+        Half-width of the strip along the track that is ignored, m, >= 0 and < far·tan(40°)/2 (default 0).
+    spacing : float, keyword-only
+        Grid spacing of the field compared with, m, 0 < spacing < far; points across the track are
+        ``spacing``/2 apart (at most 800 a section).
+    water : Water, optional, keyword-only
+        The water (default ``Water(sigma=0.0)``: gravity waves only).
+    sections : int, optional, keyword-only
+        Number of sections from ``near`` to ``far``, in [4, 4096] (default 16).
+    tolerance : float, optional, keyword-only
+        Relative tolerance that sets each section's spread, in (0, 0.5] (default 0.01).
+    damping : float, optional, keyword-only
+        Rayleigh's damping ε, 1/s, >= 0 with damping·far/U ≤ 50 (default 0).
+
+    Returns
+    -------
+    WakeAngle
+        Linear theory's angle of maximum amplitude, degrees ± the fit's error, ``method="max (linear theory)"``.
+
+    Raises
+    ------
+    ValueError
+        When an argument is out of range (see above) or too few sections have a clear maximum.
+
+    References
+    ----------
+    A. Darmon, M. Benzaquen & E. Raphaël (2014). Kelvin wake pattern at large Froude numbers.
+    *J. Fluid Mech.* 738, R3.
+    M. Rabaud & F. Moisy (2013). Ship wakes: Kelvin or Mach angle? *Phys. Rev. Lett.* 110.
     """
     check_scalar("speed", speed, lo=0.0, lo_open=True)
     check_instance("source", source, GaussianPressure, "wavephys.physics.wake.GaussianPressure")
@@ -338,6 +423,39 @@ def wake_angle_cusp(eta, grid: Grid, *, source=(0.0, 0.0), direction: float = 0.
     ``bandwidth=0.1``). The band-passed field is smeared over ≈ 1/(bandwidth·k_c) across
     the ray: use d ≫ that (near ≥ 3/(bandwidth·k_c·tan φ) is a safe start). A simulator
     with the wrong dispersion puts these waves elsewhere, and the measured angle shows it.
+
+    Parameters
+    ----------
+    eta : array_like (n, n)
+        Heights η, m, on ``grid``, ordered (y, x), finite.
+    grid : Grid
+        The periodic grid of ``eta``.
+    source : (float, float), optional, keyword-only
+        Position (x, y) of the source, m (default the origin).
+    direction : float, optional, keyword-only
+        Direction of travel of the source, rad, 0 = +x, in [−2π, 2π] (default 0).
+    near, far : float, keyword-only
+        Distances behind ``source`` of the first and last section, m, 0 < near < far ≤ L/2.
+    exclude : float, optional, keyword-only
+        Half-width of the strip along the track that is ignored, m, in [0, L/2) (default 0).
+    speed : float, keyword-only
+        Source speed U, m/s, > 0; the cusp waves must be resolved by the grid (k_c < π/dx) and fit between
+        ``near`` and ``far`` (2π/k_c ≤ far − near).
+    water : Water, optional, keyword-only
+        The water (default ``Water(sigma=0.0)``: gravity waves only).
+    bandwidth : float, optional, keyword-only
+        Relative width of the band around k_c in |k|, in (0, 0.5] (default 0.1).
+
+    Returns
+    -------
+    WakeAngle
+        The cusp-line angle, degrees ± uncertainty (the fit's and the band's spread), ``method="cusp"``.
+
+    Raises
+    ------
+    ValueError
+        When the cusp waves are not resolved or do not fit between near and far, too few sections have a
+        clear maximum, or an argument is out of range.
     """
     eta, ds, ys = _lattice(eta, grid, source, near, far, exclude)
     check_scalar("direction", direction, lo=-2 * math.pi, hi=2 * math.pi)
@@ -367,6 +485,28 @@ def wake_angle(eta, grid: Grid, *, method: str = "max", **options) -> WakeAngle:
     ``options`` go to the method (each takes only its own): ``source``, ``direction``,
     ``near``, ``far``, ``exclude`` for both; ``speed``, ``water``, ``bandwidth`` for
     ``"cusp"``. See :func:`wake_angle_max` and :func:`wake_angle_cusp`.
+
+    Parameters
+    ----------
+    eta : array_like (n, n)
+        Heights η, m, on ``grid``, ordered (y, x).
+    grid : Grid
+        The periodic grid of ``eta``.
+    method : {"max", "cusp"}, optional, keyword-only
+        Estimator, a name in :data:`WAKE_ANGLE_METHODS` (default ``"max"``).
+    **options
+        Keyword arguments for the method; each method takes only those its signature declares (ranges as
+        documented there).
+
+    Returns
+    -------
+    WakeAngle
+        The measured half-angle, degrees ± uncertainty.
+
+    Raises
+    ------
+    ValueError
+        When ``method`` is unknown, or as the method raises.
     """
     return WAKE_ANGLE_METHODS(method, eta, grid, **options)
 
@@ -378,6 +518,27 @@ def track_wavelength(eta, grid: Grid, *, source=(0.0, 0.0), near: float, far: fl
     metres behind it, are located by linear interpolation; a line through crossing
     position against crossing number has slope λ/2. For a deep-water gravity wake this
     is the transverse wavelength 2πU²/g.
+
+    Parameters
+    ----------
+    eta : array_like (n, n)
+        Heights η, m, on ``grid``, ordered (y, x).
+    grid : Grid
+        The periodic grid of ``eta``.
+    source : (float, float), optional, keyword-only
+        Position (x, y) of the source, m (default the origin).
+    near, far : float, keyword-only
+        Distances behind ``source`` of the measured stretch, m, 0 < near < far ≤ L/2.
+
+    Returns
+    -------
+    float
+        Wavelength λ along the track, m.
+
+    Raises
+    ------
+    ValueError
+        When there are fewer than 4 zero crossings between near and far, or an argument is out of range.
     """
     check_instance("grid", grid, Grid, "wavephys.Grid")
     n = grid.n
