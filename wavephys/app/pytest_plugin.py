@@ -29,16 +29,76 @@ __all__ = ["Checker"]
 
 
 class Checker:
-    """Assertion helpers over :mod:`wavephys.harness` for use in tests."""
+    """Assertion helpers over :mod:`wavephys.harness` for use in tests.
+
+    Each method builds a :class:`~wavephys.harness.Check` row (or a shader report), returns it
+    when it is ok and otherwise raises ``AssertionError`` with expected / measured / tolerance
+    (and the likely cause), which fails the test. The ``wavephys_check`` fixture gives one.
+
+    Parameters
+    ----------
+    None
+        ``Checker()`` takes no arguments and holds no state.
+    """
 
     def close(self, quantity, measured, expected, *, rtol=None, atol=None, unit=""):
-        """Assert measured ≈ expected (exactly one of ``rtol``, ``atol``, ≥ 0)."""
+        """Assert measured ≈ expected (exactly one of ``rtol``, ``atol``, ≥ 0).
+
+        Parameters
+        ----------
+        quantity : str
+            What is measured (non-empty; a sentence fragment, with its conditions).
+        measured : float
+            The measured value, a real scalar in ``unit`` (NaN or inf fail the row).
+        expected : float
+            The expected value in ``unit``, real (±inf allowed).
+        rtol : float, optional, keyword-only
+            Relative tolerance, dimensionless, ≥ 0. Give exactly one of ``rtol`` and ``atol``.
+        atol : float, optional, keyword-only
+            Absolute tolerance in ``unit``, ≥ 0. Give exactly one of ``rtol`` and ``atol``.
+        unit : str, optional, keyword-only
+            Unit of ``measured`` and ``expected`` (default ``""``).
+
+        Returns
+        -------
+        Check
+            The ``"~="`` row (:func:`wavephys.harness.compare`), when it is ok.
+
+        Raises
+        ------
+        AssertionError
+            When the row is not ok; the message is the row's report.
+        ValueError
+            When neither or both of ``rtol`` and ``atol`` are given, or a tolerance is negative.
+        """
         from wavephys.harness.checks import assert_check, compare
 
         return assert_check(compare(quantity, measured, expected, rtol=rtol, atol=atol, unit=unit))
 
     def at_most(self, quantity, measured, limit, unit=""):
-        """Assert measured <= limit."""
+        """Assert measured <= limit.
+
+        Parameters
+        ----------
+        quantity : str
+            What is measured (non-empty; a sentence fragment, with its conditions).
+        measured : float
+            The measured value, a real scalar in ``unit`` (NaN or inf fail the row).
+        limit : float
+            The upper bound in ``unit``, real (±inf allowed).
+        unit : str, optional
+            Unit of ``measured`` and ``limit`` (default ``""``).
+
+        Returns
+        -------
+        Check
+            The ``"<="`` row (:func:`wavephys.harness.bound`), when it is ok.
+
+        Raises
+        ------
+        AssertionError
+            When ``measured`` exceeds ``limit``; the message is the row's report.
+        """
         from wavephys.harness.checks import assert_check, bound
 
         return assert_check(bound(quantity, measured, limit, unit=unit))
@@ -48,6 +108,37 @@ class Checker:
 
         The largest relative error over the shells with k in ``k_range`` (rad/m) must be
         <= ``rtol``, and at least ``min_samples`` shells must be measured there.
+
+        Parameters
+        ----------
+        eta : array_like
+            Heights, m, shape (n_t, n, n): a time series of frames ``dt`` apart on a square grid.
+        dx : float
+            Grid spacing, m, > 0.
+        dt : float
+            Time between frames, s, > 0.
+        water : Water
+            The water whose linear dispersion relation is the theory (a :class:`wavephys.Water`).
+        rtol : float, optional, keyword-only
+            Allowed max |ω_measured/ω_theory − 1|, dimensionless, ≥ 0 (default 0.005).
+        k_range : (float, float), optional, keyword-only
+            Band (k_min, k_max) of shells checked, rad/m, both ≥ 0, k_min < k_max (k_max may be inf;
+            default: all shells).
+        min_samples : int, optional, keyword-only
+            Fewest shells in the band for the row to pass, ≥ 1 (default 3).
+
+        Returns
+        -------
+        Check
+            The row of :func:`wavephys.harness.dispersion_check`, when it is ok.
+
+        Raises
+        ------
+        TypeError
+            When ``water`` is not a :class:`wavephys.Water`.
+        AssertionError
+            When the error exceeds ``rtol`` or too few shells are measured; the message names the
+            band, the worst k and, where recognizable, the likely cause.
         """
         from wavephys.core.inputs import check_instance
         from wavephys.core.water import Water
@@ -60,7 +151,36 @@ class Checker:
                                              min_samples=min_samples))
 
     def energy_conserved(self, eta, eta_dot, dx, water, *, rtol=1e-3):
-        """Assert the total energy of a time series (n_t, n, n) stays within ``rtol``."""
+        """Assert the total energy of a time series (n_t, n, n) stays within ``rtol``.
+
+        The drift is max |E(t)/E(0) − 1| of the total energy per unit area measured by
+        :func:`wavephys.harness.measure_energy` at each frame.
+
+        Parameters
+        ----------
+        eta : array_like
+            Heights, m, shape (n_t, n, n).
+        eta_dot : array_like
+            Vertical velocities ∂η/∂t, m/s, the shape of ``eta``.
+        dx : float
+            Grid spacing, m, > 0.
+        water : Water
+            The water (density, gravity, surface tension, depth) the energy is measured in.
+        rtol : float, optional, keyword-only
+            Allowed drift, dimensionless, ≥ 0 (default 1e-3).
+
+        Returns
+        -------
+        Check
+            The ``"~="`` row of the drift against 0 with ``atol=rtol``, when it is ok.
+
+        Raises
+        ------
+        ValueError
+            When ``eta`` is not 3-D or ``rtol`` is negative.
+        AssertionError
+            When the drift exceeds ``rtol``.
+        """
         import numpy as np
 
         from wavephys.harness.checks import assert_check, compare
@@ -84,6 +204,39 @@ class Checker:
         returns the :class:`~optics.shaders.ShaderReport` when it passes. A source that does
         not compile, or a function that is missing or has another signature, raises
         :class:`~optics.shaders.GLSLError` (a ValueError) with the driver's message.
+
+        Parameters
+        ----------
+        source : str
+            GLSL defining ``function`` (and anything it calls).
+        function : str
+            The function's name.
+        against : str
+            The check: a name in :data:`optics.shaders.SHADER_CHECKS` (e.g. ``"fresnel"``).
+        takes : sequence of str, optional, keyword-only
+            The role of each parameter, in order (default: the check's own).
+        returns : str, optional, keyword-only
+            The return type expected (``"float"``, ``"vec3"``): refused if the declaration differs.
+        uniforms : dict, optional, keyword-only
+            Values for ``uniform`` variables the function reads (name → number or tuple).
+        tolerance : float, optional, keyword-only
+            The largest error allowed, > 0 (default: the check's).
+        chart : path, optional, keyword-only
+            Also draw the error over the domain to this PNG.
+        **options
+            The check's domain options (``form="schlick"``, ``sides=("above",)``, …).
+
+        Returns
+        -------
+        ShaderReport
+            The report of :func:`optics.shaders.check_glsl`, when it is ok.
+
+        Raises
+        ------
+        AssertionError
+            When the function does not meet the physics; the message is the report.
+        GLSLError
+            When the source does not compile or the function is missing or has another signature.
         """
         from optics.shaders import check_glsl
 

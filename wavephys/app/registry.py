@@ -17,7 +17,29 @@ __all__ = ["REGISTRY", "registry", "run", "check_builtin_scenes"]
 
 
 def check_builtin_scenes(width: int = 160, height: int = 120, n: int = 128) -> list[Check]:
-    """The GPU renderer against the CPU reference on each built-in scene, every effect on (PSNR)."""
+    """The GPU renderer against the CPU reference on each built-in scene, every effect on (PSNR).
+
+    Each scene of :data:`wavephys.app.SCENES` is made by :func:`wavephys.app.scenes.builtin_scene`,
+    rendered by :class:`optics.rendering.renderer.Renderer` and traced by the CPU reference
+    (:func:`optics.rendering.reference.trace`); the two images must agree to a PSNR of at least 100 dB.
+
+    Parameters
+    ----------
+    width : int
+        Image width, pixels, ≥ 1 (checked by the renderer).
+    height : int
+        Image height, pixels, ≥ 1 (checked by the renderer).
+    n : int
+        Height-field resolution of each scene, texels per side, even, 64 to 8192 (checked by
+        :func:`~wavephys.app.scenes.builtin_scene`).
+
+    Returns
+    -------
+    list of Check
+        One ``">="`` row per built-in scene: the PSNR of the GPU image against the CPU reference, dB,
+        against 100 dB. Where no OpenGL context can be made, a single failing row "GPU renderer
+        available" (0 ≥ 1) whose note gives the reason.
+    """
     from optics.rendering.reference import psnr, trace
     from optics.rendering.renderer import Renderer, RendererUnavailable
     from wavephys.app.scenes import SCENES, builtin_scene
@@ -37,7 +59,16 @@ def check_builtin_scenes(width: int = 160, height: int = 120, n: int = 128) -> l
 
 
 def registry() -> dict[str, Callable[[], list[Check]]]:
-    """Every check group by name: wave physics, optics, then the renderer on the built-in scenes."""
+    """Every check group by name: wave physics, optics, then the renderer on the built-in scenes.
+
+    Returns
+    -------
+    dict of str to callable
+        ``name -> check()``, each a function of no arguments returning a list of
+        :class:`~wavephys.harness.Check` rows: :data:`wavephys.checks.CHECKS`, then
+        :data:`optics.checks.CHECKS`, then ``"builtin-scenes"`` (:func:`check_builtin_scenes`), in the
+        order ``wavephys validate`` runs them. A new dict on every call.
+    """
     import optics.checks
     import wavephys.checks
 
@@ -51,7 +82,28 @@ def __getattr__(name):
 
 
 def run(names=None, progress: Callable[[int, int, str], None] | None = None) -> list[Check]:
-    """Run the named check groups (default: all); ``progress(i, total, name)`` before each."""
+    """Run the named check groups (default: all); ``progress(i, total, name)`` before each.
+
+    Parameters
+    ----------
+    names : list of str, optional
+        Names of check groups (keys of :func:`registry`), run in the order given; None runs all of
+        them in the registry's order. Any iterable of names but a string.
+    progress : callable, optional
+        Called as ``progress(i, total, name)`` before group ``i`` (from 0) of ``total`` runs.
+
+    Returns
+    -------
+    list of Check
+        The rows of every group run, group after group.
+
+    Raises
+    ------
+    TypeError
+        If ``names`` is a string or not iterable, or ``progress`` is not callable.
+    ValueError
+        If a name is not in the registry (the message lists the known ones).
+    """
     checks = registry()
     if names is not None and (isinstance(names, (str, bytes)) or not hasattr(names, "__iter__")):
         raise TypeError(f"names must be a list of check names (see registry()), got {type(names).__name__}")

@@ -181,10 +181,41 @@ def build_report(out_dir, checks=None, validation=None, figures=None, quick: boo
                  progress: Optional[Callable[[str], None]] = None) -> Path:
     """Write ``out_dir/report.html`` (module doc) and return its path.
 
-    ``checks``: names of the validations to run (default: all); ``validation``: a JSON file
-    from ``wavephys validate --json`` to show instead of running them; ``figures``: the
-    bench charts' folder (default: the checkout's ``bench/figures``); ``quick``: smaller
-    grids, one planner scene and one frame (for tests).
+    The page holds the validation table, a steady wake, ring waves from the default scene,
+    the bench charts, the planner's model cards and rendered frames, every image embedded.
+    It is written atomically (a partial page never replaces a complete one).
+
+    Parameters
+    ----------
+    out_dir : str or os.PathLike
+        Folder to write ``report.html`` into; created (one level) if missing. Its parent must
+        exist and be writable.
+    checks : list of str, optional
+        Names of the validations to run (keys of :func:`wavephys.app.registry.registry`);
+        default: all.
+    validation : str or os.PathLike, optional
+        A JSON file from ``wavephys validate --json`` to show instead of running the validations
+        (``checks`` is then still checked against the registry, but nothing is run). Must be an existing file.
+    figures : str or os.PathLike, optional
+        The bench charts' folder (default: the checkout's ``bench/figures``, :data:`FIGURES`); when
+        it is not a folder the page says so.
+    quick : bool
+        Smaller grids, one planner scene and one frame (for tests).
+    progress : callable, optional
+        Called with one message (str) as each part of the page starts.
+
+    Returns
+    -------
+    pathlib.Path
+        The path of the written page, ``out_dir/report.html``.
+
+    Raises
+    ------
+    ValueError
+        When ``out_dir`` is not a usable folder, ``validation`` is not a file, or a name in
+        ``checks`` is unknown.
+    TypeError
+        When ``quick`` is not a bool.
     """
     from wavephys.core.files import atomic_path, output_folder
     from wavephys.core.inputs import check_bool

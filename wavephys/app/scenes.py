@@ -59,6 +59,29 @@ def default_scene(n: int = 256, steps: int = 120, progress: Optional[Callable[[s
     Returns a dict with the final ``eta`` (m), ``eta_dot`` (m/s), ``dx`` (m), ``time`` (s)
     and ``energy_ratio`` (energy after / before the steps with the cutoff off, as a
     sanity figure: 1 to rounding).
+
+    Parameters
+    ----------
+    n : int
+        Grid points per side, even, 128 to 8192 (:data:`MAX_N`).
+    steps : int
+        Time steps of 1/30 s to run, 1 to 10⁶.
+    progress : callable, optional
+        Called with one message (str) before the steps run.
+
+    Returns
+    -------
+    dict
+        ``eta`` (numpy.ndarray, (n, n), m) and ``eta_dot`` (numpy.ndarray, (n, n), m/s): the final
+        surface; ``dx`` (float, m): the grid spacing; ``time`` (float, s): the final time;
+        ``energy_ratio`` (float): energy after / before the same steps without the cutoff margin.
+
+    Raises
+    ------
+    TypeError
+        When ``progress`` is neither callable nor None, or ``n`` or ``steps`` is not an integer.
+    ValueError
+        When ``n`` or ``steps`` is out of range or ``n`` is odd.
     """
     from wavephys.simulation import Simulation
 
@@ -81,7 +104,27 @@ def default_scene(n: int = 256, steps: int = 120, progress: Optional[Callable[[s
 
 
 def scene_grid(name: str, n: int) -> Grid:
-    """The grid every field of built-in scene ``name`` lives on."""
+    """The grid every field of built-in scene ``name`` lives on.
+
+    Parameters
+    ----------
+    name : str
+        A built-in scene, one of :data:`SCENES` (``"pool"``, ``"shore"``, ``"ship"``, ``"storm"``,
+        ``"calm"``).
+    n : int
+        Grid points per side, even, ≥ 2 (checked by :class:`wavephys.Grid`).
+
+    Returns
+    -------
+    Grid
+        ``Grid(n, length)`` with the scene's side length, m (8 pool, 16 shore, 40 ship, 64 storm,
+        16 calm).
+
+    Raises
+    ------
+    ValueError
+        When ``name`` is not a built-in scene.
+    """
     return Grid(n, LENGTHS[check_choice("name", name, SCENES)])
 
 
@@ -198,7 +241,24 @@ def _storm_fields(sea, grid, t):
 
 def scene_displacement(name: str, n: int = 256, time: float = 0.0):
     """The vector displacement (3, n, n) (Δx, Δy, z), m, of a built-in scene whose surface is
-    displaced (``"storm"``: the choppy sea in its rest coordinates), else None."""
+    displaced (``"storm"``: the choppy sea in its rest coordinates), else None.
+
+    Parameters
+    ----------
+    name : str
+        A built-in scene, one of :data:`SCENES`.
+    n : int
+        Grid points per side, even, 64 to 8192 (:data:`MAX_N`).
+    time : float
+        Seconds after the start, s, 0 to 3600 (:data:`MAX_TIME`).
+
+    Returns
+    -------
+    numpy.ndarray or None
+        float32 array of shape (3, n, n): the horizontal displacement (Δx, Δy) and the height z, m,
+        at each rest grid point of :func:`scene_grid`; None for scenes without displacement (all but
+        ``"storm"``).
+    """
     check_choice("name", name, SCENES)
     n = check_int("n", n, lo=64, hi=MAX_N, even=True)
     check_scalar("time", time, lo=0.0, hi=MAX_TIME)
@@ -277,7 +337,25 @@ def _cameras():
 
 
 def scene_water(name: str, n: int = 256, time: float = 0.0, ship: bool = True) -> np.ndarray:
-    """The water height field (m) of a built-in scene at ``time`` (s), on :func:`scene_grid`."""
+    """The water height field (m) of a built-in scene at ``time`` (s), on :func:`scene_grid`.
+
+    Parameters
+    ----------
+    name : str
+        A built-in scene, one of :data:`SCENES`.
+    n : int
+        Grid points per side, even, 64 to 8192 (:data:`MAX_N`).
+    time : float
+        Seconds after the start, s, 0 to 3600 (:data:`MAX_TIME`): the pool's simulation is stepped
+        up to it (at 1/30 s), the swell's phase, the ship's position, the storm's sea, the pond's noise.
+    ship : bool
+        ``"ship"`` only: False gives flat water, the same frame without the ship.
+
+    Returns
+    -------
+    numpy.ndarray
+        float32 heights, m, shape (n, n).
+    """
     check_choice("name", name, SCENES)
     n = check_int("n", n, lo=64, hi=MAX_N, even=True)
     check_scalar("time", time, lo=0.0, hi=MAX_TIME)
@@ -322,17 +400,38 @@ def builtin_scene(name: str, *, n: int = 256, time: float = 1.0, ship: bool = Tr
 
     Parameters
     ----------
+    name : str
+        A built-in scene, one of :data:`SCENES`.
     n : int
-        Height-field resolution (texels per side), even, ≥ 64.
+        Height-field resolution (texels per side), even, 64 to 8192 (:data:`MAX_N`).
     time : float
         Seconds after the start (stones dropped at 0 in the pool; swell phase; ship position;
-        the storm's sea and its foam; the calm pond's noise), ≥ 0.
+        the storm's sea and its foam; the calm pond's noise), 0 to 3600 (:data:`MAX_TIME`).
     ship : bool
         ``"ship"`` only: False gives flat water, the same frame without the ship.
     caustics : bool
         Compute the caustics map (beam method); False leaves the flat-water light.
     camera : Camera, optional
         Replaces the scene's camera.
+
+    Returns
+    -------
+    Scene
+        The :class:`optics.rendering.scene.Scene`: ground and albedo, water heights, the caustics
+        map (or None), foam (storm), Preetham's sky and the scene's :data:`SURROUNDINGS`.
+
+    Raises
+    ------
+    ValueError
+        When ``name`` is not a built-in scene or an argument is out of range.
+    TypeError
+        When ``camera`` is not a Camera or a switch is not a bool.
+
+    References
+    ----------
+    Preetham, A. J., Shirley, P. & Smits, B. (1999). A practical analytic model for daylight. *SIGGRAPH*.
+
+    Schneider, J. & Westermann, R. (2001). Towards real-time visual simulation of water surfaces. *VMV*.
     """
     if camera is not None:
         check_instance("camera", camera, Camera, "optics.rendering.Camera")
@@ -349,7 +448,34 @@ def scene_frames(name: str, count: int, *, fps: float = 30.0, n: int = 256, star
                  caustics: bool = True) -> Iterator[Scene]:
     """``count`` successive scenes ``1/fps`` s apart from ``start`` (the pool steps its simulation once per frame).
 
-    The arguments are checked when it is called, before the first frame is made."""
+    The arguments are checked when it is called, before the first frame is made.
+
+    Parameters
+    ----------
+    name : str
+        A built-in scene, one of :data:`SCENES`.
+    count : int
+        Number of frames, ≥ 1.
+    fps : float, keyword-only
+        Frames per second, 1/s, in (0, 1000].
+    n : int, keyword-only
+        Height-field resolution (texels per side), even, 64 to 8192 (:data:`MAX_N`).
+    start : float, keyword-only
+        Time of the first frame, s, 0 to 3600 (:data:`MAX_TIME`); the last frame must end by
+        :data:`MAX_TIME` too (``start + count / fps <= MAX_TIME``).
+    caustics : bool, keyword-only
+        Compute the caustics map of each frame (beam method).
+
+    Returns
+    -------
+    Iterator of Scene
+        The ``count`` scenes at ``start + i / fps``, made one by one as they are drawn.
+
+    Raises
+    ------
+    ValueError
+        When an argument is out of range or the frames would end after :data:`MAX_TIME`.
+    """
     check_choice("name", name, SCENES)
     count = check_int("count", count, lo=1)
     check_scalar("fps", fps, lo=0.0, hi=1000.0, lo_open=True)

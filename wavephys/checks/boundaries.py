@@ -19,7 +19,19 @@ __all__ = ["check_cutoff", "check_second_order", "check_fd_stability"]
 
 
 def check_cutoff() -> list[Check]:
-    """The quadratic margin absorbs waves up to a longer λ/M than the linear one."""
+    """The quadratic margin absorbs waves up to a longer λ/M than the linear one.
+
+    Measured with :func:`~wavephys.physics.boundary.cutoff_reflection` (energy fraction reflected
+    by a margin of M samples for a wavelength λ) and :func:`~wavephys.physics.boundary.cutoff_boundary`
+    (largest λ/M that reflects less than 0.1 %).
+
+    Returns
+    -------
+    list of Check
+        Four rows: the quadratic margin's reflection at λ/M = 0.5 (≤ 1e-3); the linear/quadratic
+        reflection ratio there (≥ 100); the quadratic margin's boundary λ/M against the linear one's
+        (≥); the quadratic margin's visible reflection at λ/M = 1 (≥ 1 %, its failure boundary).
+    """
     q = cutoff_reflection(0.5, "quadratic")
     lin = cutoff_reflection(0.5, "linear")
     bq, bl = cutoff_boundary("quadratic"), cutoff_boundary("linear")
@@ -32,7 +44,19 @@ def check_cutoff() -> list[Check]:
 
 
 def check_second_order() -> list[Check]:
-    """Second-order heights equal the Stokes expansion on one wave; error against exact Stokes waves."""
+    """Second-order heights equal the Stokes expansion on one wave; error against exact Stokes waves.
+
+    One deep gravity wave of steepness kA = 0.2 on a 10 m grid of 256 points, in the working
+    precision (float64 with ``jax_enable_x64``, else float32).
+
+    Returns
+    -------
+    list of Check
+        Six rows: the second-order height against A cos θ + (kA²/2) cos 2θ (max error / A, 1e-5 in
+        float32, 1e-12 in float64); the crest and trough offsets against ±kA²/2, m (rtol 1e-3); the
+        error against an exact Stokes wave at kA = 0.1 (≤ 1 % of A) and its improvement over first
+        order (≥ 5); the breakdown steepness where the error reaches 10 % of A (0.3 ± 0.02).
+    """
     dtype = working_dtype()
     water = Water(sigma=0.0)
     grid = Grid(256, 10.0)
@@ -58,6 +82,14 @@ def check_second_order() -> list[Check]:
 
 
 def check_fd_stability() -> list[Check]:
-    """The explicit FD scheme's measured blow-up Courant number against 1/√2."""
+    """The explicit FD scheme's measured blow-up Courant number against 1/√2.
+
+    Returns
+    -------
+    list of Check
+        One row: the Courant number c Δt/Δx at which the finite-difference peer blows up, found by
+        bisection to 1e-4 (:func:`~wavephys.models.finite_difference.find_stability_limit`), against
+        :data:`~wavephys.models.finite_difference.STABILITY_LIMIT` (rtol 1e-3).
+    """
     return [compare("FD stability boundary c dt/dx (measured by bisection to 1e-4)", find_stability_limit(),
                     STABILITY_LIMIT, rtol=1e-3)]
