@@ -28,7 +28,17 @@ __all__ = ["CHECKS", "check_fresnel", "check_absorption", "check_caustics", "che
 
 
 def check_fresnel() -> list[Check]:
-    """Exact Fresnel against its landmarks and colour-science; Schlick's errors above and below."""
+    """Exact Fresnel against its landmarks and colour-science; Schlick's errors above and below.
+
+    Returns
+    -------
+    list of Check
+        Eleven rows: R(0) from air against the normal-incidence formula and against 0.0204 (n 1 → 1.333);
+        Brewster's angle (53.1°) and R_p there (≤ 1e-10); the critical angle from below (48.6°) and
+        R = 1 just past it (total internal reflection); R_s, R_p against colour-science over 0–89°
+        (atol 1e-6); Schlick's worst error from above (0.059); Schlick with cos θᵢ from below (its
+        failure, −0.97); and Schlick with cos θₜ from below (|worst| ≤ 0.07).
+    """
     rows = [compare("Fresnel R(0), air -> water", float(reflectance(1.0)), normal_reflectance(N_AIR, N_WATER), rtol=1e-6),
             compare("Fresnel R(0) = 0.0204 for water (n 1 -> 1.333)", float(reflectance(1.0, 1.0, 1.333)), 0.0204, atol=5e-5)]
     brewster = math.atan(N_WATER / N_AIR)
@@ -72,7 +82,22 @@ def plain_numpy_water_srgb(distance: float) -> np.ndarray:
 
 
 def check_absorption() -> list[Check]:
-    """Beer–Lambert identities, the shipped a(λ), the cut-off distance, spectral sRGB vs plain numpy."""
+    """Beer–Lambert identities, the shipped a(λ), the cut-off distance, spectral sRGB vs plain numpy.
+
+    Returns
+    -------
+    list of Check
+        Eight rows: the shipped pure-water absorption a(550 nm) against 0.0581 1/m (WOPP v3); the
+        transmittance of 3 m against e^{−ad}; transmittances of layers multiplying; the cut-off
+        distance −ln ε / min a (ε = 1e-3) being positive, m, and the transmittance there being ε;
+        and the spectral sRGB of 1, 5 and 10 m of water against the plain-numpy path
+        :func:`plain_numpy_water_srgb` (atol 1e-4).
+
+    References
+    ----------
+    Röttgers, R., Doerffer, R., McKee, D. & Schönfeld, W. (2011/2016). Pure water spectral absorption,
+    scattering, and real part of refractive index model (WOPP).
+    """
     a = float(pure_water_absorption(550.0))
     rows = [compare("pure water a(550 nm) (WOPP v3)", a, 0.0581, rtol=1e-9, unit="1/m"),
             compare("Beer-Lambert e^{-ad}, 3 m at 550 nm", float(transmittance(3.0, a)), math.exp(-3 * a), rtol=1e-6),
@@ -100,7 +125,19 @@ def sinusoid_scene(n: int = 128, diagonal: bool = False):
 
 
 def check_caustics() -> list[Check]:
-    """Flux conservation, flat water, and the sinusoid's peak, trough and focal depth (0° and 45°)."""
+    """Flux conservation, flat water, and the sinusoid's peak, trough and focal depth (0° and 45°).
+
+    Returns
+    -------
+    list of Check
+        The mean floor irradiance E/E0 under a rough surface and an oblique sun against 1 (flux
+        conserved); the spread under flat water against 0; for the sinusoid of :func:`sinusoid_scene`
+        at 0° and 45°, the peak (2) and trough (2/3) of E/E0 at half the focal depth by the beam and
+        the reference methods, and the first fold depth against the focal depth, m (rtol 0.01); then,
+        on a generated 2-D sea, the converged reference's bound, the beam and jacobian methods against
+        it, the jacobian's refusal and hand-over to the beam past the first fold, and the GPU drawing
+        against the reference (or a failing "GPU drawing available" row without OpenGL).
+    """
     rows = []
     grid = Grid(64, 2.0)
     x, y = grid.mesh()
@@ -202,7 +239,17 @@ def underwater_view(angle_deg: float):
 
 
 def check_renderer() -> list[Check]:
-    """The GPU renderer and the CPU reference against the analytic flat pool and TIR; 16-bit heights."""
+    """The GPU renderer and the CPU reference against the analytic flat pool and TIR; 16-bit heights.
+
+    Returns
+    -------
+    list of Check
+        The CPU reference's centre colour of :func:`flat_pool` against :func:`flat_pool_colour`
+        (max relative error, atol 1e-5) and the red of the sky seen from below 5° past the critical
+        angle (:func:`underwater_view`; ≤ 0, total internal reflection hides the sky); the same two
+        for the GPU renderer (or a failing "GPU renderer available" row without OpenGL); and the RMS
+        curvature error of 16-bit heights of a swell of 16 texels per wavelength (≤ 1e-3).
+    """
     from optics.rendering.reference import trace
     from optics.rendering.renderer import Renderer, RendererUnavailable
     from optics.rendering.textures import height_precision

@@ -45,7 +45,16 @@ __all__ = ["WaveFigure", "plot_surface", "plot_dispersion", "plot_error_vs_time"
 
 
 class WaveFigure(Figure):
-    """A matplotlib Figure that shows itself as a PNG wherever rich output is available."""
+    """A matplotlib Figure that shows itself as a PNG wherever rich output is available.
+
+    In Jupyter (and notebooks executed by nbclient) a figure that is a cell's value shows once,
+    inline, as a PNG at 100 dpi; it is not registered with pyplot.
+
+    Parameters
+    ----------
+    *args, **kwargs
+        The arguments of :class:`matplotlib.figure.Figure` (``figsize`` in inches, ``dpi``, …).
+    """
 
     def _repr_png_(self):
         buf = io.BytesIO()
@@ -61,7 +70,24 @@ def _figure(**kw):
 def plot_surface(eta, dx: float, title: str = "", limit: float | None = None):
     """Height field η (m) on a grid of spacing dx (m), centred axes in metres.
 
-    ``limit`` (m) sets the symmetric colour range (default: max |η|)."""
+    ``limit`` (m) sets the symmetric colour range (default: max |η|).
+
+    Parameters
+    ----------
+    eta : array_like
+        Heights η, m, 2-D (n_y, n_x), finite; shown in mm.
+    dx : float
+        Grid spacing, m, > 0.
+    title : str
+        Axes title (default none).
+    limit : float, optional
+        Colour range ±``limit``, m, > 0 (default: max |η|, or 1 m for flat water).
+
+    Returns
+    -------
+    WaveFigure
+        One axes in metres centred on the grid, with a colour bar in mm.
+    """
     eta = np.asarray(eta)
     ny, nx = eta.shape
     ext = np.array([-nx / 2, nx / 2, -ny / 2, ny / 2]) * dx  # cell edges: samples sit at the cell centres
@@ -81,7 +107,32 @@ def plot_surface(eta, dx: float, title: str = "", limit: float | None = None):
           title=_TEXT)
 def plot_dispersion(samples, theory_k=None, theory_omega=None, title: str = ""):
     """Measured (k, ω) samples against a theory curve (``theory_k``, ``theory_omega``: 1-D, rad/m
-    and rad/s, given together)."""
+    and rad/s, given together).
+
+    Parameters
+    ----------
+    samples : DispersionSamples
+        Measured points: an object with arrays ``k`` (rad/m) and ``omega`` (rad/s), e.g. from
+        :func:`wavephys.harness.measure_dispersion`.
+    theory_k : array_like, optional
+        Wavenumbers of the theory curve, rad/m, 1-D, ≥ 0.
+    theory_omega : array_like, optional
+        Angular frequencies of the theory curve, rad/s, 1-D, ≥ 0, the shape of ``theory_k``.
+    title : str
+        Axes title (default none).
+
+    Returns
+    -------
+    WaveFigure
+        Log-log axes of ω against k: the measured ridge as points, the theory as a line.
+
+    Raises
+    ------
+    ValueError
+        When only one of ``theory_k`` and ``theory_omega`` is given, or their shapes differ.
+    TypeError
+        When ``samples`` has no ``k`` and ``omega``.
+    """
     if (theory_k is None) != (theory_omega is None) or (
             theory_k is not None and np.shape(theory_k) != np.shape(theory_omega)):
         raise ValueError(f"theory_k and theory_omega must be given together with one shape, got "
@@ -113,7 +164,25 @@ def plot_error_vs_time(rows, title: str = "error against cost", ylabel: str = "r
                        floor=None):
     """Log-log error against seconds, one line per method; ``rows`` are dicts with
     ``method``, ``seconds``, ``error`` and optionally ``label``. ``floor``: a dashed line
-    at the measurement's own resolution."""
+    at the measurement's own resolution.
+
+    Parameters
+    ----------
+    rows : list of dict
+        At least one row, each with ``method`` (the line it belongs to), ``seconds`` (cost, s, > 0),
+        ``error`` (> 0) and optionally ``label`` (annotated next to the point).
+    title : str
+        Axes title.
+    ylabel : str
+        Label of the error axis.
+    floor : float, optional
+        Error at the measurement's own resolution, > 0: drawn as a dashed line.
+
+    Returns
+    -------
+    WaveFigure
+        Log-log axes of error against seconds (median), one line per method.
+    """
     fig = _figure(figsize=(6, 4.5))
     ax = fig.add_subplot()
     methods = sorted({r["method"] for r in rows})
@@ -152,7 +221,30 @@ class _Curve(Spec):
           hlines=Maybe(Mapping(Real())))
 def plot_curves(curves: dict, xlabel: str, ylabel: str, title: str = "", logx=False, logy=True,
                 hlines: dict | None = None):
-    """Several (x, y) curves by label, e.g. a failure boundary; ``hlines`` label→y."""
+    """Several (x, y) curves by label, e.g. a failure boundary; ``hlines`` label→y.
+
+    Parameters
+    ----------
+    curves : dict
+        Label (str) → ``(x, y)``: two 1-D arrays of one length (x finite; y may hold ±inf).
+    xlabel : str
+        Label of the x axis.
+    ylabel : str
+        Label of the y axis.
+    title : str
+        Axes title (default none).
+    logx : bool
+        Logarithmic x axis (default False).
+    logy : bool
+        Logarithmic y axis (default True).
+    hlines : dict, optional
+        Label (str) → y (a real number): dashed horizontal lines, annotated with their labels.
+
+    Returns
+    -------
+    WaveFigure
+        One axes with a line per curve and a legend.
+    """
     fig = _figure(figsize=(6, 4.2))
     ax = fig.add_subplot()
     for label, (x, y) in curves.items():
@@ -182,6 +274,29 @@ def plot_wake(eta, dx: float, *, source=(0.0, 0.0), angle=None, kelvin: float = 
     ``angle`` is a :class:`wavephys.wake.WakeAngle` (or degrees), or a sequence of them
     (e.g. the angle of maximum amplitude and the outer edge); ``window`` =
     (x_min, x_max, y_min, y_max) in m limits the view.
+
+    Parameters
+    ----------
+    eta : array_like
+        Wake heights η, m, 2-D (n_y, n_x), finite; the colour range is the 99.5th percentile of |η|.
+    dx : float
+        Grid spacing, m, > 0.
+    source : (float, float), keyword-only
+        Position (x, y) of the source, m, where the lines start (default the centre).
+    angle : WakeAngle or float or sequence of them, optional, keyword-only
+        Measured half-angles, degrees in (−90, 90) (or objects with an ``angle`` attribute), drawn
+        solid, dotted, dash-dotted, dashed in turn.
+    kelvin : float, keyword-only
+        Kelvin's angle drawn dashed, degrees, 0 to 90 (default 19.47).
+    title : str, keyword-only
+        Axes title (default none).
+    window : (float, float, float, float), optional, keyword-only
+        View (x_min, x_max, y_min, y_max), m (default: the whole grid).
+
+    Returns
+    -------
+    WaveFigure
+        The :func:`plot_surface` figure with the lines and a legend.
     """
     import math
 
@@ -217,7 +332,25 @@ class _Image(Spec):
 @validate(images=Items(_Image(), min_len=1, iterable=True), titles=Items(_TEXT, iterable=True),
           columns=Maybe(Int(lo=1)), size=Real(lo=0.0, hi=100.0, lo_open=True))
 def plot_images(images, titles=(), columns: int | None = None, size: float = 3.2):
-    """A row (or grid) of RGB images, e.g. rendered frames (uint8 or linear float in [0, 1])."""
+    """A row (or grid) of RGB images, e.g. rendered frames (uint8 or linear float in [0, 1]).
+
+    Parameters
+    ----------
+    images : iterable of array_like
+        At least one image, each of shape (height, width), (height, width, 3) or (height, width, 4);
+        the first one's aspect ratio sets the figure's.
+    titles : iterable of str
+        Titles of the first images, in order (missing ones are empty).
+    columns : int, optional
+        Images per row, ≥ 1 (default: all in one row).
+    size : float
+        Height of each row of images, inches, in (0, 100] (default 3.2).
+
+    Returns
+    -------
+    WaveFigure
+        One axes (without ticks) per image, filled row by row.
+    """
     images = list(images)
     cols = columns or len(images)
     rows = -(-len(images) // cols)

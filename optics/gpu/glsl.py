@@ -3,7 +3,7 @@
 The float64 counterparts are :func:`wavephys.core.sampling.bilinear` (the cell-centred
 convention: texel (i, j)'s centre at texel coordinate (i, j)),
 :func:`optics.light.fresnel.reflectance_exact` and :func:`optics.light.directions.refract`;
-``tests/test_shaders.py`` checks each GLSL function against them.
+``tests/optics/shaders/test_shaders.py`` checks each GLSL function against them.
 """
 
 from __future__ import annotations
@@ -55,4 +55,4 @@ vec3 refract_dir(vec3 d, vec3 n, float eta) {  // Snell; n faces against d, eta 
 }
 """
 """GLSL: ``fresnel_exact(cos_i, n1, n2)`` and ``refract_dir(d, n, eta)`` (vec3(0) under total internal
-reflection, as GLSL's ``refract``). Both pass their shader checks (``tests/test_shaders.py``)."""
+reflection, as GLSL's ``refract``). Both pass their shader checks (``tests/optics/shaders/test_shaders.py``)."""

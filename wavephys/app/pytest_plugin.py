@@ -33,12 +33,8 @@ class Checker:
 
     Each method builds a :class:`~wavephys.harness.Check` row (or a shader report), returns it
     when it is ok and otherwise raises ``AssertionError`` with expected / measured / tolerance
-    (and the likely cause), which fails the test. The ``wavephys_check`` fixture gives one.
-
-    Parameters
-    ----------
-    None
-        ``Checker()`` takes no arguments and holds no state.
+    (and the likely cause), which fails the test. The ``wavephys_check`` fixture gives one;
+    ``Checker()`` takes no arguments and holds no state.
     """
 
     def close(self, quantity, measured, expected, *, rtol=None, atol=None, unit=""):

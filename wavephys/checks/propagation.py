@@ -27,7 +27,22 @@ def _ring_state(sim):
 
 
 def check_energy_conservation(steps: int = 1000) -> list[Check]:
-    """Ring-wave propagation without cutoff conserves energy to rounding."""
+    """Ring-wave propagation without cutoff conserves energy to rounding.
+
+    A stone dropped on a 4 m grid of 128 points, stepped at Δt = 0.05 s in the working precision
+    (float64 with ``jax_enable_x64``, else float32).
+
+    Parameters
+    ----------
+    steps : int
+        Steps run, ≥ 1 (checked by the simulation).
+
+    Returns
+    -------
+    list of Check
+        One row: the energy drift |E_end/E_0 − 1| against 0, within the a priori FFT rounding bound
+        steps · ε · log₂ n (ε the machine epsilon of the working precision).
+    """
     from wavephys.simulation import Simulation
 
     dtype = working_dtype()
@@ -43,7 +58,14 @@ def check_energy_conservation(steps: int = 1000) -> list[Check]:
 
 
 def check_step_composition() -> list[Check]:
-    """n steps of Δt equal one step of nΔt; the step equals ring_waves.propagate."""
+    """n steps of Δt equal one step of nΔt; the step equals ring_waves.propagate.
+
+    Returns
+    -------
+    list of Check
+        One row: 50 simulation steps of 0.01 s against one :func:`~wavephys.physics.ring_waves.propagate`
+        of 0.5 s (max difference / max |ψ|), atol 1e-5 in float32, 1e-12 in float64.
+    """
     from wavephys.simulation import Simulation
 
     dtype = working_dtype()
@@ -59,7 +81,15 @@ def check_step_composition() -> list[Check]:
 
 
 def check_energy_measure() -> list[Check]:
-    """Monochromatic deep gravity wave: E = ½ρgA², kinetic = potential, state energy = measured."""
+    """Monochromatic deep gravity wave: E = ½ρgA², kinetic = potential, state energy = measured.
+
+    Returns
+    -------
+    list of Check
+        Three rows (rtol 1e-5): the measured total energy against ½ρgA², J/m²; kinetic / potential
+        against 1 (equipartition); and the simulation state's energy against the energy measured
+        from η and η̇, J/m².
+    """
     from wavephys.simulation import Simulation
 
     water = Water(sigma=0.0)
@@ -77,7 +107,16 @@ def check_energy_measure() -> list[Check]:
 
 
 def check_hermite() -> list[Check]:
-    """Weights at s = 1/3; a simulated frame against exact propagation; fourth-order error."""
+    """Weights at s = 1/3; a simulated frame against exact propagation; fourth-order error.
+
+    Returns
+    -------
+    list of Check
+        Six rows: the four cubic Hermite weights h00, h01, h10, h11 at s = 1/3 against 20/27, 7/27,
+        4/27, −2/27; a frame interpolated at Δt/3 (ωΔt = 1) against exact propagation, relative to
+        the amplitude, against the analytic error :func:`~wavephys.physics.interpolation.hermite_error`
+        (rtol 0.01); and the convergence order from halving ωΔt, against 4 (atol 0.05).
+    """
     from wavephys.simulation import Simulation
 
     w = [float(v) for v in hermite_weights(1.0 / 3.0)]

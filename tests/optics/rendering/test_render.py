@@ -30,7 +30,7 @@ def renderer():
 
 
 # Every built-in scene, all effects on, GPU against the reference (≥ 100 dB at 160×120): the
-# registry's "builtin-scenes" rows, asserted by tests/test_registry.py; each effect off below.
+# registry's "builtin-scenes" rows, asserted by tests/wavephys/app/test_registry.py; each effect off below.
 
 
 @pytest.mark.parametrize("name", ["pool", "storm"])  # a walled pool and an open sea to the horizon
