@@ -83,6 +83,16 @@ def floor_irradiance(eta, grid, depth, sun=(0.0, 0.0, 1.0), method: str = "beam"
     -------
     jax.Array (m, m)
         Floor irradiance / E0 (dimensionless), at the cell centres of ``Grid(m, L)``.
+
+    Examples
+    --------
+    >>> import math, jax.numpy as jnp
+    >>> from wavephys import Grid
+    >>> grid = Grid(32, 1.0)
+    >>> x, _ = grid.mesh()
+    >>> light = floor_irradiance(0.002 * jnp.cos(2 * math.pi * x / 0.5), grid, depth=1.0)
+    >>> light.shape, round(float(light.mean()), 3)   # the flux of flat water, 1 − R(0°)
+    ((32, 32), 0.98)
     """
     from wavephys.core.aliases import renamed_options
 

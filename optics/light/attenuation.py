@@ -230,6 +230,12 @@ def water_srgb(distance, illuminant: str = "D65", gamut: str = "clip", step: flo
     ----------
     R. Röttgers, R. Doerffer, D. McKee & W. Schönfeld (2011/2016). Pure water spectral
     absorption, scattering, and real part of refractive index model (WOPP).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> [round(float(c), 2) for c in water_srgb(np.array([0.0, 5.0]))[1]]   # 5 m: red goes first
+    [0.17, 0.78, 0.99]
     """
     check_array("distance", distance, lo=0.0)
     check_choice("gamut", gamut, ("clip", "none"))

@@ -576,6 +576,11 @@ def export_scene(scene, out_dir, *, exr: bool = True, half: bool = False) -> dic
     ------
     ValueError
         When the water or ground height field is not square.
+
+    Examples
+    --------
+    >>> from wavephys.app.scenes import builtin_scene                 # doctest: +SKIP
+    >>> export_scene(builtin_scene("pool"), "out/pool")               # doctest: +SKIP
     """
     from optics.rendering.scene import Scene
 

@@ -215,6 +215,12 @@ def check_glsl(source, function: str, against: str, *, takes=None, returns: str 
     GLSLError
         The function is not defined, takes other types than ``takes`` say, returns a type the
         check cannot use, or the source does not compile (the driver's message).
+
+    Examples
+    --------
+    >>> source = "float f(float c) { return 0.02 + 0.98 * pow(1.0 - c, 5.0); }"   # doctest: +SKIP
+    >>> report = check_glsl(source, "f", "fresnel", form="schlick")              # doctest: +SKIP
+    >>> report.ok, report.cause                                                  # doctest: +SKIP
     """
     start = time.perf_counter()
     check = _check_against(against)

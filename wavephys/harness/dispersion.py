@@ -101,6 +101,14 @@ def measure_dispersion(eta, dx: float, dt: float, *, min_relative_power: float =
     ------
     ValueError
         When ``eta`` has fewer than 8 time samples on its first axis, or an argument is out of range.
+
+    Examples
+    --------
+    A record of frames from any simulator (docs/harness.md has the whole guide):
+
+    >>> from wavephys.harness import dispersion_check                     # doctest: +SKIP
+    >>> samples = measure_dispersion(frames, dx=0.01, dt=1 / 60)           # doctest: +SKIP
+    >>> print(dispersion_check(samples, Water(depth=0.5)))                # doctest: +SKIP
     """
     check_array("eta", eta, ndim=3)
     eta = np.asarray(eta, dtype=np.float64)

@@ -81,6 +81,18 @@ def measure_energy(eta, eta_dot, dx: float, water: Water) -> Energy:
     ------
     ValueError
         When ``eta`` and ``eta_dot`` differ in shape, or ``dx`` is not > 0.
+
+    Examples
+    --------
+    >>> import math, numpy as np
+    >>> from wavephys import Grid, Water
+    >>> from wavephys.physics.dispersion import angular_frequency
+    >>> grid, water, a, k = Grid(32, 1.0), Water(sigma=0.0), 0.01, 2 * math.pi / 0.5
+    >>> x = np.asarray(grid.mesh()[0])
+    >>> omega = float(angular_frequency(k, water))
+    >>> e = measure_energy(a * np.cos(k * x), a * omega * np.sin(k * x), float(grid.dx), water)
+    >>> round(float(e.total), 4), round(0.5 * water.rho * water.g * a * a, 4)   # ½ρgA²
+    (0.4905, 0.4905)
     """
     check_array("eta", eta, min_ndim=2)
     check_array("eta_dot", eta_dot, min_ndim=2)

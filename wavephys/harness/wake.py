@@ -507,6 +507,17 @@ def wake_angle(eta, grid: Grid, *, method: str = "max", **options) -> WakeAngle:
     ------
     ValueError
         When ``method`` is unknown, or as the method raises.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from wavephys import Grid, Water
+    >>> from wavephys.physics.wake import GaussianPressure, steady_wake
+    >>> grid = Grid(256, 16.0)
+    >>> eta = steady_wake(grid, Water(sigma=0.0), 1.0, GaussianPressure(100.0, 0.15), damping=0.1)
+    >>> m = wake_angle(np.asarray(eta), grid, method="cusp", speed=1.0, near=2.0, far=7.0)
+    >>> abs(m.angle - 19.47) < 1.0   # Kelvin's angle
+    True
     """
     return WAKE_ANGLE_METHODS(method, eta, grid, **options)
 
