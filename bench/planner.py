@@ -151,7 +151,10 @@ def optics_seconds(progress=print) -> tuple[dict, dict]:
     fresnel = {f: _median(lambda: reflectance(cos, method=f), repeats=5) for f in REFLECTANCE_METHODS}  # every entry of the family
     scene = Scene(8.0, 0.125, depth=2.0, stones=(StoneSpec(0.0, 0.0, 0.5, 0.02),))
     paths = np.random.default_rng(1).uniform(4.0, 9.0, 1_000_000)
-    absorption = {m: _median(lambda: transmittance(scene, m, paths), repeats=3) for m in ("spectral", "rgb")}
+    from optics.light.attenuation import WATER_TRANSMITTANCE_METHODS
+
+    absorption = {m: _median(lambda: transmittance(scene, m, paths), repeats=3)
+                  for m in WATER_TRANSMITTANCE_METHODS}  # every entry of the family
     progress("fresnel " + ", ".join(f"{k} {v * 1e3:.2f} ms" for k, v in fresnel.items()) + "; absorption "
              + ", ".join(f"{k} {v * 1e3:.1f} ms" for k, v in absorption.items()) + " per 1M pixels")
     return fresnel, absorption

@@ -37,6 +37,7 @@ from importlib import resources
 import numpy as np
 
 from wavephys.core.inputs import check_array, check_choice, check_int, check_scalar
+from wavephys.core.methods import Methods
 
 __all__ = [
     "transmittance",
@@ -47,6 +48,9 @@ __all__ = [
     "water_srgb",
     "fit_rgb_coefficients",
     "rgb_error",
+    "water_transmittance_spectral",
+    "water_transmittance_rgb",
+    "WATER_TRANSMITTANCE_METHODS",
 ]
 
 ABSORPTION_RANGE_NM = (300.0, 4000.0)
@@ -217,7 +221,11 @@ def water_srgb(distance, illuminant: str = "D65", gamut: str = "clip", step: flo
     illuminant : str
         A name in ``colour.SDS_ILLUMINANTS`` (default D65, sRGB's white).
     gamut : {"clip", "none"}
-        Negative channels (long paths, module doc) clipped to 0, or returned raw.
+        Channels clipped to [0, 1], or returned raw. Raw values leave [0, 1] at both ends:
+        negative on long paths (module doc), and up to 1.001 in blue for paths of 0–2.6 m,
+        where the red light water removes made sRGB's blue primary (whose colour-matching
+        response is negative there) larger than white's; a transmittance is not a gain, so
+        ``"clip"`` caps it at 1.
     step : float
         Spectral sampling, nm (1 to 20).
 
@@ -249,8 +257,8 @@ def water_srgb(distance, illuminant: str = "D65", gamut: str = "clip", step: flo
                                      method="Integration") for t in np.vstack([np.ones(len(shape.wavelengths)), trans])])
     rgb = colour.XYZ_to_sRGB(xyz / 100.0, apply_cctf_encoding=False)
     rgb = rgb[1:] / rgb[0]
-    if gamut == "clip":
-        rgb = np.maximum(rgb, 0.0)
+    if gamut == "clip":  # a transmittance: never negative, never a gain (module doc)
+        rgb = np.clip(rgb, 0.0, 1.0)
     return rgb.reshape(d.shape + (3,))
 
 
@@ -326,3 +334,57 @@ def rgb_error(distance, coefficients, illuminant: str = "D65"):
     rgb = water_srgb(distance, illuminant)
     approx = np.exp(-np.multiply.outer(np.asarray(distance, float), np.asarray(coefficients)))
     return np.max(np.abs(approx - rgb), axis=-1)
+
+
+def water_transmittance_spectral(distance, max_distance: float = 5.0):
+    """Linear-sRGB transmittance of clear water over path lengths ``distance``: the absorption
+    spectrum integrated against the eye (:func:`water_srgb`, D65, clipped to the gamut).
+
+    Parameters
+    ----------
+    distance : array_like
+        Path lengths, m, ≥ 0.
+    max_distance : float
+        The longest path the caller uses, m, > 0 (not needed here; the family's methods share
+        one signature).
+
+    Returns
+    -------
+    numpy.ndarray (..., 3)
+        Transmittance per channel, [0, 1].
+    """
+    check_scalar("max_distance", max_distance, lo=0.0, lo_open=True)
+    return water_srgb(distance)
+
+
+def water_transmittance_rgb(distance, max_distance: float = 5.0):
+    """Linear-sRGB transmittance by three Beer–Lambert coefficients, e^{−a_c d}, fitted to the
+    spectral answer over (0, ``max_distance``] (:func:`fit_rgb_coefficients`): what a shader
+    with one RGB absorption uniform draws.
+
+    Parameters
+    ----------
+    distance : array_like
+        Path lengths, m, ≥ 0.
+    max_distance : float
+        The longest path fitted, m, > 0.
+
+    Returns
+    -------
+    numpy.ndarray (..., 3)
+        Transmittance per channel, [0, 1].
+    """
+    check_array("distance", distance, lo=0.0)
+    check_scalar("max_distance", max_distance, lo=0.0, lo_open=True)
+    return np.exp(-np.asarray(distance, np.float64)[..., None] * _rgb_fit(float(max_distance)))
+
+
+@functools.lru_cache(maxsize=64)
+def _rgb_fit(max_distance: float):
+    return fit_rgb_coefficients(max_distance)
+
+
+WATER_TRANSMITTANCE_METHODS = Methods("water transmittance", spectral=water_transmittance_spectral,
+                                      rgb=water_transmittance_rgb)
+"""How the colour of clear water over a path is computed, by name: the spectral integral or
+three fitted RGB coefficients. The planner's absorption term offers every entry."""

@@ -14,7 +14,6 @@ import math
 import numpy as np
 
 from wavephys.core.inputs import check_instance
-from wavephys.planner.model import ABSORPTION_METHODS
 from wavephys.planner.scene import Scene
 from wavephys.planner.spectrum import scene_spectrum
 
@@ -33,10 +32,12 @@ def colour_errors(scene: Scene) -> dict:
     """Bounds on the colour error ([0, 1] scale) of each Fresnel form and absorption method:
     {"fresnel": {form: max ΔR}, "absorption": {method: albedo · max ΔT}, "floor": the largest
     albedo · T} over the scene's incidence range and water paths. Every form of the Fresnel
-    family (:data:`optics.light.fresnel.REFLECTANCE_METHODS`) is bounded."""
+    family (:data:`optics.light.fresnel.REFLECTANCE_METHODS`) and every absorption method
+    (:data:`optics.light.attenuation.WATER_TRANSMITTANCE_METHODS`) is bounded."""
     check_instance("scene", scene, Scene, "wavephys.planner.Scene")
     import jax.numpy as jnp
 
+    from optics.light.attenuation import WATER_TRANSMITTANCE_METHODS
     from optics.light.fresnel import REFLECTANCE_METHODS, reflectance
     from wavephys.planner.runner import FLOOR_ALBEDO, path_range, transmittance
 
@@ -46,10 +47,12 @@ def colour_errors(scene: Scene) -> dict:
     exact = np.asarray(reflectance(cos, method="exact"), np.float64)
     fresnel = {f: float(np.abs(np.asarray(reflectance(cos, method=f), np.float64) - exact).max())
                for f in REFLECTANCE_METHODS}
-    absorption = {"spectral": 0.0, "rgb": 0.0}
+    absorption = {m: 0.0 for m in WATER_TRANSMITTANCE_METHODS}
     if not math.isinf(scene.depth):
         d = np.linspace(*path_range(scene), 512)
-        delta = np.abs(transmittance(scene, "rgb", d) - transmittance(scene, "spectral", d)).max()
-        absorption["rgb"] = float(FLOOR_ALBEDO * delta)
-        floor = FLOOR_ALBEDO * float(max(transmittance(scene, m, d[:1]).max() for m in ABSORPTION_METHODS))
+        spectral = transmittance(scene, "spectral", d)
+        for m in WATER_TRANSMITTANCE_METHODS:
+            if m != "spectral":
+                absorption[m] = float(FLOOR_ALBEDO * np.abs(transmittance(scene, m, d) - spectral).max())
+        floor = FLOOR_ALBEDO * float(max(transmittance(scene, m, d[:1]).max() for m in WATER_TRANSMITTANCE_METHODS))
     return dict(fresnel=fresnel, absorption=absorption, floor=floor)

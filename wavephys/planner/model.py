@@ -4,7 +4,8 @@
 scene plus choices, and builds what the rest of the library runs: the pure step's
 :class:`wavephys.simulation.Model` (:attr:`SceneModel.simulation`), the sources, the
 output grid, and the optics settings (Fresnel form and absorption method, names in
-:data:`optics.light.fresnel.REFLECTANCE_METHODS` and :data:`ABSORPTION_METHODS`).
+:data:`optics.light.fresnel.REFLECTANCE_METHODS` and
+:data:`optics.light.attenuation.WATER_TRANSMITTANCE_METHODS`).
 
 The grid of a scene: the output texels (``extent / pixel`` per side), surrounded for
 open water by a cutoff margin of n/8 texels on every side (so the simulated square is
@@ -25,16 +26,13 @@ from wavephys.core.inputs import check_bool, check_choice, check_instance, check
 from wavephys.core.water import Water
 from wavephys.planner.scene import Scene
 
-__all__ = ["Choices", "SceneModel", "TERMS", "COARSEN", "STEPS_PER_FRAME", "ABSORPTION_METHODS",
+__all__ = ["Choices", "SceneModel", "TERMS", "COARSEN", "STEPS_PER_FRAME",
            "CAUSTICS_REFINE", "FULL_REFINE", "TEXTURES", "TEXTURE_BYTES", "SURFACES", "SHIP_METHODS", "SHIP_PATCHES", "MARGINS", "full_choices"]
 
 COARSEN = (1, 2, 4)
 """Simulation grid spacings the planner considers, in output texels."""
 STEPS_PER_FRAME = (1, 2, 4, 8)
 """Output frames per simulation step the planner considers (frames between steps by Hermite)."""
-ABSORPTION_METHODS = ("spectral", "rgb")
-"""Beer–Lambert absorption: integrated over the spectrum (colour-science) or three fitted RGB
-coefficients (:func:`optics.light.attenuation.fit_rgb_coefficients`)."""
 CAUSTICS_REFINE = (0, 1, 2, 3, 4)
 """Caustics tracing refinements the planner considers (0: off, the floor lit as under flat water;
 r: beam rasterization of the surface refined r times, :func:`optics.caustics.floor_irradiance_beam`)."""
@@ -83,6 +81,15 @@ def __getattr__(name):
                       "optics.light.fresnel.REFLECTANCE_METHODS its calibration covers "
                       "(wavephys.planner.terms.fresnel_forms)", DeprecationWarning, stacklevel=2)
         return tuple(REFLECTANCE_METHODS)
+    if name == "ABSORPTION_METHODS":  # 0.3: the methods come from optics' family
+        import warnings
+
+        from optics.light.attenuation import WATER_TRANSMITTANCE_METHODS
+
+        warnings.warn("wavephys.planner.model.ABSORPTION_METHODS is deprecated: the planner offers every entry of "
+                      "optics.light.attenuation.WATER_TRANSMITTANCE_METHODS its calibration covers "
+                      "(wavephys.planner.terms.absorption_methods)", DeprecationWarning, stacklevel=2)
+        return tuple(WATER_TRANSMITTANCE_METHODS)
     raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
 
 
@@ -107,7 +114,8 @@ class Choices:
         Fresnel reflectance form: a name in :data:`optics.light.fresnel.REFLECTANCE_METHODS`
         (the planner offers the ones its calibration has a cost for).
     absorption : str
-        ``"spectral"`` or ``"rgb"`` (:data:`ABSORPTION_METHODS`).
+        A name in :data:`optics.light.attenuation.WATER_TRANSMITTANCE_METHODS` (``"spectral"``,
+        ``"rgb"``; the planner offers the ones its calibration has a cost for).
     caustics : int
         Caustics tracing refinement (:data:`CAUSTICS_REFINE`; 0 off). Only scenes with
         ``caustics = true`` show them; the others run with 0.
@@ -150,7 +158,9 @@ class Choices:
         from optics.light.fresnel import REFLECTANCE_METHODS
 
         REFLECTANCE_METHODS.check(self.fresnel, "fresnel")
-        check_choice("absorption", self.absorption, ABSORPTION_METHODS)
+        from optics.light.attenuation import WATER_TRANSMITTANCE_METHODS
+
+        WATER_TRANSMITTANCE_METHODS.check(self.absorption, "absorption")
         object.__setattr__(self, "caustics", check_int("caustics", self.caustics, lo=0))
         check_choice("caustics", self.caustics, CAUSTICS_REFINE)
         check_choice("texture", self.texture, TEXTURES)

@@ -362,7 +362,7 @@ def _search(ctx: PlanContext, fits, fmt, colour_tolerance):
     scene, cal = ctx.scene, ctx.calibration
     refines = TERMS["caustics"].options(scene)
     forms = TERMS["fresnel"].options(scene, cal)
-    methods = TERMS["absorption"].options(scene)
+    methods = TERMS["absorption"].options(scene, cal)
     best, best_key = None, None
     for cand, tex_err in fits:
         for r in refines:

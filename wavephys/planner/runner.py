@@ -393,30 +393,27 @@ def floor_light(scene: Scene, model: SceneModel, heights) -> np.ndarray:
 
 
 def transmittance(scene: Scene, method: str, path):
-    """Linear-sRGB transmittance over path lengths ``path`` (m) by ``method``: ``"spectral"``
-    (colour-science integration, tabulated on 64 path lengths and interpolated) or ``"rgb"``
-    (three coefficients fitted over the scene's own range of paths)."""
+    """Linear-sRGB transmittance over path lengths ``path`` (m) by ``method``, a name in
+    :data:`optics.light.attenuation.WATER_TRANSMITTANCE_METHODS` called with the scene's longest
+    path: ``"spectral"`` tabulated on 64 path lengths and interpolated (the integral per texel
+    would cost seconds a frame), the others evaluated directly (``"rgb"``: three coefficients
+    fitted over the scene's own range of paths)."""
+    from optics.light.attenuation import WATER_TRANSMITTANCE_METHODS
+
     path = np.asarray(path, np.float64)
     hi = path_range(scene)[1]
-    if method == "rgb":
-        return np.exp(-path[..., None] * _rgb_coefficients(hi))
+    if method != "spectral":
+        return WATER_TRANSMITTANCE_METHODS(method, path, max_distance=hi)
     table, rgb = _srgb_table(hi)
     return np.stack([np.interp(path, table, rgb[:, c]) for c in range(3)], -1)
 
 
 @functools.lru_cache(maxsize=64)
-def _rgb_coefficients(hi: float):
-    from optics.light.attenuation import fit_rgb_coefficients
-
-    return fit_rgb_coefficients(hi)
-
-
-@functools.lru_cache(maxsize=64)
 def _srgb_table(hi: float):
-    from optics.light.attenuation import water_srgb
+    from optics.light.attenuation import water_transmittance_spectral
 
     table = np.linspace(0.0, hi, 64)
-    return table, water_srgb(table)
+    return table, water_transmittance_spectral(table, max_distance=hi)
 
 
 def path_range(scene: Scene) -> tuple[float, float]:

@@ -42,14 +42,13 @@ from typing import ClassVar, Optional
 from wavephys.planner.caustics import MARGIN
 from wavephys.planner.colour import incidence_range
 from wavephys.planner.cost import caustics_cost, colour_cost, texture_cost
-from wavephys.planner.model import (ABSORPTION_METHODS, CAUSTICS_REFINE, FULL_REFINE, SURFACES, TEXTURE_BYTES,
-                                    TEXTURES, Choices, full_choices)
+from wavephys.planner.model import CAUSTICS_REFINE, FULL_REFINE, SURFACES, TEXTURE_BYTES, TEXTURES, Choices, full_choices
 from wavephys.planner.predict import MARGIN_TEXELS, HeightBounds, default_height_options, height_peak, texture_error
 from wavephys.planner.scene import Scene
 from wavephys.planner.spectrum import scene_spectrum
 
 __all__ = ["PlanTerm", "PlanContext", "Candidate", "Term", "TERMS", "HEIGHT_TERMS", "COLOUR_TERMS",
-           "fresnel_forms", "colour_total", "caustics_delta", "CAUSTICS_METHODS_NOTE"]
+           "fresnel_forms", "absorption_methods", "colour_total", "caustics_delta", "CAUSTICS_METHODS_NOTE"]
 
 
 @dataclass(frozen=True)
@@ -374,6 +373,16 @@ def uncalibrated_fresnel_forms(calibration: dict) -> tuple:
     return tuple(f for f in REFLECTANCE_METHODS if f not in calibration.get("fresnel", {}))
 
 
+def absorption_methods(calibration: dict) -> tuple:
+    """The absorption methods the planner offers: every entry of the family
+    (:data:`optics.light.attenuation.WATER_TRANSMITTANCE_METHODS`) the calibration has a cost
+    for, spectral first."""
+    from optics.light.attenuation import WATER_TRANSMITTANCE_METHODS
+
+    methods = [m for m in WATER_TRANSMITTANCE_METHODS if m in calibration.get("absorption", {})]
+    return tuple(sorted(methods, key=lambda m: m != "spectral"))
+
+
 class Fresnel(PlanTerm):
     """The exact Fresnel reflectance, or a shader form (Schlick, a LUT, …) from the family."""
 
@@ -415,8 +424,10 @@ class Absorption(PlanTerm):
     kind = "colour"
     unit = "colour"
 
-    def options(self, scene):
-        return ABSORPTION_METHODS
+    def options(self, scene, calibration=None):
+        from wavephys.planner.cost import calibration as shipped
+
+        return absorption_methods(calibration if calibration is not None else shipped())
 
     def bound(self, ctx, option, refine: int = 0):
         """albedo·ΔT alone, × the floor light at caustics refinement ``refine``."""
@@ -433,10 +444,14 @@ class Absorption(PlanTerm):
         return colour_cost(ctx.scene, "exact", "spectral", cal) - colour_cost(ctx.scene, "exact", option, cal)
 
     def reason(self, ctx, option, error):
+        from optics.light.attenuation import WATER_TRANSMITTANCE_METHODS
+
+        missing = [m for m in WATER_TRANSMITTANCE_METHODS if m not in ctx.calibration.get("absorption", {})]
+        note = f"; not calibrated, so not offered: {', '.join(missing)}" if missing else ""
         if math.isinf(ctx.scene.depth):
-            return f"{option}: deep water, no floor seen"
+            return f"{option}: deep water, no floor seen{note}"
         return (f"{option}: ≤ {error / ctx.scene.image_quantum:.2g} image quanta over paths "
-                f"{ctx.scene.depth * 2:.3g} m and longer")
+                f"{ctx.scene.depth * 2:.3g} m and longer{note}")
 
 
 CAUSTICS_METHODS_NOTE = ("photons (3–17 % of the peak at 37× a step), GL beams (53× on llvmpipe) and Blinn–Phong "

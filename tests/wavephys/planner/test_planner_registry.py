@@ -55,7 +55,10 @@ def test_the_card_is_the_terms_rows():
 @pytest.mark.slow
 def test_plans_on_the_builtin_scenes_are_the_recorded_ones():
     """The registry changed how plans are made, not what they are: every built-in scene at 0.5, 1
-    and 4 height quanta gets the choices, predicted errors and costs recorded before it."""
+    and 4 height quanta gets the choices, predicted errors and costs recorded before it. One
+    deliberate change since: water_srgb caps blue at 1 (it reached 1.001 on 0–2.6 m paths), which
+    moves the ripples tank's colour bound from 6.1e-6 to 1.2e-4 (a thirtieth of an image quantum;
+    no choice changes)."""
     recorded = json.loads(DATA.read_text())
     for key, want in recorded.items():
         name, factor = key.split("@")
@@ -132,3 +135,33 @@ def test_an_incomplete_calibration_is_refused_by_name():
     cal = {k: v for k, v in calibration().items() if k != "shade"}
     with pytest.raises(ValueError, match=r"calibration lacks \['shade'\]"):
         plan(_pond(), 1e-3, calibration=cal)
+
+
+def test_a_new_absorption_method_is_planned_by_registering_it(monkeypatch):
+    """The absorption term's options are the family's entries the calibration covers: a method
+    registered in optics (here the spectral answer itself, renamed) is bounded (by the spectral
+    table's interpolation alone) and, once calibrated as nearly free, chosen."""
+    import wavephys.planner.cost as cost
+    from optics.light import attenuation
+    from wavephys.core.methods import Methods
+
+    methods = {k: attenuation.WATER_TRANSMITTANCE_METHODS[k] for k in attenuation.WATER_TRANSMITTANCE_METHODS}
+    monkeypatch.setattr(attenuation, "WATER_TRANSMITTANCE_METHODS",
+                        Methods("water transmittance", **methods, copy=attenuation.water_transmittance_spectral))
+    scene = _pond(n=32, frames=4)
+    shipped = cost.calibration()
+    p = plan(scene, 0.5 * scene.height_quantum, calibration=dict(shipped))
+    row = next(t for t in p.terms if t.term == "absorption")
+    assert "not calibrated, so not offered: copy" in row.reason
+    cal = dict(shipped, absorption=dict(shipped["absorption"], copy=1e-9))
+    p = plan(scene, 0.5 * scene.height_quantum, calibration=cal)
+    assert p.model.choices.absorption == "copy", p.card()
+    # the spectral integral itself, against the planner's spectral table (64 paths, interpolated): 1.9e-6
+    assert next(t for t in p.terms if t.term == "absorption").error <= 1e-5
+
+
+def test_the_old_absorption_methods_name_warns():
+    import wavephys.planner.model as model
+
+    with pytest.warns(DeprecationWarning, match="WATER_TRANSMITTANCE_METHODS"):
+        assert set(model.ABSORPTION_METHODS) == {"spectral", "rgb"}
