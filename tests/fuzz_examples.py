@@ -339,7 +339,7 @@ SKIP = {
     "wavephys.planner.plan.Term", "wavephys.planner.plan.Candidate", "wavephys.planner.plan.Infeasible",
     "wavephys.planner.terms.Term", "wavephys.planner.terms.Candidate",
     "wavephys.planner.plan.Plan",
-    # the report runs every section (minutes); its options are checked by tests/wavephys/app/test_report.py
+    # the report runs every section (minutes); its options are checked by tests/app/test_report.py
     "wavephys.app.report.build_report",
     "wavephys.planner.runner.Output",
     # result records, made by the library and returned (their fields are what was measured)
@@ -351,7 +351,7 @@ SKIP = {
     # the validation groups and the registry run whole scenes and take no data
     "wavephys.app.registry.check_builtin_scenes",
     # jax.distributed: a valid call connects to a coordinator (tested with two real processes
-    # in tests/wavephys/parallel/test_parallel.py), and hosts_mesh needs one
+    # in tests/parallel/test_parallel.py), and hosts_mesh needs one
     "wavephys.parallel.hosts.initialize", "wavephys.parallel.hosts.hosts_mesh",
 }
 # the source protocol's hooks are called by the step with the model's own operators

@@ -1,5 +1,5 @@
 """A corpus of shader functions written the way engines write them, correct and broken, with the
-verdict and the cause the shader checks must give each (``tests/optics/shaders/test_shaders.py``).
+verdict and the cause the shader checks must give each (``tests/shaders/test_shaders.py``).
 
 Each entry: (name, against, source, function, options, ok, cause). ``options`` go to
 ``check_glsl`` (``takes``, domain options); ``cause`` is a fragment the report's cause must

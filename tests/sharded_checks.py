@@ -1,4 +1,4 @@
-"""Run by tests/wavephys/parallel/test_parallel.py in a fresh interpreter with 4 forced host devices (the flag
+"""Run by tests/parallel/test_parallel.py in a fresh interpreter with 4 forced host devices (the flag
 must be set before JAX starts): the sharded step against the one-device step over a seeded
 family of scenes, the compiled programs' memory and collectives. Prints one JSON object."""
 

@@ -254,3 +254,16 @@ def test_renamed_options_keep_working_with_a_warning():
     np.testing.assert_array_equal(old, np.asarray(floor_irradiance(eta, grid, 1.0, refine=2)))
     with pytest.raises(TypeError, match="pass only 'size'"):
         reflectance(0.3, method="lut", lut_size=16, size=16)
+
+
+def test_test_folders_do_not_shadow_the_packages():
+    """tests/ is on sys.path (its conftest), so a tests/wavephys or tests/optics folder would be
+    imported as a namespace package in place of the installed one under the ``pytest`` command:
+    the folders mirror the subpackages (tests/physics ↔ wavephys/physics, tests/light ↔
+    optics/light), whose names are unique across the two packages."""
+    tests = ROOT / "tests"
+    folders = {p.name for p in tests.iterdir() if p.is_dir() and not p.name.startswith((".", "_"))} - {"data"}
+    assert not folders & set(PACKAGES), folders & set(PACKAGES)
+    sub = lambda pkg: {p.name for p in (ROOT / pkg).iterdir() if (p / "__init__.py").exists()}
+    assert not sub("wavephys") & sub("optics")  # unique, so one folder per subpackage is unambiguous
+    assert folders <= sub("wavephys") | sub("optics"), folders - (sub("wavephys") | sub("optics"))

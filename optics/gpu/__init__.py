@@ -12,6 +12,6 @@ shader checks (:mod:`optics.shaders`), so each primitive is written once:
 """
 
 from optics.gpu.context import EGL_PACKAGES, RendererUnavailable, gl_context
-from optics.gpu.glsl import GLSL_OPTICS, GLSL_SAMPLING
+from optics.gpu.glsl import GLSL_FRESNEL_FORMS, GLSL_OPTICS, GLSL_SAMPLING
 
-__all__ = ["RendererUnavailable", "EGL_PACKAGES", "gl_context", "GLSL_OPTICS", "GLSL_SAMPLING"]
+__all__ = ["RendererUnavailable", "EGL_PACKAGES", "gl_context", "GLSL_OPTICS", "GLSL_SAMPLING", "GLSL_FRESNEL_FORMS"]

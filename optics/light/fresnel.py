@@ -259,11 +259,15 @@ def reflectance_lut(cos_theta, n1=N_AIR, n2=N_WATER, *, size: int = 64):
     """
     xp, c = _check(cos_theta, n1, n2)
     size = check_int("size", size, lo=2, hi=1 << 20)
-    table = xp.asarray(reflectance_exact(xp.linspace(0.0, 1.0, size), n1, n2))
     u = c * (size - 1)
     i = xp.clip(xp.floor(u).astype(xp.int32), 0, size - 2)
     f = u - i
-    return (1.0 - f) * table[i] + f * table[i + 1]
+    if np.ndim(n1) == 0 and np.ndim(n2) == 0:  # one table for every sample
+        table = xp.asarray(reflectance_exact(xp.linspace(0.0, 1.0, size), n1, n2))
+        return (1.0 - f) * table[i] + f * table[i + 1]
+    # indices per sample (a table per pair of media): the two table entries, evaluated directly
+    nodes = lambda j: reflectance_exact(j / (size - 1), n1, n2)
+    return (1.0 - f) * nodes(i) + f * nodes(i + 1)
 
 
 REFLECTANCE_METHODS = Methods("Fresnel reflectance", exact=reflectance_exact, schlick=reflectance_schlick,

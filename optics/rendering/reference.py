@@ -38,7 +38,7 @@ import math
 import numpy as np
 
 from optics.light.directions import reflect, refract
-from optics.light.fresnel import normal_reflectance, reflectance_exact
+from optics.light.fresnel import normal_reflectance, reflectance
 from optics.light.sky import preetham_sky
 from optics.rendering.scene import FAR_TILES, NEAR_TILES, Camera, Scene, sun_in_water, texture_sample
 from wavephys.core.inputs import check_array, check_instance, check_int, check_scalar
@@ -109,10 +109,11 @@ def _normal(field, length, xy):
 
 
 def _reflectance(scene: Scene, cos_i, n1, n2):
-    """Exact Fresnel R (effects.fresnel) or the normal-incidence value, 1 under TIR either way."""
+    """Fresnel R by the scene's form (effects.fresnel) or the normal-incidence value, 1 under TIR
+    either way."""
     c = np.clip(np.asarray(cos_i, np.float64), 0.0, 1.0)
     if scene.effects.fresnel:
-        return reflectance_exact(c, n1, n2)
+        return np.asarray(reflectance(c, n1, n2, method=scene.effects.fresnel_form), np.float64)
     sin_t2 = (n1 / n2) ** 2 * (1 - c * c)
     return np.where(sin_t2 >= 1, 1.0, normal_reflectance(n1, n2))
 

@@ -29,8 +29,8 @@ from pathlib import Path
 
 import numpy as np
 
-from optics.light.fresnel import normal_reflectance, reflectance_exact
-from optics.gpu import EGL_PACKAGES, GLSL_OPTICS, GLSL_SAMPLING, RendererUnavailable, gl_context
+from optics.light.fresnel import normal_reflectance, reflectance
+from optics.gpu import EGL_PACKAGES, GLSL_FRESNEL_FORMS, GLSL_OPTICS, GLSL_SAMPLING, RendererUnavailable, gl_context
 from optics.rendering.scene import FAR_TILES, NEAR_TILES, SURROUNDINGS, Scene, sun_in_water, texture_sample
 from wavephys.core.files import atomic_path, output_file, output_folder
 from wavephys.core.progress import Progress
@@ -72,6 +72,7 @@ uniform vec3 sun, sun_w, sun_color, ambient, sky_zenith, sky_horizon, absorption
 uniform float sun_glow, n_air, n_water, sun_t;
 uniform int steps, refine;
 uniform bool e_refraction, e_reflection, e_fresnel, e_absorption, e_caustics, e_foam;
+uniform int fresnel_id;  // the Fresnel form's index in GLSL_FRESNEL_FORMS
 uniform bool under;
 uniform int surroundings;  // 0 none, 1 extend, 2 tile
 uniform bool sky_preetham;
@@ -115,7 +116,7 @@ vec3 normal_of(sampler2D t, ivec2 size, vec2 xy) {
 }
 
 float reflectance(float cos_i, float n1, float n2) {
-    if (e_fresnel) return fresnel_exact(cos_i, n1, n2);
+    if (e_fresnel) return fresnel_form(fresnel_id, cos_i, n1, n2);
     float c = clamp(cos_i, 0.0, 1.0);
     if ((n1 / n2) * (n1 / n2) * (1.0 - c * c) >= 1.0) return 1.0;
     float f = (n1 - n2) / (n1 + n2);
@@ -407,7 +408,8 @@ class Renderer:
             wx, wy = ((eye[:2] + half) % scene.length) - half
             under = bool(eye[2] < float(texture_sample(scene.water, scene.length, wx, wy)))
         if eff.fresnel:
-            sun_t = 1.0 - float(reflectance_exact(np.float64(scene.sun[2]), scene.n_air, scene.n_water))
+            sun_t = 1.0 - float(reflectance(np.float64(scene.sun[2]), scene.n_air, scene.n_water,
+                                            method=eff.fresnel_form))
         else:
             sun_t = 1.0 - normal_reflectance(scene.n_air, scene.n_water)
         values = dict(use_env=scene.environment is not None, use_caustics=scene.caustics is not None,
@@ -425,7 +427,7 @@ class Renderer:
                       sun_glow=scene.sun_glow, n_air=scene.n_air, n_water=scene.n_water, sun_t=sun_t,
                       steps=self.steps, refine=self.refine, e_refraction=eff.refraction,
                       e_reflection=eff.reflection, e_fresnel=eff.fresnel, e_absorption=eff.absorption,
-                      e_caustics=eff.caustics, under=under)
+                      e_caustics=eff.caustics, under=under, fresnel_id=GLSL_FRESNEL_FORMS.index(eff.fresnel_form))
         for name, v in values.items():
             if name not in p:
                 continue  # optimized away by the compiler

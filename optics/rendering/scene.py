@@ -190,13 +190,18 @@ class Effects:
         Trace the reflected ray to the ground (off: the reflection is the
         environment only, the cheap shader's choice).
     fresnel : bool
-        Exact Fresnel weights (off: the normal-incidence value everywhere, and 1 under TIR).
+        Fresnel weights by ``fresnel_form`` (off: the normal-incidence value everywhere, and 1
+        under TIR).
     absorption : bool
         Beer–Lambert along every underwater path (off: clear water).
     caustics : bool
         Light the underwater ground with the caustics map (off: flat-surface light).
     foam : bool
         Whiten the water surface by the scene's foam coverage (off: no foam drawn).
+    fresnel_form : str
+        The Fresnel reflectance drawn: a name in :data:`optics.light.fresnel.REFLECTANCE_METHODS`
+        that the GLSL has (:data:`optics.gpu.GLSL_FRESNEL_FORMS`; default ``"exact"``), so a
+        shader form a plan chooses can be seen.
     """
 
     refraction: bool = True
@@ -205,17 +210,37 @@ class Effects:
     absorption: bool = True
     caustics: bool = True
     foam: bool = True
+    fresnel_form: str = "exact"
+
+    SWITCHES = ("refraction", "reflection", "fresnel", "absorption", "caustics", "foam")
 
     def __post_init__(self):
-        for name in self.__dataclass_fields__:
+        for name in self.SWITCHES:
             check_bool(name, getattr(self, name))
+        from optics.gpu import GLSL_FRESNEL_FORMS
+        from optics.light.fresnel import REFLECTANCE_METHODS
+
+        REFLECTANCE_METHODS.check(self.fresnel_form, "fresnel_form")
+        if self.fresnel_form not in GLSL_FRESNEL_FORMS:
+            raise ValueError(f"fresnel_form {self.fresnel_form!r} has no GLSL in optics.gpu (it draws "
+                             f"{list(GLSL_FRESNEL_FORMS)})")
 
     def only(self, *names) -> "Effects":
-        """These effects on, every other off."""
-        unknown = set(names) - set(self.__dataclass_fields__)
+        """These effects on, every other off (the Fresnel form kept).
+
+        Parameters
+        ----------
+        *names : str
+            Names of the switches (:attr:`SWITCHES`) to keep on.
+
+        Returns
+        -------
+        Effects
+        """
+        unknown = set(names) - set(self.SWITCHES)
         if unknown:
-            raise ValueError(f"unknown effect(s) {sorted(unknown)}; choose from {list(self.__dataclass_fields__)}")
-        return Effects(**{k: k in names for k in self.__dataclass_fields__})
+            raise ValueError(f"unknown effect(s) {sorted(unknown)}; choose from {list(self.SWITCHES)}")
+        return Effects(**{k: k in names for k in self.SWITCHES}, fresnel_form=self.fresnel_form)
 
 
 def _height(name, h, max_size=16384):

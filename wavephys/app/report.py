@@ -8,7 +8,7 @@ built-in scenes with one Pareto chart, and frames rendered by the headless rende
 
 A script at the end of the page counts the images that decoded and the script errors, and
 writes them on ``<body>`` (``data-images``, ``data-images-loaded``, ``data-errors``), so a
-headless browser can check the page (``tests/wavephys/app/test_report.py`` does, with Chromium).
+headless browser can check the page (``tests/app/test_report.py`` does, with Chromium).
 """
 
 from __future__ import annotations

@@ -21,7 +21,7 @@ from wavephys.parallel import exchanged_bytes, hosts_mesh, row_mesh, spectrum_wi
 from wavephys.parallel.fft import collective_bytes
 from wavephys.simulation import Model, Simulation
 
-ROOT = Path(__file__).resolve().parents[3]
+ROOT = Path(__file__).resolve().parents[2]
 
 
 def _env(devices=None):

@@ -15,7 +15,7 @@ from wavephys.planner.model import TERMS as TERM_NAMES
 from wavephys.planner.model import full_choices
 from wavephys.planner.terms import COLOUR_TERMS, HEIGHT_TERMS, TERMS, PlanTerm, fresnel_forms
 
-DATA = Path(__file__).resolve().parents[2] / "data" / "builtin_plans.json"
+DATA = Path(__file__).resolve().parents[1] / "data" / "builtin_plans.json"
 
 
 def _pond(n=32, frames=6):

@@ -22,7 +22,7 @@ def test_hydrostatic_limit():
 # The steady wake of a 5 cm source at 1 m/s (its angle of maximum amplitude against linear
 # theory, its transverse wavelength) and the outer edge of 5 cm and 30 cm sources are the
 # registry's "steady-wakes" rows (wavephys/checks/moving_sources.py, asserted by
-# tests/wavephys/app/test_registry.py); this file keeps what the rows do not say.
+# tests/app/test_registry.py); this file keeps what the rows do not say.
 
 
 def test_cusp_line_of_deep_water_is_kelvins():
@@ -113,7 +113,7 @@ def test_max_amplitude_angle_across_froude_numbers():
     same sections) within max(1°, 10 %), or the stated uncertainties cover the difference; and
     theory has the published shape."""
     rng = np.random.default_rng(2014)
-    # Fr = 0.5, 1.5 and 4 are measured by the registry's rows (tests/wavephys/app/test_registry.py)
+    # Fr = 0.5, 1.5 and 4 are measured by the registry's rows (tests/app/test_registry.py)
     froudes = [0.3] + [float(f) for f in rng.uniform(0.3, 4.0, 2)]
     strict, theory = 0, {}
     for fr in froudes:

@@ -30,7 +30,7 @@ def renderer():
 
 
 # Every built-in scene, all effects on, GPU against the reference (≥ 100 dB at 160×120): the
-# registry's "builtin-scenes" rows, asserted by tests/wavephys/app/test_registry.py; each effect off below.
+# registry's "builtin-scenes" rows, asserted by tests/app/test_registry.py; each effect off below.
 
 
 @pytest.mark.parametrize("name", ["pool", "storm"])  # a walled pool and an open sea to the horizon
@@ -39,6 +39,30 @@ def test_gpu_matches_reference_with_each_effect_off(renderer, name, off):
     s = _scene(name, 64).with_effects(**{off: False})
     with Renderer(W // 2, H // 2) as small:
         assert psnr(small.render(s), trace(s, W // 2, H // 2)) >= 100.0
+
+
+@pytest.mark.parametrize("form", ["schlick", "jensen_golias", "loviscach", "lut"])
+def test_gpu_draws_every_fresnel_form_the_planner_can_choose(form):
+    """The renderer draws each shader form of the Fresnel family (what a plan may choose),
+    matching its CPU reference on the open sea (≥ 100 dB), and the form is visible."""
+    s = _scene("storm", 64)
+    drawn = s.with_effects(fresnel_form=form)
+    with Renderer(W // 2, H // 2) as small:
+        image = small.render(drawn)
+        assert psnr(image, trace(drawn, W // 2, H // 2)) >= 100.0, form
+        assert psnr(image, small.render(s)) < 100.0, form  # not the exact form's picture
+
+
+def test_every_fresnel_form_of_the_family_has_glsl():
+    """A form registered in optics' family must get its GLSL before scenes can draw it."""
+    from optics.gpu import GLSL_FRESNEL_FORMS
+    from optics.light.fresnel import REFLECTANCE_METHODS
+    from optics.rendering import Effects
+
+    assert set(GLSL_FRESNEL_FORMS) == set(REFLECTANCE_METHODS)
+    with pytest.raises(ValueError, match="fresnel_form must be one of"):
+        Effects(fresnel_form="fresnel")
+    assert Effects(fresnel_form="lut").only("fresnel").fresnel_form == "lut"
 
 
 def test_each_effect_changes_the_pool(renderer):

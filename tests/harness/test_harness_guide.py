@@ -4,7 +4,7 @@ worked example (docs/harness.md), whose explanation of the failure is checked.""
 import re
 from pathlib import Path
 
-ROOT = Path(__file__).resolve().parents[3]
+ROOT = Path(__file__).resolve().parents[2]
 
 
 def _python_blocks(text):

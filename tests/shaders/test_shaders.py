@@ -150,6 +150,12 @@ def test_library_glsl_passes_its_own_checks(shaders):
     fresnel = shaders.check_glsl(GLSL_OPTICS, "fresnel_exact", "fresnel")
     refract = shaders.check_glsl(GLSL_OPTICS, "refract_dir", "refract", tir="zero")
     assert fresnel.ok and refract.ok, fresnel.report() + "\n" + refract.report()
+    # the shader forms the renderer draws for a plan, each against its own float64 form
+    for form, takes in (("schlick", None), ("lut", None), ("jensen_golias", ("cos_theta",)),
+                        ("loviscach", ("cos_theta",))):
+        kw = dict(takes=takes) if takes else {}
+        report = shaders.check_glsl(GLSL_OPTICS, f"fresnel_{form}", "fresnel", form=form, **kw)
+        assert report.ok, report.report()
 
 
 @pytest.mark.parametrize("source,function,kwargs,error,words", [
