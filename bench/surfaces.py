@@ -65,7 +65,7 @@ def _models(grid, dt, key=jax.random.PRNGKey(0)):
 
 
 def _error(eta, dx, dt):
-    s = measure_dispersion(np.asarray(eta), dx, dt)
+    s = measure_dispersion(np.asarray(eta), dx, dt, axes="tyx")
     keep = s.power >= 1e-3 * s.power.max()
     k, w = s.k[keep], s.omega[keep]
     err = w / np.asarray(angular_frequency(k, WATER), np.float64) - 1

@@ -23,7 +23,7 @@ from wavephys.core.inputs import check_array, check_bool, check_choice, check_in
 from wavephys.core.spectral import central_gradient, spectral_gradient
 
 __all__ = ["save_exr", "load_exr", "save_vector_displacement", "EncodedHeight", "encode_height", "decode_height", "normal_map", "height_precision",
-           "fresnel_texture", "absorption_texture", "save_height_png", "save_npz", "load_npz", "export_scene"]
+           "fresnel_texture", "absorption_texture", "save_height_png", "save_npz", "load_npz", "export_scene", "export_height_frames"]
 
 BITS = (8, 16, 32)
 GRID_CONVENTION = ("cell-centred: texel (row i, column j) of an n x n texture over a square of side L is "
@@ -31,6 +31,8 @@ GRID_CONVENTION = ("cell-centred: texel (row i, column j) of an n x n texture ov
                    "so the top row of a PNG or EXR image (rows flipped on writing) is the highest y")
 NORMAL_CONVENTION = ("OpenGL (y up, green = +y): rgb = 0.5 + 0.5 n for the unit normal n = (nx, ny, nz), "
                      "z up out of the water; DirectX engines flip green (g' = 1 - g)")
+NORMAL_CONVENTION_FLOAT = ("OpenGL (y up, green = +y): R, G, B = the unit normal n = (nx, ny, nz) itself, float, "
+                           "not packed (no 0.5 + 0.5 n), z up out of the water; DirectX engines negate G")
 CAUSTICS_UNITS = "relative irradiance E/E0 (1 = the light on flat water)"
 DISPLACEMENT_CONVENTION = ("vector displacement, m, world axes (z up): R = dx along +x, G = dy along +y, B = dz up; "
                            "texel (i, j) moves the surface point resting at that texel's centre (grid convention) "
@@ -412,19 +414,11 @@ def load_exr(path) -> tuple[dict, dict]:
     Raises
     ------
     ValueError
-        When ``path`` is not a file.
+        When ``path`` is not a file, or not a readable OpenEXR image (corrupt or truncated).
     """
-    import OpenEXR
+    from wavephys.core.frames import read_exr
 
-    from wavephys.core.files import _as_path
-
-    path = _as_path("path", path)
-    if not path.is_file():
-        raise ValueError(f"path {str(path)!r} is not a file")
-    with OpenEXR.File(str(path), separate_channels=True) as f:
-        channels = {name: np.flipud(np.asarray(c.pixels)) for name, c in f.channels().items()}
-        attributes = {k: v for k, v in f.header().items() if isinstance(v, (str, int, float))}
-    return channels, attributes
+    return read_exr(path)
 
 
 def save_height_png(tex: EncodedHeight, path) -> Path:
@@ -639,7 +633,7 @@ def _export_exr(scene, arrays, normals, out, half) -> dict:
     paths["water_normals_exr"] = save_exr(out / "water_normals.exr",
                                           {c: normals[..., i] for i, c in enumerate("RGB")}, half=half,
                                           attributes=dict(common, units="1", quantity="unit surface normal (x, y, z)",
-                                                          convention=NORMAL_CONVENTION))
+                                                          convention=NORMAL_CONVENTION_FLOAT))
     if "foam" in arrays:
         paths["foam_exr"] = save_exr(out / "foam.exr", {"Y": np.asarray(scene.foam)}, half=half,
                                      attributes=dict(common, units="1", quantity=FOAM_UNITS))
@@ -653,4 +647,64 @@ def _export_exr(scene, arrays, normals, out, half) -> dict:
     paths["absorption_exr"] = save_exr(out / "absorption.exr", {c: a[None, :, i] for i, c in enumerate("RGB")},
                                        half=half, attributes=dict(units="1", quantity="transmittance of pure water, "
                                                                   "linear sRGB", axis_x="path length, m, 0 to 20, 256 samples"))
+    return paths
+
+
+def export_height_frames(heights, length: float, dt: float, out_dir, *, start: float = 0.0, half: bool = False,
+                         prefix: str = "water_height") -> list:
+    """Write a time series of height fields as numbered OpenEXR frames, each saying what it is.
+
+    ``OUT/PREFIX_0000.exr``, ``_0001``, …: channel Y = the heights, m, in the grid convention; the header holds
+    ``units`` (m), ``length`` and ``dx`` (m), ``dt`` (s), the frame's ``time`` (s) and index, so that
+    :meth:`wavephys.harness.Record.from_files` (``wavephys check OUT``) reads it back with nothing else given.
+    Each frame is written atomically, as it is made.
+
+    Parameters
+    ----------
+    heights : iterable of array_like (n, n)
+        The frames, m, finite, all of one square shape (a generator is drawn one frame at a time).
+    length : float
+        Side of the square they cover, m, > 0.
+    dt : float
+        Time between frames, s, > 0.
+    out_dir : str or os.PathLike
+        Folder the frames go to (created, one level, if its parent exists).
+    start : float, optional, keyword-only
+        Time of the first frame, s, finite (default 0).
+    half : bool, optional, keyword-only
+        16-bit floats instead of 32-bit (default False; heights below 6.1e-5 m are subnormal in half floats).
+    prefix : str, optional, keyword-only
+        File name before the frame number: letters, digits, ``_`` and ``-`` (default ``"water_height"``).
+
+    Returns
+    -------
+    list of pathlib.Path
+        The frames written, in order.
+
+    Raises
+    ------
+    ValueError
+        When a frame is not square or differs in shape from the first, or a value is out of range.
+    """
+    import re
+
+    check_scalar("length", length, lo=0.0, lo_open=True)
+    check_scalar("dt", dt, lo=0.0, lo_open=True)
+    check_scalar("start", start)
+    check_bool("half", half)
+    if not isinstance(prefix, str) or not re.fullmatch(r"[A-Za-z0-9_-]+", prefix):
+        raise ValueError(f"prefix must be letters, digits, _ and - only, got {prefix!r}")
+    out = output_folder(out_dir, "out_dir")
+    paths, shape = [], None
+    for i, frame in enumerate(heights):
+        check_array(f"heights[{i}]", frame, ndim=2)
+        h = np.asarray(frame, np.float64)
+        if h.shape[0] != h.shape[1] or (shape is not None and h.shape != shape):
+            raise ValueError(f"heights[{i}] has shape {h.shape}; frames must be square and of one shape"
+                             f"{'' if shape is None else f' {shape}'}")
+        shape = h.shape
+        paths.append(save_exr(out / f"{prefix}_{i:04d}.exr", {"Y": h}, half=half, attributes=dict(
+            units="m", quantity="water height", length=float(length), dx=float(length) / h.shape[0],
+            dt=float(dt), time=float(start + i * dt), frame=i, grid=GRID_CONVENTION,
+            precision="half" if half else "float")))
     return paths

@@ -148,6 +148,10 @@ class TestOpenEXR:
         assert "green" in attrs["convention"]
         n = np.stack([normals[c] for c in "RGB"], -1)
         np.testing.assert_allclose(np.linalg.norm(n, axis=-1), 1.0, atol=1e-6)
+        # the header tells the truth: the file holds n itself (a decoder that applied 2 rgb - 1 to it would
+        # no longer have unit normals)
+        assert "not packed" in attrs["convention"] and "0.5 + 0.5 n for" not in attrs["convention"]
+        assert np.abs(np.linalg.norm(2 * n - 1, axis=-1) - 1).max() > 0.5
         table, attrs = load_exr(full["absorption_exr"])
         assert table["R"].shape == (1, 256) and "path length" in attrs["axis_x"] and table["G"].max() <= 1.0
 

@@ -6,6 +6,7 @@
   wavephys textures            export a built-in scene's textures
   wavephys plan SCENE          the cheapest model that meets a tolerance (the scene planner)
   wavephys report --out DIR    one self-contained HTML page of what is measured
+  wavephys check FRAMES...     check exported frames against the physics (dispersion, energy, …)
   wavephys check --glsl FILE   check a GLSL function against the physics (Fresnel, refraction, …)
 """
 
@@ -23,6 +24,17 @@ EXIT_CODES = """exit status:
   1  a validation row failed
   2  usage error: a bad option or output path (checked before any work starts)
   3  no OpenGL context (headless EGL missing: apt-get install libegl1 libegl-mesa0 libgl1-mesa-dri)"""
+
+RECORD_CHECK_HELP = (  # wavephys.harness.RECORD_CHECKS, written out so that --help imports nothing heavy
+    ("dispersion", "omega(k) of every shell of |k| against linear theory (worst relative error)", ()),
+    ("energy", "drift of the wave energy over the record, with the damping rate per k and its kind", ()),
+    ("tiling", "the wrap step of the frames against an ordinary step (seams, clamped edges)", ()),
+    ("quantization", "noise of the lattice the heights are stored on, against the rms height", ()),
+    ("standing", "phase locking of every mode's +omega and -omega parts (a sea that does not travel)", ("sea",)),
+    ("direction", "the power-weighted mean direction of travel against the claimed one, degrees", ("direction",)),
+    ("group_velocity", "speed of a packet's energy centroid against the mean group velocity", ("packet",)),
+    ("ring_arrival", "share of eta^2 inside the calm disc r < c_g,min (t - t0) behind the first ring", ("source",)),
+)
 
 EFFECTS = ("refraction", "reflection", "fresnel", "absorption", "caustics")
 from wavephys.app import SCENES  # light: --help answers at once
@@ -202,6 +214,15 @@ def cmd_textures(args, parser) -> int:
     from optics.rendering.textures import export_scene
     from wavephys.app.scenes import builtin_scene
 
+    scenes = None
+    if args.frames:  # checked before any work: the frames must end by the scenes' last time
+        from wavephys.app.scenes import scene_frames
+
+        try:
+            scenes = scene_frames(args.scene, args.frames, fps=args.fps, n=args.n, start=args.time, caustics=False)
+        except ValueError as exc:
+            parser.error(f"--frames: {exc}")
+
     paths = export_scene(builtin_scene(args.scene, n=args.n, time=args.time), out)
     from wavephys.app.scenes import scene_displacement
 
@@ -214,6 +235,18 @@ def cmd_textures(args, parser) -> int:
                                                                    scene_grid(args.scene, args.n))
     for name, p in paths.items():
         print(f"{name:15s} {p}")
+    if scenes is not None:
+        import numpy as np
+
+        from optics.rendering.textures import export_height_frames
+        from wavephys.app.scenes import scene_grid
+
+        start = time.perf_counter()
+        series = (np.asarray(s.water) for s in scenes)
+        written = export_height_frames(series, float(scene_grid(args.scene, args.n).length), 1.0 / args.fps,
+                                       out / "frames", start=args.time)
+        print(f"frames          {out / 'frames'}/ ({len(written)} EXR height frames at {args.fps:g} fps, "
+              f"{time.perf_counter() - start:.1f} s; check them with: wavephys check {out / 'frames'})")
     return 0
 
 
@@ -321,16 +354,87 @@ def _read_glsl(parser, path: str) -> str:
         parser.error(f"--glsl: cannot read {path} ({exc.strerror})")
 
 
+def _pair(text: str):
+    """``X,Y``: two finite numbers."""
+    parts = text.split(",")
+    try:
+        values = tuple(float(p) for p in parts)
+    except ValueError:
+        values = ()
+    if len(values) != 2 or not all(math.isfinite(v) for v in values):
+        raise argparse.ArgumentTypeError(f"expected X,Y (two numbers, m), got {text!r}")
+    return values
+
+
+def _seconds(text: str) -> float:
+    """Seconds: a number or a fraction such as 1/60."""
+    num, sep, den = text.partition("/")
+    try:
+        value = float(num) / float(den) if sep else float(num)
+    except (ValueError, ZeroDivisionError):
+        raise argparse.ArgumentTypeError(f"expected seconds (0.0167 or 1/60), got {text!r}") from None
+    if not math.isfinite(value) or value <= 0:
+        raise argparse.ArgumentTypeError(f"must be > 0, got {text}")
+    return value
+
+
+def cmd_check_frames(args, parser) -> int:
+    """``wavephys check FRAMES...``: the record's checks, their verdicts and causes."""
+    from wavephys.core.files import atomic_path, output_file
+
+    json_path = _checked(parser, output_file, args.json, "--json", (".json",)) if args.json else None
+    junit_path = _checked(parser, output_file, args.junit, "--junit", (".xml",)) if args.junit else None
+    from wavephys import Water
+    from wavephys.harness import Record, check_record
+
+    source = args.frames[0] if len(args.frames) == 1 else list(args.frames)
+    try:
+        record = Record.from_files(source, dx=args.dx, dt=args.dt, channel=args.channel, depth=args.depth,
+                                   sigma=args.sigma)
+    except (TypeError, ValueError) as exc:
+        print(f"wavephys check: {exc}", file=sys.stderr)
+        return 2
+    nt, ny, nx = record.shape
+    print(f"{record.source}: {nt} frames of {nx} x {ny}, dx = {record.dx:.6g} m, dt = {record.dt:.6g} s", flush=True)
+    try:
+        report = check_record(record, Water(), only=args.only, direction=args.direction, sea=args.sea,
+                              packet=args.packet, source=args.source, t0=args.t0, radius=args.radius,
+                              viscosity=args.viscosity, rtol=args.rtol,
+                              progress=lambda m: print(m, file=sys.stderr, flush=True))
+    except (TypeError, ValueError) as exc:
+        parser.error(str(exc))
+    for name, row in report.rows.items():
+        print(f"{'ok    ' if row.ok else 'FAILED'} {name}: {row.report()}")
+    for name, why in report.skipped.items():
+        print(f"skip   {name}: {why}")
+    if json_path is not None:
+        with atomic_path(json_path) as tmp:
+            tmp.write_text(json.dumps(report.as_dict(), indent=2))
+        print(f"wrote {json_path}")
+    if junit_path is not None:
+        from wavephys.app.junit import junit_xml
+
+        with atomic_path(junit_path) as tmp:
+            tmp.write_text(junit_xml(record.source, report.rows, report.seconds, report.skipped), encoding="utf-8")
+        print(f"wrote {junit_path}")
+    return 0 if report.ok else 1
+
+
 def cmd_check(args, parser) -> int:
     from wavephys.core.files import atomic_path, output_file
 
+    if args.frames:
+        if args.glsl is not None or args.list:
+            parser.error("give either FRAMES (a record) or --glsl FILE (a shader), not both")
+        return cmd_check_frames(args, parser)
     if args.list:
         from optics.shaders import SHADER_CHECKS, describe_check
 
         print("\n\n".join(describe_check(name) for name in SHADER_CHECKS))
         return 0
     if args.glsl is None or args.function is None or args.against is None:
-        parser.error("give --glsl FILE, --function NAME and --against CHECK (names from --list)")
+        parser.error("give FRAMES... (exported frames), or --glsl FILE, --function NAME and --against CHECK "
+                     "(names from --list)")
     source = _read_glsl(parser, args.glsl)
     json_path = _checked(parser, output_file, args.json, "--json", (".json",)) if args.json else None
     chart = _checked(parser, output_file, args.chart, "--chart", (".png",)) if args.chart else None
@@ -368,15 +472,41 @@ def _version() -> str:
 
 
 def _add_check_parser(sub, fmt) -> None:
-    """The ``check`` subcommand's options (a user's GLSL against the physics)."""
-    ck = sub.add_parser("check", help="check a GLSL function against the physics (Fresnel, refraction, absorption, "
-                                      "normals)", epilog=EXIT_CODES.replace("a validation row failed",
-                                                                            "the function does not meet the physics"),
+    """The ``check`` subcommand's options (exported frames, or a user's GLSL, against the physics)."""
+    checks = "\n".join(f"  {name:15s} {measures}" + (f" (needs --{needs[0]})" if needs else "")
+                       for name, measures, needs in RECORD_CHECK_HELP)
+    ck = sub.add_parser("check", help="check exported frames, or a GLSL function, against the physics",
+                        epilog=EXIT_CODES.replace("a validation row failed", "a check failed (frames), or the "
+                                                  "function does not meet the physics (--glsl)").replace(
+                            "usage error: a bad option or output path", "usage error: a bad option, output path or "
+                            "unreadable frames"),
                         formatter_class=fmt,
-                        description="Compile a GLSL function on the headless OpenGL context, evaluate it over its "
-                                    "whole input domain and compare it with the physics; print the worst error, "
-                                    "where it occurs and the likely cause.\n\n  wavephys check --glsl water.glsl "
-                                    "--function fresnel --against fresnel --option form=schlick")
+                        description="Frames: read a folder, glob or list of EXR / 16-bit PNG / npy / npz height "
+                                    "frames (dx, dt and units from the files' headers where they say, else from "
+                                    "--dx and --dt) and print each check's verdict and, on failure, its likely "
+                                    "cause.\n\n  wavephys check out/frames --sea --direction 0\n  wavephys check "
+                                    "'export/h_*.exr' --dx 0.05 --dt 1/60 --depth 0.5 --junit checks.xml\n\nChecks "
+                                    "on a record:\n" + checks + "\n\nGLSL: compile a function on the headless OpenGL "
+                                    "context, evaluate it over its whole input domain and compare it with the "
+                                    "physics.\n\n  wavephys check --glsl water.glsl --function fresnel --against "
+                                    "fresnel --option form=schlick")
+    ck.add_argument("frames", nargs="*", metavar="FRAMES", help="a folder, glob pattern or files of height frames")
+    ck.add_argument("--dx", type=_float(0.0, open_lo=True), help="grid spacing, m (when the files do not say)")
+    ck.add_argument("--dt", type=_seconds, help="time between frames, s: 0.0167 or 1/60 (when the files do not say)")
+    ck.add_argument("--depth", type=_float(0.0, open_lo=True), help="the water's depth, m (default: deep)")
+    ck.add_argument("--sigma", type=_float(0.0), help="surface tension, N/m (default 0.0728; 0 for gravity waves)")
+    ck.add_argument("--channel", metavar="NAME", help="the EXR channel holding the heights (default Y or the only one)")
+    ck.add_argument("--only", nargs="+", metavar="CHECK", help="run only these checks (names above)")
+    ck.add_argument("--sea", action="store_true", help="the frames are a sea meant to travel (standing-wave check)")
+    ck.add_argument("--direction", type=float, metavar="DEG", help="claimed direction of travel, degrees, 0 = +x")
+    ck.add_argument("--packet", action="store_true", help="the frames are one wave packet (group-velocity check)")
+    ck.add_argument("--source", type=_pair, metavar="X,Y", help="where one disturbance was, m (ring-arrival check)")
+    ck.add_argument("--t0", type=float, default=0.0, help="when it happened, s from the first frame (default 0)")
+    ck.add_argument("--radius", type=_float(0.0), default=0.0, help="its radius, m (default 0)")
+    ck.add_argument("--viscosity", type=_float(0.0), default=0.0, help="kinematic viscosity modelled, m^2/s")
+    ck.add_argument("--rtol", type=_float(0.0, open_lo=True), default=0.02, help="dispersion tolerance (default "
+                                                                                   "0.02)")
+    ck.add_argument("--junit", metavar="PATH", help="also write JUnit XML for a CI server (frames)")
     ck.add_argument("--glsl", metavar="FILE", help="the GLSL source that defines the function")
     ck.add_argument("--function", metavar="NAME", help="the function to check")
     ck.add_argument("--against", metavar="CHECK", help="what it computes: fresnel, refract, reflect, transmittance, "
@@ -434,7 +564,10 @@ def build_parser() -> argparse.ArgumentParser:
     t.add_argument("--scene", choices=SCENES, default="pool")
     t.add_argument("--out", default="textures", help="output folder (created if its parent exists)")
     t.add_argument("--n", type=_int(64, even=True), default=256, help="texels per side (even, ≥ 64)")
-    t.add_argument("--time", type=_float(0.0), default=1.0, help="scene time, s")
+    t.add_argument("--time", type=_float(0.0), default=1.0, help="scene time, s (of the first frame with --frames)")
+    t.add_argument("--frames", type=_int(8), default=0, metavar="N",
+                   help="also write N >= 8 numbered EXR height frames to OUT/frames/ (a record for wavephys check)")
+    t.add_argument("--fps", type=_float(0.0, open_lo=True), default=30.0, help="frames per second of --frames")
     t.set_defaults(func=cmd_textures)
     pl = sub.add_parser("plan", help="the cheapest model that meets a tolerance (the scene planner)",
                         epilog=EXIT_CODES + "\n  1  (plan) no model meets the tolerance", formatter_class=fmt,

@@ -133,7 +133,7 @@ def dispersion_scene(water: Water, n: int, length: float, dt: float, frames: int
     sim = Simulation(grid, water, dt=dt, dtype=working_dtype())
     eta0 = 1e-3 * jax.random.normal(jax.random.PRNGKey(seed), (n, n), sim.dtype)
     _, surf = sim.run(sim.add_height(sim.initial_state(), eta0), frames)
-    return measure_dispersion(surf.eta, float(grid.dx), dt)
+    return measure_dispersion(surf.eta, float(grid.dx), dt, axes="tyx")
 
 
 def check_measured_dispersion() -> list[Check]:
@@ -187,7 +187,7 @@ def check_fd_dispersion(n: int = 64, courant: float = 0.5, frames: int = 1024) -
     dt = courant * dx / c
     eta0 = 1e-3 * jax.random.normal(jax.random.PRNGKey(1), (n, n))
     _, _, hist = fd_run(eta0, eta0, courant, frames)
-    s = measure_dispersion(hist, dx, dt).select(k_max=0.5 / dx)
+    s = measure_dispersion(hist, dx, dt, axes="tyx").select(k_max=0.5 / dx)
     speed = s.omega / s.k
     own = np.asarray(fd_angular_frequency(s.k, 0.0, c, dt, dx))
     return [compare("FD scheme: phase-speed spread max/min - 1 (non-dispersive)", speed.max() / speed.min() - 1,

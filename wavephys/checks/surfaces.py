@@ -55,7 +55,7 @@ def noise_dispersion(time_exponent: float = 1.0, n: int = 64, length: float = 16
     frame = jax.jit(lambda t: fbm(x, y, t, octaves=4, frequency=4.0 / length, tile=length, evolution=0.5,
                                   time_exponent=time_exponent, seed=seed))
     eta = np.stack([np.asarray(frame(i * dt)) for i in range(frames)])
-    samples = measure_dispersion(eta, float(grid.dx), dt).select(0.5, 6.0)
+    samples = measure_dispersion(eta, float(grid.dx), dt, axes="tyx").select(0.5, 6.0)
     slope = float(np.polyfit(np.log(samples.k), np.log(samples.omega), 1)[0])
     return dict(slope=slope, worst=float(np.max(np.abs(dispersion_error(samples, Water())))), shells=samples.k.size)
 
@@ -132,7 +132,7 @@ def gerstner_dispersion(water: Water, seed: int = 0, n: int = 64, length: float 
     omega = waves.frequencies
     dt = float(2 * np.pi / omega.max() / 6)
     eta = np.stack([np.asarray(waves.heights(grid, i * dt)) for i in range(frames)])
-    s = measure_dispersion(eta, float(grid.dx), dt)
+    s = measure_dispersion(eta, float(grid.dx), dt, axes="tyx")
     return np.array([s.omega[np.argmin(np.abs(s.k - ki))] / oi - 1 for ki, oi in zip(kk, omega)])
 
 

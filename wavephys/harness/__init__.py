@@ -7,6 +7,13 @@ they want to check (ours, a shader, a finite-difference toy):
   ridge against theory (the check names the band, the worst k and the likely cause);
 * :func:`measure_energy` — potential, capillary and kinetic energy per unit area;
 * :func:`wake_angle` (``"max"``, ``"cusp"``), :func:`track_wavelength` — wake geometry;
+* :class:`Record` — frames + Δx + Δt (+ η̇, claimed depth and σ) from arrays with named axes,
+  from exported frames (EXR, 16-bit PNG, npy, npz) or a saved record; :func:`time_derivative`;
+* laws on a record: :func:`energy_check` (with the damping per k), :func:`standing_check`,
+  :func:`direction_check`, :func:`group_velocity_check`, :func:`ring_arrival_check`; on
+  textures: :func:`tiling_check`, :func:`normals_check`, :func:`resolution_check`,
+  :func:`caustics_flux_check`, :func:`quantization_check`; all of a record's at once:
+  :func:`check_record` over the registry :data:`RECORD_CHECKS`;
 * :class:`Check`, :func:`compare`, :func:`bound`, :func:`assert_check` — result rows that
   report expected against measured against tolerance, and fail with that line.
 
@@ -27,6 +34,13 @@ _EXPORTS = {
     "WakeAngle": "wake", "wake_angle": "wake", "wake_angle_max": "wake", "wake_angle_cusp": "wake",
     "WAKE_ANGLE_METHODS": "wake", "track_wavelength": "wake",
     "Check": "checks", "compare": "checks", "bound": "checks", "assert_check": "checks",
+    "Record": "record", "Rate": "record", "time_derivative": "record",
+    "Damping": "energy", "measure_damping": "energy", "energy_check": "energy",
+    "Travel": "travel", "measure_travel": "travel", "standing_check": "travel", "direction_check": "travel",
+    "group_velocity_check": "packets", "ring_arrival_check": "packets",
+    "tiling_check": "maps", "normals_check": "maps", "resolution_check": "maps", "caustics_flux_check": "maps",
+    "quantization_check": "maps",
+    "RECORD_CHECKS": "suite", "RecordReport": "suite", "check_record": "suite",
 }
 __all__ = list(_EXPORTS)
 

@@ -10,7 +10,6 @@ code, not the hot path.
 from __future__ import annotations
 
 import math
-import warnings
 from dataclasses import dataclass
 
 import numpy as np
@@ -69,7 +68,7 @@ def _shells(power, dx):
 
 
 def measure_dispersion(eta, dx: float, dt: float, *, min_relative_power: float = 1e-6,
-                       min_bins: float = 4.0) -> DispersionSamples:
+                       min_bins: float = 4.0, axes=None) -> DispersionSamples:
     """Measure ω(k) from a space–time height field.
 
     The field is Hann-windowed in time and Fourier transformed in x, y and t. For each
@@ -86,10 +85,16 @@ def measure_dispersion(eta, dx: float, dt: float, *, min_relative_power: float =
     dt : float
         Time between frames, s, > 0. Frequencies above π/Δt alias: sample fast enough.
     min_relative_power : float, optional, keyword-only
-        Shells whose ridge power is below this fraction of the strongest are dropped; in [0, 1] (default 1e-6).
+        Shells whose ridge power is below this fraction of the record's strongest shell (measured or not) are
+        dropped; in [0, 1] (default 1e-6).
     min_bins : float, optional, keyword-only
         In [0, n_t/4] (default 4). Ridges closer than this many frequency bins to ω = 0 or to π/Δt are dropped
         (they cannot be located reliably).
+    axes : str, optional, keyword-only
+        The layout of ``eta`` (``"tyx"``, ``"yxt"``, … :data:`wavephys.harness.record.AXES`). Needed when the shape
+        could be read more than one way: ``(n, n, m)`` (time last?) or a cube ``(n, n, n)``, which are refused
+        without it. Default: infer, for ``(n_t, n, n)`` with n_t ≠ n and for a rectangular grid whose sides both
+        differ from n_t.
 
     Returns
     -------
@@ -110,17 +115,21 @@ def measure_dispersion(eta, dx: float, dt: float, *, min_relative_power: float =
     >>> samples = measure_dispersion(frames, dx=0.01, dt=1 / 60)           # doctest: +SKIP
     >>> print(dispersion_check(samples, Water(depth=0.5)))                # doctest: +SKIP
     """
+    from wavephys.harness.record import resolve_axes
+
     check_array("eta", eta, ndim=3)
     eta = np.asarray(eta, dtype=np.float64)
+    if axes is None and eta.shape[1] != eta.shape[2] and eta.shape[0] not in eta.shape[1:]:
+        axes = "tyx"  # a rectangular grid and a time axis of another length: one reading only
+    try:
+        axes = resolve_axes(eta.shape, axes)
+    except ValueError as exc:
+        raise ValueError(f"eta: {exc}") from None
+    eta = np.transpose(eta, [axes.index(c) for c in "tyx"])
     nt, ny, nx = eta.shape
-    time_last = ny != nx and nt == ny and nx != nt
     if nt < 8:
-        hint = (" (time looks like the last axis: pass np.moveaxis(eta, -1, 0))" if time_last or
-                (eta.shape[2] >= 8 and nt == ny) else "")
-        raise ValueError(f"eta must have at least 8 time samples on its first axis, got shape {eta.shape}{hint}")
-    if time_last:
-        warnings.warn(f"eta has shape {eta.shape}: time must be the first axis (n_t, n_y, n_x); a square grid "
-                      f"with time last would be np.moveaxis(eta, -1, 0)", stacklevel=2)
+        raise ValueError(f"eta must have at least 8 time samples on its time axis, got shape {eta.shape} "
+                         f"(axes {axes!r})")
     check_scalar("dx", dx, lo=0.0, lo_open=True)
     check_scalar("dt", dt, lo=0.0, lo_open=True)
     check_scalar("min_relative_power", min_relative_power, lo=0.0, hi=1.0)
@@ -154,7 +163,10 @@ def measure_dispersion(eta, dx: float, dt: float, *, min_relative_power: float =
         ps.append(col[i])
     ks, ws, ps = map(np.asarray, (ks, ws, ps))
     if ks.size:
-        keep = ps >= min_relative_power * ps.max()
+        # relative to the record's strongest shell, measured or not: when the strong waves cannot be measured
+        # (too few periods), the rounding noise left in the other shells must not stand in for them
+        strongest = float(folded[:, k_shell > 0].max(initial=0.0))
+        keep = ps >= min_relative_power * strongest
         ks, ws, ps = ks[keep], ws[keep], ps[keep]
     order = np.argsort(ks)
     return DispersionSamples(ks[order], ws[order], ps[order], dw)
@@ -184,43 +196,152 @@ def dispersion_error(samples: DispersionSamples, water: Water) -> np.ndarray:
     return samples.omega / theory - 1.0
 
 
-def _likely_cause(samples: DispersionSamples, water: Water, dt: float, err: np.ndarray) -> str:
-    """A guess, in words, at why measured ω(k) departs from theory (empty when none fits)."""
-    from dataclasses import replace
+def _worst(samples: DispersionSamples, water: Water, scale_k: float = 1.0, scale_w: float = 1.0) -> float:
+    """Worst |ω/ω_theory − 1| with k and ω rescaled (a trial explanation of the data)."""
+    from wavephys.physics.dispersion import angular_frequency
 
-    def worst(w):
-        return float(np.max(np.abs(dispersion_error(samples, w)))) if samples.k.size else math.inf
+    if not samples.k.size:
+        return math.inf
+    theory = np.asarray(angular_frequency(np.asarray(samples.k * scale_k, np.float32), water), np.float64)
+    return float(np.max(np.abs(samples.omega * scale_w / theory - 1.0)))
 
-    theory = samples.omega / (1.0 + err)
-    if np.any(theory > math.pi / dt):
-        k_alias = float(samples.k[np.argmax(theory > math.pi / dt)])
-        return (f"aliased sampling: theory puts omega above the Nyquist frequency pi/dt = {math.pi / dt:.4g} "
+
+def _refine(error, lo: float, hi: float, points: int = 49) -> tuple[float, float]:
+    """(smallest error, its argument) over [lo, hi]: a log-spaced scan, then a bounded search around its best."""
+    from scipy.optimize import minimize_scalar
+
+    grid = np.geomspace(lo, hi, points)
+    values = [error(float(v)) for v in grid]
+    i = int(np.argmin(values))
+    a, b = math.log(grid[max(i - 1, 0)]), math.log(grid[min(i + 1, points - 1)])
+    if b > a:
+        found = minimize_scalar(lambda u: error(math.exp(u)), bounds=(a, b), method="bounded",
+                                options=dict(xatol=1e-4))
+        if found.fun < values[i]:
+            return float(found.fun), float(math.exp(found.x))
+    return float(values[i]), float(grid[i])
+
+
+def _aliasing(samples, dt, theory) -> str:
+    nyquist = math.pi / dt
+    if np.any(theory > nyquist):
+        k_alias = float(samples.k[np.argmax(theory > nyquist)])
+        return (f"aliased sampling: theory puts omega above the Nyquist frequency pi/dt = {nyquist:.4g} "
                 f"rad/s from k = {k_alias:.4g} rad/m on; record frames closer together or limit k_range")
-    c = samples.omega / samples.k
-    c_theory = theory / samples.k
-    if samples.k.size >= 3 and samples.k.max() > 2 * samples.k.min():
-        # log-log slope of phase speed against k: -1/2 for deep gravity waves, 0 for no dispersion
-        slope = np.polyfit(np.log(samples.k), np.log(c), 1)[0]
-        slope_theory = np.polyfit(np.log(samples.k), np.log(c_theory), 1)[0]
+    w = samples.omega
+    if w.size >= 6:  # the simulator's own waves fold: its measured omega turns down while theory rises
+        top = int(np.argmax(w))
+        if w[top] > 0.7 * nyquist and top < w.size - 2 and w[-1] < 0.9 * w[top] and theory[-1] > theory[top]:
+            return (f"aliased sampling of the simulator's own waves: measured omega rises to {w[top]:.4g} rad/s "
+                    f"(pi/dt = {nyquist:.4g}) at k = {samples.k[top]:.4g} rad/m and then folds back down; its "
+                    f"waves are faster than the frames can follow: record frames closer together")
+    return ""
+
+
+def _non_dispersive(samples, theory) -> str:
+    from scipy.stats import theilslopes
+
+    # the whole band, then its lower half and quarter: shells swamped by the leakage of a non-periodic record
+    # (at high k, where the heights' own power is small) must not hide a band that is clearly non-dispersive
+    for top in (1.0, 0.5, 0.25):
+        band = samples.k <= samples.k.min() + top * (samples.k.max() - samples.k.min())
+        k = samples.k[band]
+        if k.size < 8 or k.max() <= 2.5 * k.min():
+            continue
+        step = max(1, k.size // 400)  # at most ~400 shells: the robust fit is quadratic in them
+        k, c, c_theory = k[::step], samples.omega[band][::step] / k[::step], theory[band][::step] / k[::step]
+        # log-log slope of phase speed against k: -1/2 for deep gravity waves, 0 for no dispersion; robust (the
+        # median of pairwise slopes)
+        slope = theilslopes(np.log(c), np.log(k))[0]
+        slope_theory = theilslopes(np.log(c_theory), np.log(k))[0]
         if abs(slope) < 0.2 and abs(slope_theory) > 0.3:
             return (f"non-dispersive: every k moves at about one speed c = {np.median(c):.4g} m/s (d log c / "
-                    f"d log k = {slope:.2f}; water waves here have {slope_theory:.2f}, c from "
-                    f"{c_theory.min():.4g} to {c_theory.max():.4g} m/s): a wave equation, not water waves")
-    tolerance = 0.25 * float(np.max(np.abs(err)))
-    if math.isfinite(water.depth) and worst(replace(water, depth=math.inf)) < tolerance:
-        return "wrong depth: the data match deep water, not the given depth"
-    if not math.isfinite(water.depth) and samples.k.size:
-        for depth in np.geomspace(0.5 / samples.k.max(), 5.0 / samples.k.min(), 24):
-            if worst(replace(water, depth=float(depth))) < tolerance:
-                return f"wrong depth: the data match finite depth h = {depth:.3g} m, not deep water"
-    if water.sigma > 0 and worst(replace(water, sigma=0.0)) < tolerance:
-        return "surface tension missing: the data match sigma = 0"
-    if water.sigma == 0 and worst(replace(water, sigma=0.0728)) < tolerance:
-        return "surface tension present: the data match sigma = 0.0728 N/m"
+                    f"d log k = {slope:.2f} over k = {k.min():.4g}..{k.max():.4g} rad/m; water waves there have "
+                    f"{slope_theory:.2f}, c from {c_theory.min():.4g} to {c_theory.max():.4g} m/s): a wave "
+                    f"equation, not water waves")
+    return ""
+
+
+def _frequency_floor(samples, theory) -> str:
+    n = max(3, samples.k.size // 4)
+    if samples.k.size < 6:
+        return ""
+    k, w, t = samples.k[:n], samples.omega[:n], theory[:n]
+    slope = np.polyfit(np.log(k), np.log(w), 1)[0]
+    slope_theory = np.polyfit(np.log(k), np.log(t), 1)[0]
+    if w[0] > 1.5 * t[0] and slope < 0.5 * slope_theory:
+        floor = float(np.sqrt(max(np.median(w ** 2 - t ** 2), 0.0)))
+        return (f"a low-k frequency floor: omega does not go to 0 as k -> 0 (at k = {k[0]:.4g} rad/m measured "
+                f"{w[0]:.4g}, theory {t[0]:.4g} rad/s; d log omega / d log k = {slope:.2f} there, theory "
+                f"{slope_theory:.2f}; floor about {floor:.3g} rad/s): a restoring term at k = 0, such as a "
+                f"truncated convolution kernel whose sum is not 0 (iWave's normalized kernel) or a damping term "
+                f"folded into the update")
+    return ""
+
+
+def _depth_fit(samples, water, tolerance) -> str:
+    from dataclasses import replace
+
+    deep = _worst(samples, replace(water, depth=math.inf))
+    best, h = _refine(lambda h: _worst(samples, replace(water, depth=h)), 0.3 / samples.k.max(),
+                      10.0 / samples.k.min())
+    claimed = "deep water" if not math.isfinite(water.depth) else f"h = {float(water.depth):.4g} m"
+    if math.isfinite(water.depth) and deep < tolerance and deep <= best:
+        return f"wrong depth: the data match deep water (worst error {deep:.2g}), not the claimed {claimed}"
+    if best < tolerance and (not math.isfinite(water.depth) or abs(math.log(h / float(water.depth))) > 0.1):
+        return (f"wrong depth: the data match depth h = {h:.3g} m (worst error {best:.2g}), not the claimed "
+                f"{claimed}")
+    return ""
+
+
+def _sigma_fit(samples, water, tolerance) -> str:
+    from dataclasses import replace
+
+    best, sg = min((_worst(samples, replace(water, sigma=0.0)), 0.0),
+                   _refine(lambda sg: _worst(samples, replace(water, sigma=sg)), 1e-5, 10.0))
+    claimed = float(water.sigma)
+    if best >= tolerance or (claimed > 0 and sg > 0 and abs(math.log(sg / claimed)) < 0.15):
+        return ""
+    if sg == 0.0 or (claimed > 0 and sg < 0.02 * claimed):
+        return (f"surface tension missing: the data match sigma = {sg:.3g} N/m, about 0 (claimed {claimed:.4g} "
+                f"N/m)")
+    ratio = f", {sg / claimed:.3g} x the claimed {claimed:.4g} N/m" if claimed > 0 else " (claimed 0)"
+    return (f"surface tension at another scale: the data match sigma = {sg:.3g} N/m{ratio} (worst error "
+            f"{best:.2g}); clean water has 0.0728 N/m = 72.8 dyn/cm = 72.8 mN/m, and sigma/rho = 7.28e-5 m^3/s^2 "
+            f"is not sigma")
+
+
+def _scale_fit(samples, water, err, tolerance) -> str:
     ratio = float(np.median(1.0 + err))
-    if np.std(1.0 + err) < 0.02 * ratio and abs(ratio - 1.0) > 0.02:
-        return (f"omega off by a constant factor {ratio:.4g}: a time step or g scaled (g would be "
-                f"{water.g * ratio ** 2:.4g} m/s^2 in deep water)")
+    if not (np.std(1.0 + err) < 0.02 * ratio and abs(ratio - 1.0) > 0.02):
+        return ""
+    from dataclasses import replace
+
+    tried = []
+    if _worst(samples, water, scale_w=1 / ratio) < tolerance:
+        tried.append(f"the frames are {ratio:.4g} x further apart than dt says (dt x {ratio:.4g})")
+    best, s = _refine(lambda s: _worst(samples, water, scale_k=s), 0.05, 20.0)
+    if best < tolerance and abs(s - 1) > 0.01:
+        tried.append(f"dx x {1 / s:.4g} (a texel of {1 / s:.4g} x the size said)")
+    best, f = _refine(lambda f: _worst(samples, replace(water, g=float(water.g) * f)), 0.01, 100.0)
+    if best < tolerance and abs(f - 1) > 0.01:
+        tried.append(f"g = {float(water.g) * f:.4g} m/s^2 (x {f:.4g})")
+    which = "; or ".join(tried) if tried else "no single scaling of dt, dx or g fits exactly"
+    trade = (" In deep gravity water omega = sqrt(g k), so dt, dx and g trade: one record cannot tell which "
+             "is off." if len(tried) > 1 else "")
+    return f"omega off by a constant factor {ratio:.4g}: {which}.{trade}"
+
+
+def _likely_cause(samples: DispersionSamples, water: Water, dt: float, err: np.ndarray) -> str:
+    """A guess, in words, at why measured ω(k) departs from theory (empty when none fits)."""
+    theory = samples.omega / (1.0 + err)
+    tolerance = 0.25 * float(np.max(np.abs(err)))
+    for cause in (lambda: _aliasing(samples, dt, theory), lambda: _frequency_floor(samples, theory),
+                  lambda: _scale_fit(samples, water, err, tolerance), lambda: _depth_fit(samples, water, tolerance),
+                  lambda: _sigma_fit(samples, water, tolerance), lambda: _non_dispersive(samples, theory)):
+        found = cause()
+        if found:
+            return found
     return ""
 
 

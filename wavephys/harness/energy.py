@@ -3,6 +3,7 @@
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 
 import numpy as np
@@ -11,7 +12,7 @@ from wavephys.core.inputs import check_array, check_instance, check_scalar
 from wavephys.core.spectral import angular_wavenumbers
 from wavephys.core.water import Water
 
-__all__ = ["Energy", "measure_energy"]
+__all__ = ["Energy", "measure_energy", "Damping", "measure_damping", "energy_check"]
 
 
 @dataclass(frozen=True)
@@ -115,3 +116,175 @@ def measure_energy(eta, eta_dot, dx: float, water: Water) -> Energy:
     invK = np.where(K > 0, 1.0 / np.where(K > 0, K, 1.0), 0.0)
     kin = 0.5 * float(water.rho) * np.sum(np.abs(dh) ** 2 * invK, axis=(-2, -1)) / n**2
     return Energy(pot, cap, kin)
+
+
+@dataclass(frozen=True)
+class Damping:
+    """How a record's wave energy changes, shell by shell.
+
+    Attributes
+    ----------
+    k : numpy.ndarray
+        Shell wavenumbers, rad/m (those holding at least 1e-3 of the energy).
+    rate : numpy.ndarray
+        Amplitude decay rate γ of each shell, 1/s (energy ∝ e^{−2γt}; negative: growing).
+    share : numpy.ndarray
+        Each shell's share of the mean energy.
+    drift : float
+        Relative change of the total energy over the record, from a fit of ln E(t): e^{βT} − 1.
+    swing : float
+        Largest |E(t)/Ē − 1| about that fit: energy sloshing between potential and kinetic.
+    rate_error : float
+        Estimated relative error of the η̇ used (0 when the record holds η̇).
+    rate_method : str
+        How η̇ was had: ``"given"``, ``"fd4"`` or ``"spectral"``.
+    """
+
+    k: np.ndarray
+    rate: np.ndarray
+    share: np.ndarray
+    drift: float
+    swing: float
+    rate_error: float
+    rate_method: str = "given"
+
+
+def _shell_energy(eta, eta_dot, dx, water):
+    """Energy per shell of |k| (n_t, shells) and the shells' k: potential + capillary + kinetic per mode."""
+    nt, ny, nx = eta.shape
+    ky, kx = angular_wavenumbers((ny, nx), dx, xp=np)
+    k = np.sqrt(kx**2 + ky**2)
+    K = _surface_operator(k, water)
+    invK = np.where(K > 0, 1.0 / np.where(K > 0, K, 1.0), 0.0)
+    eh, dh = np.fft.fft2(eta), np.fft.fft2(eta_dot)
+    rho, g, sigma = float(water.rho), float(water.g), float(water.sigma)
+    e = 0.5 * ((rho * g + sigma * k**2) * np.abs(eh) ** 2 + rho * invK * np.abs(dh) ** 2) / (nx * ny) ** 2
+    dk = 2 * np.pi / (dx * max(nx, ny))
+    shell = np.rint(k / dk).astype(np.int64).ravel()
+    shells = np.stack([np.bincount(shell, weights=e[t].ravel(), minlength=shell.max() + 1) for t in range(nt)])
+    k_shell = np.arange(shells.shape[1]) * dk
+    return k_shell[1:], shells[:, 1:]
+
+
+def measure_damping(record, water: Water, *, method: str = "auto") -> Damping:
+    """Energy per shell of |k| over a record, and the decay rate of each shell.
+
+    Parameters
+    ----------
+    record : Record
+        The frames (:class:`wavephys.harness.Record`); its η̇, or η̇ from frames (:func:`time_derivative`).
+    water : Water
+        Density, gravity, surface tension and depth for the energy (docs/physics.md §1.8).
+    method : {"auto", "fd4", "spectral"}, optional, keyword-only
+        How η̇ is estimated from frames when the record does not hold it (default ``"auto"``).
+
+    Returns
+    -------
+    Damping
+        Per-shell decay rates and shares, the total energy's drift and swing, and the η̇ error.
+    """
+    from wavephys.harness.record import Record
+
+    check_instance("record", record, Record, "wavephys.harness.Record")
+    check_instance("water", water, Water, "wavephys.Water")
+    rate = record.rate(method)
+    eta = record.eta[rate.frames]
+    k, shells = _shell_energy(eta, rate.eta_dot, record.dx, water)
+    t = np.arange(eta.shape[0]) * record.dt
+    total = shells.sum(axis=1)
+    if not np.all(total > 0):
+        return Damping(np.zeros(0), np.zeros(0), np.zeros(0), math.nan, math.nan, rate.error, rate.method)
+    beta, c = np.polyfit(t, np.log(total), 1)
+    drift = float(math.expm1(beta * (t[-1] - t[0])))
+    swing = float(np.max(np.abs(total / np.exp(c + beta * t) - 1.0)))
+    mean = shells.mean(axis=0)
+    keep = mean >= 1e-3 * mean.sum()
+    rates = np.array([-0.5 * np.polyfit(t, np.log(np.maximum(shells[:, j], 1e-300)), 1)[0]
+                      for j in np.where(keep)[0]])
+    return Damping(k[keep], rates, mean[keep] / mean.sum(), drift, swing, rate.error, rate.method)
+
+
+def _damping_cause(d: Damping, dt: float, viscosity: float) -> str:
+    """The damping's kind, in words: uniform, proportional to k², growth, or varying with k."""
+    if d.k.size == 0:
+        return ""
+    w = d.share
+    gamma = d.rate - 2.0 * viscosity * d.k**2  # beyond the claimed viscosity's 2 nu k^2
+    mean = float(np.sum(w * gamma) / np.sum(w))
+    if mean < 0:
+        return (f"energy grows: amplitudes rise at {-mean:.3g} 1/s on average (an unstable scheme, or forcing "
+                f"that keeps adding energy)")
+    spread = float(np.sqrt(np.sum(w * (gamma - mean) ** 2) / np.sum(w)))
+    b = float(np.sum(w * gamma * d.k**2) / np.sum(w * d.k**4))
+    k2_spread = float(np.sqrt(np.sum(w * (gamma - b * d.k**2) ** 2) / np.sum(w)))
+    if spread <= 0.2 * mean and d.k.size >= 1:
+        return (f"uniform damping: every k loses amplitude at about gamma = {mean:.3g} 1/s (a factor "
+                f"{math.exp(-mean * dt):.5f} per frame of {dt:.4g} s: a velocity or height multiplied by a "
+                f"constant each step, e.g. velocity *= 0.995)")
+    if k2_spread <= 0.25 * mean:
+        return (f"damping proportional to k^2: gamma = nu k^2 with nu = {b:.3g} m^2/s ({b / 1e-6:.3g} x water's "
+                f"kinematic viscosity 1e-6 m^2/s, which damps as 2 nu k^2): a Laplacian smoothing or an "
+                f"artificial viscosity in the update")
+    lo, hi = int(np.argmin(gamma)), int(np.argmax(gamma))
+    return (f"damping that varies with k: gamma = {gamma[lo]:.3g} 1/s at k = {d.k[lo]:.4g} rad/m to "
+            f"{gamma[hi]:.3g} 1/s at k = {d.k[hi]:.4g} rad/m")
+
+
+def energy_check(record, water: Water, *, rtol: float = 0.01, viscosity: float = 0.0, method: str = "auto"):
+    """A :class:`~wavephys.harness.Check` that a record's wave energy is conserved (or decays as claimed).
+
+    The row is the total energy's relative drift over the record, e^{βT} − 1 from a fit of ln E(t) (the
+    energy of linear theory, :func:`measure_energy`, with ``viscosity``'s decay e^{−4νk²t} per shell taken
+    out), against ``rtol``. When it fails, the note gives the decay rate per k and names the damping:
+    uniform (a constant multiplier each step), ∝ k² (a smoothing, an artificial viscosity), growing, or
+    varying; and when the energy sloshes instead, that the simulator's ω is not theory's.
+
+    Parameters
+    ----------
+    record : Record
+        The frames (:class:`wavephys.harness.Record`); η̇ from frames unless it holds its own.
+    water : Water
+        The water whose linear theory gives the energy (ρ, g, σ, depth).
+    rtol : float, optional, keyword-only
+        Largest |relative drift| of the energy over the record, > 0 (default 0.01).
+    viscosity : float, optional, keyword-only
+        Kinematic viscosity ν the simulator claims to model, m²/s, >= 0 (default 0: inviscid).
+    method : {"auto", "fd4", "spectral"}, optional, keyword-only
+        How η̇ is estimated from frames (default ``"auto"``).
+
+    Returns
+    -------
+    Check
+        A ``"~="`` row of the drift against 0 (absolute tolerance ``rtol``); its note names the shells, the
+        η̇ method's error and, on failure, the likely cause.
+    """
+    from wavephys.harness.checks import compare
+
+    check_scalar("rtol", rtol, lo=0.0, lo_open=True)
+    check_scalar("viscosity", viscosity, lo=0.0)
+    d = measure_damping(record, water, method=method)
+    drift = d.drift
+    if viscosity > 0 and d.k.size:
+        expected = float(np.sum(d.share * np.exp(-4 * viscosity * d.k**2 * record.duration)))
+        drift = (1 + d.drift) / expected - 1
+    how = ("eta_dot given" if d.rate_method == "given" else
+           f"eta_dot from frames by {d.rate_method}, error {d.rate_error:.2g}")
+    note = (f"{d.k.size} shells hold the energy ({d.k.min():.4g}..{d.k.max():.4g} rad/m); {how}; swing about the "
+            f"trend {d.swing:.2g}" if d.k.size else f"no energy to measure; {how}")
+    quantity = f"relative change of wave energy over {record.duration:.4g} s"
+    row = compare(quantity, drift, 0.0, atol=rtol, note=note)
+    if not row.ok and d.swing > abs(drift):
+        row = compare(quantity, drift, 0.0, atol=rtol,
+                      note=f"{note}; likely cause: the energy swings by {d.swing:.2g} about its trend, more than it "
+                           f"drifts: kinetic and potential energy do not trade at theory's rate (the simulator's "
+                           f"omega is not theory's, see the dispersion row), so no damping can be read from it")
+    elif not row.ok:
+        cause = _damping_cause(d, record.dt, viscosity)
+        if cause:
+            row = compare(quantity, drift, 0.0, atol=rtol, note=f"{note}; likely cause: {cause}")
+    elif d.swing > 10 * rtol:
+        row = compare(quantity, drift, 0.0, atol=rtol,
+                      note=f"{note}; the energy swings by {d.swing:.2g} about its trend: kinetic and potential "
+                           f"energy do not trade at theory's rate (the simulator's omega is not theory's, see the "
+                           f"dispersion row)")
+    return row

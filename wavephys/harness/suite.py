@@ -1,0 +1,260 @@
+"""Every law the harness measures, as one registry of checks on a :class:`~wavephys.harness.Record`.
+
+:data:`RECORD_CHECKS` names each check, says what it measures and which claims it needs
+(a direction of travel, a source, "this is a sea"); :func:`check_record` runs the ones asked
+for (by default every one whose claims are given) and returns a :class:`RecordReport`: one
+:class:`~wavephys.harness.Check` row per check, with its verdict and, on failure, the
+likely cause. ``wavephys check FRAMES...`` and the pytest fixture are built on it.
+"""
+
+from __future__ import annotations
+
+import math
+import time
+from dataclasses import dataclass, field
+from typing import Callable, Optional
+
+from wavephys.core.inputs import check_bool, check_instance, check_scalar, describe
+from wavephys.core.water import Water
+
+__all__ = ["RecordCheck", "RECORD_CHECKS", "RecordReport", "check_record", "CLAIMS"]
+
+CLAIMS = ("direction", "sea", "packet", "source")
+"""Claims a check may need: a direction of travel (degrees), that the record is a travelling sea, that it is
+one wave packet, where a single disturbance was."""
+
+
+@dataclass(frozen=True)
+class RecordCheck:
+    """One law checked on a record.
+
+    Attributes
+    ----------
+    name : str
+        Its name (``wavephys check --only NAME``).
+    measures : str
+        What it measures, in words.
+    needs : tuple of str
+        The claims it needs (from :data:`CLAIMS`); none: it runs on every record.
+    run : callable
+        ``run(record, water, options) -> Check``.
+    """
+
+    name: str
+    measures: str
+    needs: tuple
+    run: Callable
+
+
+def _dispersion(record, water, o):
+    from wavephys.harness.dispersion import dispersion_check, measure_dispersion
+
+    samples = measure_dispersion(record.eta, record.dx, record.dt, axes="tyx")
+    return dispersion_check(samples, water, record.dt, rtol=o.get("rtol", 0.02), k_range=o.get("k_range", (0, math.inf)))
+
+
+def _energy(record, water, o):
+    from wavephys.harness.energy import energy_check
+
+    return energy_check(record, water, rtol=o.get("energy_rtol", 0.01), viscosity=o.get("viscosity", 0.0))
+
+
+def _standing(record, water, o):
+    from wavephys.harness.travel import standing_check
+
+    return standing_check(record)
+
+
+def _direction(record, water, o):
+    from wavephys.harness.travel import direction_check
+
+    return direction_check(record, o["direction"])
+
+
+def _tiling(record, water, o):
+    from wavephys.harness.maps import tiling_check
+
+    return tiling_check(record.eta)
+
+
+def _quantization(record, water, o):
+    from wavephys.harness.maps import quantization_check
+
+    return quantization_check(record.eta)
+
+
+def _group(record, water, o):
+    from wavephys.harness.packets import group_velocity_check
+
+    return group_velocity_check(record, water, direction=o.get("direction"))
+
+
+def _ring(record, water, o):
+    from wavephys.harness.packets import ring_arrival_check
+
+    return ring_arrival_check(record, water, source=o["source"], t0=o.get("t0", 0.0), radius=o.get("radius", 0.0))
+
+
+RECORD_CHECKS = {c.name: c for c in (
+    RecordCheck("dispersion", "omega(k) of every shell of |k| against linear theory (worst relative error)", (),
+                _dispersion),
+    RecordCheck("energy", "drift of the wave energy over the record, with the damping rate per k and its kind", (),
+                _energy),
+    RecordCheck("tiling", "the wrap step of the frames against an ordinary step (seams, clamped edges)", (), _tiling),
+    RecordCheck("quantization", "noise of the lattice the heights are stored on, against the rms height", (),
+                _quantization),
+    RecordCheck("standing", "phase locking of every mode's +omega and -omega parts (a sea that does not travel)",
+                ("sea",), _standing),
+    RecordCheck("direction", "the power-weighted mean direction of travel against the claimed one, degrees",
+                ("direction",), _direction),
+    RecordCheck("group_velocity", "speed of a packet's energy centroid against the mean group velocity",
+                ("packet",), _group),
+    RecordCheck("ring_arrival", "share of eta^2 inside the calm disc r < c_g,min (t - t0) behind the first ring",
+                ("source",), _ring),
+)}
+"""The registry of checks on a record, by name."""
+
+
+@dataclass(frozen=True)
+class RecordReport:
+    """The rows of :func:`check_record`.
+
+    Attributes
+    ----------
+    rows : dict of str to Check
+        One row per check run, by name.
+    skipped : dict of str to str
+        Checks not run, with why (a claim they need was not given).
+    seconds : dict of str to float
+        Run time of each check, s.
+    source : str
+        The record's source.
+    """
+
+    rows: dict
+    skipped: dict = field(default_factory=dict)
+    seconds: dict = field(default_factory=dict)
+    source: str = ""
+
+    @property
+    def ok(self) -> bool:
+        """True when every row is ok."""
+        return all(r.ok for r in self.rows.values())
+
+    def report(self) -> str:
+        """The rows' reports, one per line, then the checks skipped and why."""
+        lines = [f"{name}: {row.report()}" for name, row in self.rows.items()]
+        lines += [f"{name}: not run ({why})" for name, why in self.skipped.items()]
+        return "\n".join(lines)
+
+    def as_dict(self) -> dict:
+        """JSON-ready: source, ok, rows (each :meth:`Check.as_dict` with its seconds), skipped."""
+        return dict(source=self.source, ok=self.ok,
+                    rows={n: dict(r.as_dict(), seconds=self.seconds.get(n)) for n, r in self.rows.items()},
+                    skipped=dict(self.skipped))
+
+
+def _wanted(only, options) -> tuple[list, dict]:
+    have = {"direction": options.get("direction") is not None, "sea": bool(options.get("sea")),
+            "source": options.get("source") is not None, "packet": bool(options.get("packet"))}
+    flags = {"direction": "direction= (--direction DEG)", "sea": "sea=True (--sea)",
+             "source": "source= (--source X,Y)", "packet": "packet=True (--packet)"}
+    if only is None:
+        names = [n for n, c in RECORD_CHECKS.items() if all(have[x] for x in c.needs)]
+        skipped = {n: "needs " + ", ".join(flags[x] for x in c.needs) for n, c in RECORD_CHECKS.items()
+                   if n not in names}
+        return names, skipped
+    if isinstance(only, str) or not all(isinstance(n, str) for n in only):
+        raise TypeError(f"only must be a list of check names, got {describe(only)}")
+    unknown = [n for n in only if n not in RECORD_CHECKS]
+    if unknown:
+        raise ValueError(f"only: unknown check(s) {', '.join(unknown)}; the checks are {', '.join(RECORD_CHECKS)}")
+    for n in only:
+        missing = [flags[x] for x in RECORD_CHECKS[n].needs if not have[x]]
+        if missing:
+            raise ValueError(f"only: the {n} check needs {', '.join(missing)}")
+    return list(dict.fromkeys(only)), {}
+
+
+def check_record(record, water: Optional[Water] = None, *, only=None, direction: Optional[float] = None,
+                 sea: bool = False, packet: bool = False, source=None, t0: float = 0.0, radius: float = 0.0,
+                 viscosity: float = 0.0, rtol: float = 0.02, energy_rtol: float = 0.01, k_range=(0.0, math.inf),
+                 progress: Optional[Callable[[str], None]] = None) -> RecordReport:
+    """Run the checks of :data:`RECORD_CHECKS` on a record.
+
+    Parameters
+    ----------
+    record : Record
+        The frames (:class:`wavephys.harness.Record`).
+    water : Water, optional
+        The water of the theory (default ``Water()``), with the record's claimed depth and σ applied.
+    only : list of str, optional, keyword-only
+        The checks to run (default: every one whose claims are given); a named check whose claim is missing is
+        refused before any work.
+    direction : float, optional, keyword-only
+        The claimed direction of travel, degrees (0 = +x, 90 = +y).
+    sea : bool, optional, keyword-only
+        The record is a sea meant to travel (runs the standing-wave check).
+    packet : bool, optional, keyword-only
+        The record is one wave packet (runs the group-velocity check).
+    source : (float, float), optional, keyword-only
+        Where a single disturbance was, m (runs the ring-arrival check), with ``t0`` (s from the first frame)
+        and ``radius`` (m).
+    t0, radius : float, optional, keyword-only
+        See ``source``.
+    viscosity : float, optional, keyword-only
+        Kinematic viscosity the simulator claims to model, m²/s, >= 0 (default 0).
+    rtol : float, optional, keyword-only
+        Dispersion tolerance, relative, > 0 (default 0.02).
+    energy_rtol : float, optional, keyword-only
+        Energy drift tolerance over the record, > 0 (default 0.01).
+    k_range : (float, float), optional, keyword-only
+        Band of the dispersion check, rad/m (default all).
+    progress : callable, optional, keyword-only
+        Called with a line of text before each check.
+
+    Returns
+    -------
+    RecordReport
+        The rows, the checks skipped and why, the run time of each.
+
+    Raises
+    ------
+    ValueError
+        When ``only`` names an unknown check or one whose claim is missing, or a value is out of range.
+
+    Examples
+    --------
+    >>> report = check_record(Record.from_files("frames/"), Water(sigma=0.0), sea=True)   # doctest: +SKIP
+    >>> print(report.report())                                                            # doctest: +SKIP
+    """
+    from wavephys.harness.record import Record
+
+    check_instance("record", record, Record, "wavephys.harness.Record")
+    water = record.water(water)
+    check_bool("sea", sea)
+    check_bool("packet", packet)
+    if direction is not None:
+        check_scalar("direction", direction)
+    check_scalar("t0", t0)
+    check_scalar("radius", radius, lo=0.0)
+    check_scalar("viscosity", viscosity, lo=0.0)
+    check_scalar("rtol", rtol, lo=0.0, lo_open=True)
+    check_scalar("energy_rtol", energy_rtol, lo=0.0, lo_open=True)
+    if progress is not None and not callable(progress):
+        raise TypeError(f"progress must be callable or None, got {describe(progress)}")
+    options = dict(direction=direction, sea=sea, packet=packet, source=source, t0=t0, radius=radius,
+                   viscosity=viscosity, rtol=rtol, energy_rtol=energy_rtol, k_range=k_range)
+    if source is not None:
+        from wavephys.core.inputs import check_array
+
+        check_array("source", source, ndim=1, shape_tail=(2,))
+    names, skipped = _wanted(only, options)
+    rows, seconds = {}, {}
+    for i, name in enumerate(names):
+        if progress is not None:
+            progress(f"[{i + 1}/{len(names)}] {name}")
+        start = time.perf_counter()
+        rows[name] = RECORD_CHECKS[name].run(record, water, options)
+        seconds[name] = time.perf_counter() - start
+    return RecordReport(rows, skipped, seconds, record.source)
