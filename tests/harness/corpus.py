@@ -178,3 +178,19 @@ def normals_from_heights(eta, dx, green=1.0, strength=1.0):
     n = np.stack([-sx, -green * sy, np.ones_like(sx)], -1)
     n /= np.linalg.norm(n, axis=-1, keepdims=True)
     return np.round((0.5 + 0.5 * n) * 255) / 255
+
+
+def steady_wake_engine(n, dx, speed, size, wave_speed=None, depth=math.inf, damping=None, g=G):
+    """A steady wake as an engine computes it in the ship's frame: per mode, psi = -p/rho / (i (w - kx U) + eps),
+    eta = i (K/w) psi, K = k tanh(kh); ``wave_speed`` c replaces w(k) by c k (a non-dispersive wave equation)."""
+    kx, _, k = wavenumbers(n, dx)
+    c = -0.5 * n * dx + (np.arange(n) + 0.5) * dx
+    x, y = np.meshgrid(c, c)
+    p = 100.0 * np.exp(-(x * x + y * y) / (2 * size * size))
+    p_hat = np.fft.fft2(np.fft.ifftshift(p))
+    big_k = k * (np.tanh(k * depth) if math.isfinite(depth) else 1.0)
+    w = wave_speed * k if wave_speed is not None else np.sqrt(g * big_k)
+    eps = 2.0 * speed / (n * dx) if damping is None else damping
+    psi = (-p_hat / 1000.0) / (1j * (w - kx * speed) + eps)
+    eta_hat = 1j * np.where(w > 0, big_k / np.where(w > 0, w, 1.0), 0.0) * psi
+    return np.fft.fftshift(np.real(np.fft.ifft2(eta_hat)))

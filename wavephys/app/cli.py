@@ -34,6 +34,9 @@ RECORD_CHECK_HELP = (  # wavephys.harness.RECORD_CHECKS, written out so that --h
     ("direction", "the power-weighted mean direction of travel against the claimed one, degrees", ("direction",)),
     ("group_velocity", "speed of a packet's energy centroid against the mean group velocity", ("packet",)),
     ("ring_arrival", "share of eta^2 inside the calm disc r < c_g,min (t - t0) behind the first ring", ("source",)),
+    ("wake_edge", "outer edge of a moving source's wake in the last frame against the cusp line, degrees", ("wake",)),
+    ("wake_max", "angle of maximum amplitude on arcs behind the source (Darmon et al.), degrees",
+     ("wake", "wake-size")),
 )
 
 EFFECTS = ("refraction", "reflection", "fresnel", "absorption", "caustics")
@@ -378,6 +381,17 @@ def _seconds(text: str) -> float:
     return value
 
 
+def _wake_claim(args):
+    """The ``wake=`` claim of :func:`wavephys.harness.check_record` from ``--wake`` and its companions."""
+    if args.wake is None:
+        return None
+    claim = dict(speed=args.wake, source=tuple(args.wake_at) if args.wake_at else (0.0, 0.0),
+                 direction=args.wake_heading)
+    if args.wake_size is not None:
+        claim["size"] = args.wake_size
+    return claim
+
+
 def cmd_check_frames(args, parser) -> int:
     """``wavephys check FRAMES...``: the record's checks, their verdicts and causes."""
     from wavephys.core.files import atomic_path, output_file
@@ -399,7 +413,7 @@ def cmd_check_frames(args, parser) -> int:
     try:
         report = check_record(record, Water(), only=args.only, direction=args.direction, sea=args.sea,
                               packet=args.packet, source=args.source, t0=args.t0, radius=args.radius,
-                              viscosity=args.viscosity, rtol=args.rtol,
+                              viscosity=args.viscosity, rtol=args.rtol, wake=_wake_claim(args),
                               progress=lambda m: print(m, file=sys.stderr, flush=True))
     except (TypeError, ValueError) as exc:
         parser.error(str(exc))
@@ -473,7 +487,7 @@ def _version() -> str:
 
 def _add_check_parser(sub, fmt) -> None:
     """The ``check`` subcommand's options (exported frames, or a user's GLSL, against the physics)."""
-    checks = "\n".join(f"  {name:15s} {measures}" + (f" (needs --{needs[0]})" if needs else "")
+    checks = "\n".join(f"  {name:15s} {measures}" + (f" (needs {', '.join('--' + x for x in needs)})" if needs else "")
                        for name, measures, needs in RECORD_CHECK_HELP)
     ck = sub.add_parser("check", help="check exported frames, or a GLSL function, against the physics",
                         epilog=EXIT_CODES.replace("a validation row failed", "a check failed (frames), or the "
@@ -504,6 +518,13 @@ def _add_check_parser(sub, fmt) -> None:
     ck.add_argument("--t0", type=float, default=0.0, help="when it happened, s from the first frame (default 0)")
     ck.add_argument("--radius", type=_float(0.0), default=0.0, help="its radius, m (default 0)")
     ck.add_argument("--viscosity", type=_float(0.0), default=0.0, help="kinematic viscosity modelled, m^2/s")
+    ck.add_argument("--wake", type=_float(0.0, open_lo=True), metavar="U", help="a source moving at U m/s (wake "
+                                                                                "checks on the last frame)")
+    ck.add_argument("--wake-at", type=_pair, metavar="X,Y", help="where that source is in the last frame, m "
+                                                                 "(default 0,0: the centre)")
+    ck.add_argument("--wake-heading", type=float, default=0.0, metavar="DEG", help="its heading, degrees, 0 = +x")
+    ck.add_argument("--wake-size", type=_float(0.0, open_lo=True), metavar="SIGMA",
+                    help="its size as a Gaussian pressure, m (wake_max check)")
     ck.add_argument("--rtol", type=_float(0.0, open_lo=True), default=0.02, help="dispersion tolerance (default "
                                                                                    "0.02)")
     ck.add_argument("--junit", metavar="PATH", help="also write JUnit XML for a CI server (frames)")

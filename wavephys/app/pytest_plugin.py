@@ -11,6 +11,12 @@ Installed with wavephys; any test suite can then ask for these fixtures::
         wavephys_check.glsl(open("water.glsl").read(), function="fresnel", against="fresnel",
                             form="schlick")
 
+    def test_my_export(wavephys_check):
+        wavephys_check.record("export/frames/", Water(sigma=0.0), sea=True, direction=0.0)
+
+    def test_my_wake(wavephys_check):
+        wavephys_check.wake_angle(frame, dx=0.05, speed=1.5, angle="edge")   # degrees out
+
 Fixtures: ``wavephys_water`` (default :class:`~wavephys.Water`) and ``wavephys_check``
 (a :class:`Checker`). Each method returns the row or report it made and fails the test
 with expected / measured / tolerance (and the likely cause) when it is not ok. This module
@@ -191,6 +197,102 @@ class Checker:
         drift = np.max(np.abs(e / e[0] - 1.0))
         return assert_check(compare("energy drift", drift, 0.0, atol=rtol))
 
+    def record(self, frames, water=None, *, dx=None, dt=None, axes=None, only=None, **claims):
+        """Assert that a record passes every check of :data:`wavephys.harness.RECORD_CHECKS` that applies.
+
+        Parameters
+        ----------
+        frames : Record, array_like, str or os.PathLike
+            A :class:`wavephys.harness.Record`; or heights, m, with ``dx``, ``dt`` and (when the layout is not
+            ``(n_t, n, n)``) ``axes``; or a folder, glob or file of exported frames (EXR, 16-bit PNG, npy, npz),
+            whose headers give dx and dt where they say.
+        water : Water, optional
+            The water of the theory (default ``Water()``; the record's claimed depth and σ apply).
+        dx, dt : float, optional, keyword-only
+            Grid spacing, m, and time between frames, s, > 0 (for arrays; for files when the headers lack them).
+        axes : str, optional, keyword-only
+            The array's layout, e.g. ``"tyx"`` or ``"yxt"`` (time last).
+        only : list of str, optional, keyword-only
+            The checks to run (default: every one whose claims are given).
+        **claims
+            What the record is claimed to be: ``direction`` (degrees), ``sea=True``, ``packet=True``, ``source``
+            (m) with ``t0`` and ``radius``, ``wake=dict(speed=..., source=..., direction=..., size=...)``, and
+            the tolerances and options of :func:`wavephys.harness.check_record`.
+
+        Returns
+        -------
+        RecordReport
+            The report, when every row is ok.
+
+        Raises
+        ------
+        AssertionError
+            When a row fails; the message is every row's report, with the likely causes.
+        ValueError
+            When the layout is ambiguous, a claim a named check needs is missing, or a value is out of range.
+        """
+        import os
+
+        from wavephys.harness.record import Record
+        from wavephys.harness.suite import check_record
+
+        if isinstance(frames, Record):
+            record = frames
+        elif isinstance(frames, (str, os.PathLike, list, tuple)) and not _is_numeric(frames):
+            record = Record.from_files(frames, dx=dx, dt=dt)
+        else:
+            if dx is None or dt is None:
+                raise ValueError("dx and dt: heights given as an array need dx (m) and dt (s)")
+            record = Record.from_array(frames, dx, dt, axes=axes)
+        report = check_record(record, water, only=only, **claims)
+        if not report.ok:
+            raise AssertionError(report.report())
+        return report
+
+    def wake_angle(self, eta, dx, *, speed, angle="edge", source=(0.0, 0.0), direction=0.0, size=None,
+                   water=None, atol=1.0, rtol=0.1, **options):
+        """Assert that a frame's wake angle is linear theory's, degrees in and out.
+
+        Parameters
+        ----------
+        eta : array_like (n, n)
+            Heights, m, one frame in the grid convention (the origin at the square's centre).
+        dx : float
+            Grid spacing, m, > 0.
+        speed : float, keyword-only
+            The source's speed, m/s, > 0.
+        angle : {"edge", "max"}, optional, keyword-only
+            ``"edge"``: the outer edge (cusp line, Kelvin's 19.47° in deep water); ``"max"``: the angle of maximum
+            amplitude by Darmon, Benzaquen & Raphaël's definition (needs ``size``).
+        source : (float, float), optional, keyword-only
+            Where the source is, m (default the centre).
+        direction : float, optional, keyword-only
+            Its heading, degrees, 0 = +x (default 0).
+        size : float, optional, keyword-only
+            σ of the source as a Gaussian pressure, m (for ``"max"``).
+        water : Water, optional, keyword-only
+            Default deep water, gravity waves only.
+        atol, rtol : float, optional, keyword-only
+            Tolerance max(``atol`` degrees, ``rtol`` × theory's angle) (default 1° and 10 %).
+        **options
+            ``near``, ``far`` (``"edge"``) or ``radii`` (``"max"``), m: see :func:`wavephys.harness.wake_check`.
+
+        Returns
+        -------
+        Check
+            The row, degrees, when it is ok.
+
+        Raises
+        ------
+        AssertionError
+            When the angle is off; the message is the row with the likely cause.
+        """
+        from wavephys.harness.checks import assert_check
+        from wavephys.harness.steady import wake_check
+
+        return assert_check(wake_check(eta, dx, speed=speed, water=water, source=source, direction=direction,
+                                       angle=angle, size=size, atol=atol, rtol=rtol, **options))
+
     def glsl(self, source, function, against, *, takes=None, returns=None, uniforms=None, tolerance=None,
              chart=None, **options):
         """Assert that the GLSL ``function`` in ``source`` meets the physics of the check ``against``
@@ -241,6 +343,16 @@ class Checker:
         if not report.ok:
             raise AssertionError(report.report())
         return report
+
+
+def _is_numeric(value) -> bool:
+    """Whether a list or tuple holds numbers (heights) rather than paths."""
+    if isinstance(value, (str, bytes)) or not isinstance(value, (list, tuple)):
+        return False
+    first = value[0] if value else None
+    while isinstance(first, (list, tuple)) and first:
+        first = first[0]
+    return isinstance(first, (int, float)) or type(first).__module__ == "numpy"
 
 
 @pytest.fixture

@@ -6,7 +6,9 @@ they want to check (ours, a shader, a finite-difference toy):
 * :func:`measure_dispersion`, :func:`dispersion_error`, :func:`dispersion_check` — the ω–k
   ridge against theory (the check names the band, the worst k and the likely cause);
 * :func:`measure_energy` — potential, capillary and kinetic energy per unit area;
-* :func:`wake_angle` (``"max"``, ``"cusp"``), :func:`track_wavelength` — wake geometry;
+* :func:`wake_angle` (``"max"``, ``"cusp"``, ``"darmon"``), :func:`track_wavelength` — wake geometry;
+  :func:`wake_check` — a frame's wake angle (outer edge, or the angle of maximum amplitude by
+  Darmon et al.'s definition) against theory, degrees in and out;
 * :class:`Record` — frames + Δx + Δt (+ η̇, claimed depth and σ) from arrays with named axes,
   from exported frames (EXR, 16-bit PNG, npy, npz) or a saved record; :func:`time_derivative`;
 * laws on a record: :func:`energy_check` (with the damping per k), :func:`standing_check`,
@@ -32,7 +34,8 @@ _EXPORTS = {
     "dispersion_check": "dispersion",
     "Energy": "energy", "measure_energy": "energy",
     "WakeAngle": "wake", "wake_angle": "wake", "wake_angle_max": "wake", "wake_angle_cusp": "wake",
-    "WAKE_ANGLE_METHODS": "wake", "track_wavelength": "wake",
+    "WAKE_ANGLE_METHODS": "wake", "track_wavelength": "wake", "wake_angle_darmon": "wake",
+    "darmon_angle_theory": "wake", "wake_check": "steady", "WAKE_ANGLES": "steady",
     "Check": "checks", "compare": "checks", "bound": "checks", "assert_check": "checks",
     "Record": "record", "Rate": "record", "time_derivative": "record",
     "Damping": "energy", "measure_damping": "energy", "energy_check": "energy",

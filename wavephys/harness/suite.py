@@ -19,9 +19,10 @@ from wavephys.core.water import Water
 
 __all__ = ["RecordCheck", "RECORD_CHECKS", "RecordReport", "check_record", "CLAIMS"]
 
-CLAIMS = ("direction", "sea", "packet", "source")
+CLAIMS = ("direction", "sea", "packet", "source", "wake")
 """Claims a check may need: a direction of travel (degrees), that the record is a travelling sea, that it is
-one wave packet, where a single disturbance was."""
+one wave packet, where a single disturbance was, a moving source (its speed, where it is in the last frame, its
+heading and size)."""
 
 
 @dataclass(frozen=True)
@@ -95,6 +96,16 @@ def _ring(record, water, o):
     return ring_arrival_check(record, water, source=o["source"], t0=o.get("t0", 0.0), radius=o.get("radius", 0.0))
 
 
+def _wake(angle):
+    def run(record, water, o):
+        from wavephys.harness.steady import wake_check
+
+        w = dict(o["wake"])
+        return wake_check(record.eta[-1], record.dx, water=water, angle=angle, speed=w["speed"],
+                          source=w.get("source", (0.0, 0.0)), direction=w.get("direction", 0.0), size=w.get("size"))
+    return run
+
+
 RECORD_CHECKS = {c.name: c for c in (
     RecordCheck("dispersion", "omega(k) of every shell of |k| against linear theory (worst relative error)", (),
                 _dispersion),
@@ -111,6 +122,10 @@ RECORD_CHECKS = {c.name: c for c in (
                 ("packet",), _group),
     RecordCheck("ring_arrival", "share of eta^2 inside the calm disc r < c_g,min (t - t0) behind the first ring",
                 ("source",), _ring),
+    RecordCheck("wake_edge", "outer edge of a moving source's wake in the last frame against the cusp line, degrees",
+                ("wake",), _wake("edge")),
+    RecordCheck("wake_max", "angle of maximum amplitude on arcs behind the source (Darmon et al.), degrees",
+                ("wake",), _wake("max")),
 )}
 """The registry of checks on a record, by name."""
 
@@ -156,11 +171,15 @@ class RecordReport:
 
 def _wanted(only, options) -> tuple[list, dict]:
     have = {"direction": options.get("direction") is not None, "sea": bool(options.get("sea")),
-            "source": options.get("source") is not None, "packet": bool(options.get("packet"))}
+            "source": options.get("source") is not None, "packet": bool(options.get("packet")),
+            "wake": options.get("wake") is not None}
     flags = {"direction": "direction= (--direction DEG)", "sea": "sea=True (--sea)",
-             "source": "source= (--source X,Y)", "packet": "packet=True (--packet)"}
+             "source": "source= (--source X,Y)", "packet": "packet=True (--packet)",
+             "wake": "wake=dict(speed=...) (--wake U)"}
+    wake = options.get("wake") or {}
     if only is None:
-        names = [n for n, c in RECORD_CHECKS.items() if all(have[x] for x in c.needs)]
+        names = [n for n, c in RECORD_CHECKS.items() if all(have[x] for x in c.needs)
+                 and (n != "wake_max" or wake.get("size") is not None)]
         skipped = {n: "needs " + ", ".join(flags[x] for x in c.needs) for n, c in RECORD_CHECKS.items()
                    if n not in names}
         return names, skipped
@@ -171,6 +190,8 @@ def _wanted(only, options) -> tuple[list, dict]:
         raise ValueError(f"only: unknown check(s) {', '.join(unknown)}; the checks are {', '.join(RECORD_CHECKS)}")
     for n in only:
         missing = [flags[x] for x in RECORD_CHECKS[n].needs if not have[x]]
+        if n == "wake_max" and have["wake"] and wake.get("size") is None:
+            missing.append("the source's size, wake=dict(size=...) (--wake-size SIGMA)")
         if missing:
             raise ValueError(f"only: the {n} check needs {', '.join(missing)}")
     return list(dict.fromkeys(only)), {}
@@ -179,6 +200,7 @@ def _wanted(only, options) -> tuple[list, dict]:
 def check_record(record, water: Optional[Water] = None, *, only=None, direction: Optional[float] = None,
                  sea: bool = False, packet: bool = False, source=None, t0: float = 0.0, radius: float = 0.0,
                  viscosity: float = 0.0, rtol: float = 0.02, energy_rtol: float = 0.01, k_range=(0.0, math.inf),
+                 wake: Optional[dict] = None,
                  progress: Optional[Callable[[str], None]] = None) -> RecordReport:
     """Run the checks of :data:`RECORD_CHECKS` on a record.
 
@@ -210,6 +232,10 @@ def check_record(record, water: Optional[Water] = None, *, only=None, direction:
         Energy drift tolerance over the record, > 0 (default 0.01).
     k_range : (float, float), optional, keyword-only
         Band of the dispersion check, rad/m (default all).
+    wake : dict, optional, keyword-only
+        A moving source in the last frame (runs the wake checks): ``speed`` (m/s, required), ``source`` (x, y)
+        where it is, m, in the grid convention (default the centre), ``direction`` its heading, degrees (default
+        0 = +x), ``size`` σ of a Gaussian pressure source, m (needed by ``wake_max``).
     progress : callable, optional, keyword-only
         Called with a line of text before each check.
 
@@ -243,8 +269,19 @@ def check_record(record, water: Optional[Water] = None, *, only=None, direction:
     check_scalar("energy_rtol", energy_rtol, lo=0.0, lo_open=True)
     if progress is not None and not callable(progress):
         raise TypeError(f"progress must be callable or None, got {describe(progress)}")
+    if wake is not None:
+        if not isinstance(wake, dict):
+            raise TypeError(f"wake must be a dict (speed=, source=, direction=, size=), got {describe(wake)}")
+        unknown = set(wake) - {"speed", "source", "direction", "size"}
+        if unknown or "speed" not in wake:
+            raise ValueError(f"wake must hold speed (m/s) and optionally source, direction, size; got keys "
+                             f"{sorted(wake)}")
+        check_scalar("wake['speed']", wake["speed"], lo=0.0, lo_open=True)
+        if wake.get("size") is not None:
+            check_scalar("wake['size']", wake["size"], lo=0.0, lo_open=True)
+        check_scalar("wake['direction']", wake.get("direction", 0.0), lo=-360.0, hi=360.0)
     options = dict(direction=direction, sea=sea, packet=packet, source=source, t0=t0, radius=radius,
-                   viscosity=viscosity, rtol=rtol, energy_rtol=energy_rtol, k_range=k_range)
+                   viscosity=viscosity, rtol=rtol, energy_rtol=energy_rtol, k_range=k_range, wake=wake)
     if source is not None:
         from wavephys.core.inputs import check_array
 

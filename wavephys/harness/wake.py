@@ -35,8 +35,8 @@ from wavephys.core.water import Water
 from wavephys.physics.dispersion import group_speed, phase_speed
 from wavephys.physics.wake import CuspLine, GaussianPressure, cusp_line, wake_envelope
 
-__all__ = ["WakeAngle", "wake_angle", "wake_angle_max", "wake_angle_cusp", "WAKE_ANGLE_METHODS", "track_wavelength",
-           "max_amplitude_angle_theory"]
+__all__ = ["WakeAngle", "wake_angle", "wake_angle_max", "wake_angle_cusp", "wake_angle_darmon", "WAKE_ANGLE_METHODS",
+           "track_wavelength", "max_amplitude_angle_theory", "darmon_angle_theory"]
 
 
 @dataclass(frozen=True)
@@ -53,15 +53,24 @@ class WakeAngle:
     method : str
         The estimator: ``"max"``, ``"cusp"`` or ``"max (linear theory)"``.
     points : int
-        Number of sections used by the fits, both sides together.
+        Number of sections used by the fits, both sides together (``"darmon"``: arcs, both sides together).
+    radii : tuple of float
+        ``"darmon"`` only: the arcs' distances behind the source, m (empty for the other methods).
+    angles : tuple of float
+        ``"darmon"`` only: the angle on each arc, degrees (``angle`` is their mean).
     """
 
     angle: float
     uncertainty: float
     method: str
     points: int
+    radii: tuple = ()
+    angles: tuple = ()
 
     def __str__(self):
+        if self.radii:
+            each = ", ".join(f"{a:.2f}° at {r:.4g} m" for r, a in zip(self.radii, self.angles))
+            return f"{self.angle:.2f}° ± {self.uncertainty:.2f}° ({self.method}: {each})"
         return f"{self.angle:.2f}° ± {self.uncertainty:.2f}° ({self.method}, {self.points} sections)"
 
 
@@ -475,7 +484,207 @@ def wake_angle_cusp(eta, grid: Grid, *, source=(0.0, 0.0), direction: float = 0.
     return WakeAngle(angle, float(math.hypot(unc, _band_spread(speed, water, cusp, bandwidth))), "cusp", used)
 
 
-WAKE_ANGLE_METHODS = Methods("wake angle", max=wake_angle_max, cusp=wake_angle_cusp)
+def _arc_points(radius: float, span: float, step: float):
+    """Polar angles φ (rad, 0 on the track, from −span to span) ``step`` m apart along an arc of ``radius``
+    behind the source, and the points' (distance behind, lateral) offsets."""
+    count = max(int(math.ceil(radius * span / step)), 8)
+    phi = np.linspace(-span, span, 2 * count + 1)
+    return phi, radius * np.cos(phi), radius * np.sin(phi)
+
+
+def _arc_maximum(phi, height, tolerance: float):
+    """Per side of the track: the φ (degrees, parabolic refinement) of the largest |ζ|, and the half-width of the
+    φ within ``tolerance`` of it; then their mean and the uncertainty (half the side disagreement or the
+    widest half-width, whichever is larger)."""
+    zeta = np.abs(np.asarray(height, np.float64))
+    centre = phi.size // 2
+    sides = []
+    for sel in (np.arange(centre, phi.size), np.arange(centre, -1, -1)):
+        a = zeta[sel]
+        i = int(np.argmax(a))
+        frac = 0.0
+        if 0 < i < a.size - 1:
+            den = a[i - 1] - 2 * a[i] + a[i + 1]
+            frac = 0.5 * (a[i - 1] - a[i + 1]) / den if den < 0 else 0.0
+        angle = abs(math.degrees(phi[sel][i] + frac * (phi[sel][1] - phi[sel][0])))
+        near = np.abs(np.degrees(phi[sel][a >= (1 - tolerance) * a[i]]))
+        sides.append((angle, 0.5 * float(near.max() - near.min())))
+    (a1, w1), (a2, w2) = sides
+    return 0.5 * (a1 + a2), max(0.5 * abs(a1 - a2), w1, w2)
+
+
+def _darmon(sample, radii, span: float, step: float, tolerance: float, method: str) -> WakeAngle:
+    angles, uncertainties = [], []
+    for r in radii:
+        phi, behind, lateral = _arc_points(float(r), math.radians(span), step)
+        angle, unc = _arc_maximum(phi, sample(behind, lateral), tolerance)
+        angles.append(angle)
+        uncertainties.append(unc)
+    return WakeAngle(float(np.mean(angles)), float(max(uncertainties)), method, 2 * len(angles),
+                     tuple(float(r) for r in radii), tuple(angles))
+
+
+def _check_radii(radii, limit: float):
+    check_array("radii", radii, ndim=1, lo=0.0, lo_open=True)
+    radii = np.asarray(radii, np.float64)
+    if radii.size == 0 or radii.size > 64:
+        raise ValueError(f"radii must hold 1 to 64 distances, got {radii.size}")
+    if np.max(radii) > limit:
+        raise ValueError(f"radii must be at most L/2 = {limit:g} m (the arcs stay on the grid), got "
+                         f"{float(np.max(radii))!r}")
+    return radii
+
+
+def wake_angle_darmon(eta, grid: Grid, *, source=(0.0, 0.0), direction: float = 0.0, radii, span: float = 40.0,
+                      tolerance: float = 0.01) -> WakeAngle:
+    """The angle of maximum amplitude as Darmon, Benzaquen & Raphaël (2014) define it (degrees ± uncertainty).
+
+    On each arc at a distance R (``radii``) behind the source, the polar angle φ (0 on the track) at which the
+    height's modulus |ζ| is largest, on each side of the track; the angle is the mean of both sides over the
+    arcs, with each arc's value in ``angles``. This is the published definition: the heights themselves on
+    arcs, not an envelope on sections across the track (:func:`wake_angle_max` measures that other angle, which
+    differs from this one by several degrees near Fr ≈ 1). The angle depends on R in the near field, so compare
+    it with :func:`darmon_angle_theory` at the same radii. The field is sampled by its periodic cubic B-spline,
+    a quarter of a grid spacing apart along each arc, from −``span`` to ``span`` degrees. The uncertainty is
+    half the disagreement of the two sides or half the spread of the angles whose |ζ| is within ``tolerance`` of
+    the largest (a second crest nearly as high widens it), whichever is larger, over the arcs.
+
+    Parameters
+    ----------
+    eta : array_like (n, n)
+        Heights η, m, on ``grid``, ordered (y, x), finite.
+    grid : Grid
+        The periodic grid of ``eta``.
+    source : (float, float), optional, keyword-only
+        Position (x, y) of the source, m (default the origin).
+    direction : float, optional, keyword-only
+        Direction of travel of the source, rad, 0 = +x, in [−2π, 2π] (default 0).
+    radii : array_like (m,), keyword-only
+        Distances of the arcs behind the source, m, 0 < R ≤ L/2, 1 to 64 of them.
+    span : float, optional, keyword-only
+        Largest polar angle searched on each side, degrees, in [20, 80] (default 40: beyond any deep-water cusp
+        line).
+    tolerance : float, optional, keyword-only
+        Relative tolerance that sets the spread, in (0, 0.5] (default 0.01).
+
+    Returns
+    -------
+    WakeAngle
+        ``method="darmon"``: the mean angle over the arcs, degrees ± uncertainty, with ``radii`` and ``angles``.
+
+    Raises
+    ------
+    ValueError
+        When an argument is out of range.
+
+    References
+    ----------
+    A. Darmon, M. Benzaquen & E. Raphaël (2014). Kelvin wake pattern at large Froude numbers.
+    *J. Fluid Mech.* 738, R3.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from wavephys import Grid, Water
+    >>> from wavephys.physics.wake import GaussianPressure, steady_wake
+    >>> grid = Grid(256, 16.0)
+    >>> eta = steady_wake(grid, Water(sigma=0.0), 1.0, GaussianPressure(100.0, 0.15), damping=0.1)
+    >>> m = wake_angle_darmon(np.asarray(eta), grid, radii=[4.0, 6.0])
+    >>> len(m.angles)
+    2
+    """
+    check_instance("grid", grid, Grid, "wavephys.Grid")
+    n = grid.n
+    check_array("eta", eta, ndim=2, shape_tail=(n, n))
+    if np.asarray(eta).shape != (n, n):
+        raise ValueError(f"eta must have shape ({n}, {n}) to match the grid, got {np.asarray(eta).shape}")
+    check_array("source", source, ndim=1, shape_tail=(2,))
+    check_scalar("direction", direction, lo=-2 * math.pi, hi=2 * math.pi)
+    radii = _check_radii(radii, float(grid.length) / 2)
+    check_scalar("span", span, lo=20.0, hi=80.0)
+    check_scalar("tolerance", tolerance, lo=0.0, hi=0.5, lo_open=True)
+    from wavephys.core.sampling import bspline
+    from wavephys.core.spectral import bspline_coefficients
+
+    coefficients = bspline_coefficients(jnp.asarray(eta, jnp.float32))[..., None]
+    c, s = math.cos(direction), math.sin(direction)
+    length, dx = float(grid.length), float(grid.dx)
+
+    def sample(behind, lateral):
+        x = source[0] - c * behind - s * lateral
+        y = source[1] - s * behind + c * lateral
+        u = jnp.asarray((x + 0.5 * length) / dx - 0.5, jnp.float32)
+        v = jnp.asarray((y + 0.5 * length) / dx - 0.5, jnp.float32)
+        return np.asarray(bspline(coefficients, u, v))[:, 0]
+
+    return _darmon(sample, radii, span, dx / 4, tolerance, "darmon")
+
+
+def darmon_angle_theory(speed, source: GaussianPressure, *, radii, water: Water = Water(sigma=0.0),
+                        damping: float = 0.0, span: float = 40.0, step: float | None = None,
+                        tolerance: float = 0.01) -> WakeAngle:
+    """Linear theory's angle of maximum amplitude on arcs behind a Gaussian source (Darmon et al.'s definition).
+
+    The heights are the far-field direction integral :func:`wavephys.physics.wake.wake_surface` (independent of
+    any grid), read on the same arcs and by the same rule as :func:`wake_angle_darmon`. At large Froude number it
+    falls as ≈ 0.2243/Fr rad far behind the source (Darmon, Benzaquen & Raphaël 2014, eq. 4.11).
+
+    Parameters
+    ----------
+    speed : float
+        Source speed U, m/s, > 0.
+    source : GaussianPressure
+        The Gaussian pressure source.
+    radii : array_like (m,), keyword-only
+        Distances of the arcs behind the source, m, > 0, 1 to 64 of them, at most 1000 transverse wavelengths.
+    water : Water, optional, keyword-only
+        The water (default ``Water(sigma=0.0)``: gravity waves only).
+    damping : float, optional, keyword-only
+        Rayleigh's ε, 1/s, >= 0 with damping·R/U ≤ 50 (default 0).
+    span : float, optional, keyword-only
+        Largest polar angle searched, degrees, in [20, 80] (default 40).
+    step : float, optional, keyword-only
+        Spacing of the points along each arc, m, > 0 (default: the source size σ/8).
+    tolerance : float, optional, keyword-only
+        Relative tolerance that sets the spread, in (0, 0.5] (default 0.01).
+
+    Returns
+    -------
+    WakeAngle
+        ``method="darmon (linear theory)"``, with ``radii`` and ``angles``.
+
+    Raises
+    ------
+    ValueError
+        When an argument is out of range.
+
+    References
+    ----------
+    A. Darmon, M. Benzaquen & E. Raphaël (2014). Kelvin wake pattern at large Froude numbers.
+    *J. Fluid Mech.* 738, R3.
+    """
+    from wavephys.physics.wake import wake_surface
+
+    check_scalar("speed", speed, lo=0.0, lo_open=True)
+    check_instance("source", source, GaussianPressure, "wavephys.physics.wake.GaussianPressure")
+    check_instance("water", water, Water, "wavephys.Water")
+    longest = 2 * math.pi * float(speed) ** 2 / float(water.g)
+    radii = _check_radii(radii, 1000 * longest)
+    check_scalar("damping", damping, lo=0.0)
+    if damping * float(np.max(radii)) / float(speed) > 50.0:
+        raise ValueError(f"damping {damping!r} 1/s fades the waves by more than e^-50 on the farthest arc")
+    check_scalar("span", span, lo=20.0, hi=80.0)
+    step = float(source.size) / 8 if step is None else step
+    check_scalar("step", step, lo=0.0, lo_open=True)
+    check_scalar("tolerance", tolerance, lo=0.0, hi=0.5, lo_open=True)
+
+    def sample(behind, lateral):
+        return wake_surface(-behind, lateral, speed, source, water, damping).real
+
+    return _darmon(sample, radii, span, step, tolerance, "darmon (linear theory)")
+
+
+WAKE_ANGLE_METHODS = Methods("wake angle", max=wake_angle_max, cusp=wake_angle_cusp, darmon=wake_angle_darmon)
 """Wake-angle estimators by name."""
 
 

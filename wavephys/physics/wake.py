@@ -55,7 +55,7 @@ from wavephys.core.grid import Grid
 from wavephys.core.water import Water
 
 __all__ = ["GaussianPressure", "HullSource", "steady_wake", "KELVIN_ANGLE", "transverse_wavelength", "CuspLine",
-           "cusp_line", "stationary_wavenumber", "froude_number", "gaussian_size", "wake_envelope",
+           "cusp_line", "stationary_wavenumber", "froude_number", "gaussian_size", "wake_envelope", "wake_surface",
            "mach_like_angle"]
 
 KELVIN_ANGLE = math.degrees(math.asin(1.0 / 3.0))
@@ -427,11 +427,84 @@ def wake_envelope(distance, lateral, speed, source: "GaussianPressure", water: W
     """
     check_array("distance", distance, ndim=1, lo=0.0, lo_open=True)
     check_array("lateral", lateral, ndim=1)
+    ds, ys = np.asarray(distance, np.float64), np.asarray(lateral, np.float64)
+    k0, cos_t, sin_t, w, fade = _direction_quadrature(speed, source, water, damping, float(np.max(ds)),
+                                                      float(np.max(np.abs(ys), initial=0.0)))
+    rows = [_envelope_section(float(d), ys, k0, cos_t, sin_t, fade, w) for d in ds]
+    return np.stack([np.abs(np.asarray(r, np.complex128)) for r in rows])
+
+
+def wake_surface(x, y, speed, source: "GaussianPressure", water: Water = Water(sigma=0.0), damping: float = 0.0):
+    r"""The far-field steady wake W (m, complex) of a Gaussian pressure source at points (x, y); η = Re W.
+
+    The same direction integral as :func:`wake_envelope` (whose modulus is |W|), at any points in the
+    source's frame (source at the origin moving in +x, so the wake lies at x < 0), with its phase:
+
+    .. math::
+
+        W(x, y) = -\frac{i}{2\pi\rho}\int_{-\pi/2}^{\pi/2}
+            \frac{k_0 H(k_0)\,\hat p(k_0)}{|c_g(k_0) - U\cos\theta|}
+            e^{i k_0 (x\cos\theta + y\sin\theta)}\,d\theta .
+
+    Re W is the surface elevation of the wave part of the wake (the local disturbance under the source is left
+    out): the field whose largest |ζ| on arcs behind the source defines Darmon, Benzaquen & Raphaël's angle of
+    maximum amplitude (:func:`wavephys.harness.wake.darmon_angle_theory`).
+
+    Parameters
+    ----------
+    x, y : array_like (m,)
+        Points, m, in the source's frame (x along its travel, the source at the origin); same shape, finite.
+    speed : float
+        U, m/s, > 0.
+    source : GaussianPressure
+    water : Water, optional
+        Any depth and surface tension (the gravity branch of the stationary waves); default gravity only.
+    damping : float, optional
+        Rayleigh's ε, 1/s, >= 0 (default 0), as in :func:`wake_envelope`.
+
+    Returns
+    -------
+    numpy.ndarray (m,) complex
+        W at the points, m; ``W.real`` is the height.
+
+    Raises
+    ------
+    ValueError
+        When x and y differ in shape, or a value is out of range.
+
+    References
+    ----------
+    A. Darmon, M. Benzaquen & E. Raphaël (2014). Kelvin wake pattern at large Froude numbers.
+    *J. Fluid Mech.* 738, R3.
+
+    Examples
+    --------
+    >>> from wavephys.physics.wake import GaussianPressure, wake_surface
+    >>> w = wake_surface([-5.0], [1.0], 1.0, GaussianPressure(100.0, 0.1))
+    >>> bool(abs(w[0]) > 0)
+    True
+    """
+    check_array("x", x, ndim=1)
+    check_array("y", y, ndim=1)
+    xs, ys = np.asarray(x, np.float64), np.asarray(y, np.float64)
+    if xs.shape != ys.shape:
+        raise ValueError(f"x and y must have one shape, got {xs.shape} and {ys.shape}")
+    reach = float(np.max(np.abs(xs), initial=0.0))
+    k0, cos_t, sin_t, w, fade = _direction_quadrature(speed, source, water, damping, max(reach, 1e-12),
+                                                      float(np.max(np.abs(ys), initial=0.0)))
+    out = np.empty(xs.shape, np.complex128)
+    for lo in range(0, xs.size, 4096):
+        out[lo:lo + 4096] = np.asarray(_points_sum(xs[lo:lo + 4096], ys[lo:lo + 4096], k0, cos_t, sin_t, fade, w))
+    return -1j * out
+
+
+def _direction_quadrature(speed, source, water: Water, damping: float, reach: float, lateral: float):
+    """Directions t = tan θ, their stationary wavenumbers, weights (with p̂, dθ and 1/(2πρ)) and Rayleigh fades,
+    fine enough that the phase turns < 0.2 rad between directions up to ``reach`` behind and ``lateral`` across."""
     check_scalar("speed", speed, lo=0.0, lo_open=True)
     check_instance("source", source, GaussianPressure, "wavephys.physics.wake.GaussianPressure")
     check_instance("water", water, Water, "wavephys.Water")
     check_scalar("damping", damping, lo=0.0)
-    ds, ys = np.asarray(distance, np.float64), np.asarray(lateral, np.float64)
     sigma, rho = float(source.size), float(water.rho)
     # directions t = tan θ where the integrand matters (p̂ falls as e^{−k²σ²/2}, k₀ ∝ 1 + t²)
     t = np.linspace(-60.0, 60.0, 4001)
@@ -441,33 +514,32 @@ def wake_envelope(distance, lateral, speed, source: "GaussianPressure", water: W
         raise ValueError(f"speed {speed!r} m/s: no stationary waves behind the source (below c_min?)")
     keep = np.nonzero(weight > 1e-12 * weight.max())[0]
     t_lo, t_hi = t[max(keep[0] - 1, 0)], t[min(keep[-1] + 1, t.size - 1)]
-    # enough directions that the phase k₀(x cos θ + y sin θ) turns < 0.2 rad between them
     probe = np.linspace(t_lo, t_hi, 4001)
     k0p, _, cos_p = _stationary_waves(speed, water, probe)
-    y_far = np.max(np.abs(ys), initial=0.0)
-    turn = max(float(np.max(np.abs(np.diff(k0p * cos_p * (-np.max(ds)) + k0p * probe * cos_p * sign * y_far))))
-               for sign in (-1.0, 1.0))  # largest phase change per probe step, at the lattice's far corners
+    turn = max(float(np.max(np.abs(np.diff(k0p * cos_p * (-reach) + k0p * probe * cos_p * sign * lateral))))
+               for sign in (-1.0, 1.0))  # largest phase change per probe step, at the far corners
     count = int(min(max(2001, 4000 * turn / 0.2), 400_001))
     t = np.linspace(t_lo, t_hi, count)
     k0, weight, cos_t = _stationary_waves(speed, water, t)
     phat = 2 * math.pi * sigma**2 * float(source.amplitude) * np.exp(-0.5 * (k0 * sigma) ** 2)
     w = weight * phat / (1.0 + t * t) * (t[1] - t[0]) / (2 * math.pi * rho)  # dθ = dt/(1 + t²)
-    sin_t = t * cos_t
     fade = damping / _slip(speed, water, k0, cos_t)  # 1/m along ϖ (0 without damping)
-    rows = [_envelope_section(float(d), ys, k0, cos_t, sin_t, fade, w) for d in ds]
-    return np.stack([np.asarray(r, np.float64) for r in rows])
+    return k0, cos_t, t * cos_t, w, fade
+
+
+@jax.jit
+def _points_sum(x, y, k0, cos_t, sin_t, fade, w):
+    """Σ_θ w·e^{i k₀ ϖ}·e^{−fade·|ϖ|} over the waves behind (ϖ < 0), at points (x, y), float32."""
+    path = x[:, None] * cos_t[None, :] + y[:, None] * sin_t[None, :]
+    phase = (k0[None, :] * path).astype(jnp.float32)
+    amp = jnp.where(path < 0, jnp.exp(-fade[None, :] * jnp.abs(path)), 0.0).astype(jnp.float32)
+    return (amp * jnp.cos(phase)) @ w.astype(jnp.float32) + 1j * ((amp * jnp.sin(phase)) @ w.astype(jnp.float32))
 
 
 @jax.jit
 def _envelope_section(d, ys, k0, cos_t, sin_t, fade, w):
-    """|Σ_θ w·e^{i k₀ ϖ}·e^{−fade·|ϖ|}| over the waves behind (ϖ < 0), for one section, float32
-    (the envelope to ~1e-6 relative; the phases are formed in the inputs' precision first)."""
-    path = -d * cos_t[None, :] + ys[:, None] * sin_t[None, :]  # ϖ, m (< 0 where the waves are)
-    phase = (k0[None, :] * path).astype(jnp.float32)
-    amp = jnp.where(path < 0, jnp.exp(-fade[None, :] * jnp.abs(path)), 0.0).astype(jnp.float32)
-    re = (amp * jnp.cos(phase)) @ w.astype(jnp.float32)
-    im = (amp * jnp.sin(phase)) @ w.astype(jnp.float32)
-    return jnp.hypot(re, im)
+    """Σ_θ w·e^{i k₀ ϖ}·e^{−fade·|ϖ|} over the waves behind (ϖ < 0), for one section d behind the source."""
+    return _points_sum(jnp.full(ys.shape, -d, ys.dtype), ys, k0, cos_t, sin_t, fade, w)
 
 
 def _slip(speed, water: Water, k0, cos_t):

@@ -1,0 +1,174 @@
+"""Wake angles of a user's frame as check rows, in degrees: the outer edge and the angle of maximum amplitude.
+
+A wake behind a source moving at U has two angles that are often confused (docs/physics.md,
+wake angles):
+
+* the **outer edge** (cusp line): Kelvin's 19.47° in deep water for any source shape, wider in
+  finite depth; measured by :func:`wavephys.harness.wake.wake_angle_cusp` and expected from
+  :func:`wavephys.physics.wake.cusp_line`;
+* the **angle of maximum amplitude** by Darmon, Benzaquen & Raphaël's definition (the largest
+  |ζ| on arcs at fixed distances behind the source), which depends on the source's size
+  through the Froude number Fr = U/√(g b): near Kelvin's angle for 0.4 ≲ Fr ≲ 0.8, falling as
+  ≈ 0.2243/Fr rad above; measured by :func:`wavephys.harness.wake.wake_angle_darmon` and
+  expected from :func:`wavephys.harness.wake.darmon_angle_theory` for a Gaussian pressure
+  source of the claimed size, at the same distances.
+
+:func:`wake_check` takes one frame (heights in the grid convention: cell-centred, the origin
+at the middle of the square), the source's position and direction of travel (degrees), and
+returns a :class:`~wavephys.harness.Check` row in degrees with the likely cause when it fails
+(a non-dispersive scheme has a Mach cone instead of a Kelvin wedge; a wrong g, depth or speed
+moves the edge).
+"""
+
+from __future__ import annotations
+
+import math
+from typing import Optional
+
+import numpy as np
+
+from wavephys.core.grid import Grid
+from wavephys.core.inputs import check_array, check_choice, check_instance, check_scalar
+from wavephys.core.water import Water
+from wavephys.harness.checks import compare
+
+__all__ = ["wake_check", "WAKE_ANGLES"]
+
+WAKE_ANGLES = ("edge", "max")
+"""What :func:`wake_check` measures: ``"edge"`` the outer edge (cusp line), ``"max"`` the angle of maximum
+amplitude by Darmon, Benzaquen & Raphaël's definition."""
+
+
+def _cause_edge(measured: float, expected: float, speed: float, water: Water) -> str:
+    """Likely cause of an outer edge that is not the cusp line's."""
+    if not math.isfinite(measured):
+        return "no wake ridge was found between near and far (is the source where you said, moving that way?)"
+    if measured < expected:
+        return (f"the wedge is narrower than the cusp line's {expected:.2f}°: check U ({speed:g} m/s), g "
+                f"({float(water.g):g} m/s^2) and the depth (shallower water widens the wedge, not narrows it)")
+    deep = math.degrees(math.asin(1 / 3))
+    if not math.isfinite(float(water.depth)) and measured > deep + 3:
+        c = speed * math.sin(math.radians(measured))
+        return (f"the wedge is wider than Kelvin's 19.47°: a non-dispersive scheme (one wave speed c makes a Mach "
+                f"cone of half-angle asin(c/U); c = {c:.3g} m/s gives this one, the long-wave speed of water "
+                f"{c * c / float(water.g):.3g} m deep), or finite depth not claimed (a Havelock wedge: claim the "
+                f"depth)")
+    return "the wedge is wider than theory's: a shallower floor than claimed, or a scheme with too little dispersion"
+
+
+def wake_check(eta, dx: float, *, speed: float, water: Optional[Water] = None, source=(0.0, 0.0),
+               direction: float = 0.0, angle: str = "edge", size: Optional[float] = None, near=None, far=None,
+               radii=None, atol: float = 1.0, rtol: float = 0.1):
+    """Check a wake's angle in one frame against linear theory, in degrees.
+
+    Parameters
+    ----------
+    eta : array_like (n, n)
+        Heights, m, one frame, rows along y, finite; square, periodic (the wake must not wrap into itself).
+    dx : float
+        Grid spacing, m, > 0.
+    speed : float, keyword-only
+        The source's speed U, m/s, > 0.
+    water : Water, optional, keyword-only
+        The water of the theory (default gravity waves in deep water, ``Water(sigma=0.0)``).
+    source : (float, float), optional, keyword-only
+        Where the source is in this frame, m, in the grid convention (the origin at the square's centre).
+    direction : float, optional, keyword-only
+        Its direction of travel, degrees (0 = +x, 90 = +y), in [−360, 360] (default 0).
+    angle : {"edge", "max"}, optional, keyword-only
+        ``"edge"``: the outer edge (cusp line); ``"max"``: the angle of maximum amplitude by Darmon et al.'s
+        definition, which needs ``size``.
+    size : float, optional, keyword-only
+        The source as a Gaussian pressure p0·exp(−r²/(2σ²)): σ, m, > 0 (needed by ``"max"``).
+    near, far : float, optional, keyword-only
+        ``"edge"``: distances behind the source of the first and last section, m (default L/8 and 3L/8).
+    radii : array_like, optional, keyword-only
+        ``"max"``: distances of the arcs behind the source, m (default L/8, L/4, 3L/8).
+    atol, rtol : float, optional, keyword-only
+        The tolerance is max(``atol`` degrees, ``rtol`` × expected), > 0 and >= 0 (default 1° and 10 %).
+
+    Returns
+    -------
+    Check
+        ``"~="`` row, degrees: measured angle against theory's, with the measurement's uncertainty in the note,
+        and the likely cause when it fails.
+
+    Raises
+    ------
+    ValueError
+        When ``angle`` is ``"max"`` without ``size``, the cusp waves are not resolved, or a value is out of range.
+
+    References
+    ----------
+    A. Darmon, M. Benzaquen & E. Raphaël (2014). Kelvin wake pattern at large Froude numbers.
+    *J. Fluid Mech.* 738, R3.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from wavephys import Grid, Water
+    >>> from wavephys.physics.wake import GaussianPressure, steady_wake
+    >>> eta = steady_wake(Grid(256, 16.0), Water(sigma=0.0), 1.0, GaussianPressure(100.0, 0.15), damping=0.1)
+    >>> wake_check(np.asarray(eta), 16.0 / 256, speed=1.0, near=2.0, far=7.0).ok
+    True
+    """
+    from wavephys.harness.wake import darmon_angle_theory, wake_angle_cusp, wake_angle_darmon
+    from wavephys.physics.wake import GaussianPressure, cusp_line, froude_number
+
+    check_array("eta", eta, ndim=2)
+    eta = np.asarray(eta, np.float64)
+    if eta.shape[0] != eta.shape[1]:
+        raise ValueError(f"eta must be square (n, n), got shape {eta.shape}")
+    check_scalar("dx", dx, lo=0.0, lo_open=True)
+    check_scalar("speed", speed, lo=0.0, lo_open=True)
+    water = Water(sigma=0.0) if water is None else water
+    check_instance("water", water, Water, "wavephys.Water")
+    check_array("source", source, ndim=1, shape_tail=(2,))
+    check_scalar("direction", direction, lo=-360.0, hi=360.0)
+    check_choice("angle", angle, WAKE_ANGLES)
+    check_scalar("atol", atol, lo=0.0, lo_open=True)
+    check_scalar("rtol", rtol, lo=0.0)
+    grid = Grid(eta.shape[0], eta.shape[0] * float(dx))
+    length = float(grid.length)
+    heading = math.radians(direction)
+    if angle == "edge":
+        near = length / 8 if near is None else near
+        far = 3 * length / 8 if far is None else far
+        cusp = cusp_line(speed, water)
+        expected = float(cusp.angle)
+        try:
+            m = wake_angle_cusp(eta, grid, source=tuple(source), direction=heading, near=near, far=far,
+                                speed=speed, water=water)
+        except ValueError as exc:
+            if "too few sections" not in str(exc):
+                raise
+            m = None
+        measured = math.nan if m is None else m.angle
+        note = (f"outer edge (cusp line) {near:.4g}-{far:.4g} m behind the source"
+                + ("" if m is None else f", measured ± {m.uncertainty:.2f}°"))
+        quantity = f"wake outer edge, U = {speed:g} m/s"
+    else:
+        if size is None:
+            raise ValueError("size: the angle of maximum amplitude needs the source's size σ (m) to give theory's "
+                             "value (it depends on the Froude number); or check angle='edge'")
+        check_scalar("size", size, lo=0.0, lo_open=True)
+        radii = np.array([length / 8, length / 4, 3 * length / 8]) if radii is None else radii
+        m = wake_angle_darmon(eta, grid, source=tuple(source), direction=heading, radii=radii)
+        t = darmon_angle_theory(speed, GaussianPressure(1.0, float(size)), radii=radii, water=water)
+        measured, expected, cusp = m.angle, t.angle, None
+        fr = froude_number(speed, size, water)
+        note = (f"largest |eta| on arcs {', '.join(f'{r:.4g}' for r in m.radii)} m behind the source (Darmon et al.), "
+                f"Fr = {fr:.3g}, measured ± {m.uncertainty:.2f}°, theory ± {t.uncertainty:.2f}°")
+        quantity = f"wake angle of maximum amplitude, U = {speed:g} m/s, Fr = {fr:.3g}"
+    tolerance = max(atol, rtol * abs(expected))
+    row = compare(quantity, measured, expected, atol=tolerance, unit="deg", note=note)
+    if row.ok:
+        return row
+    if angle == "edge":
+        cause = _cause_edge(measured, expected, speed, water)
+    else:
+        cause = ("the source's size or speed is not what was claimed (the angle follows Fr = U/sqrt(g b), "
+                 "b = pi sqrt(2) sigma: near 0 below Fr ~ 0.35, about Kelvin's 19.5 deg for Fr 0.4-0.8, "
+                 "~ 0.2243/Fr rad above), or the short diverging waves are damped (smoothing, a coarse grid)"
+                 if math.isfinite(measured) else "no maximum found on the arcs")
+    return compare(quantity, measured, expected, atol=tolerance, unit="deg", note=f"{note}; likely cause: {cause}")
