@@ -34,9 +34,13 @@ RECORD_CHECK_HELP = (  # wavephys.harness.RECORD_CHECKS, written out so that --h
     ("direction", "the power-weighted mean direction of travel against the claimed one, degrees", ("direction",)),
     ("group_velocity", "speed of a packet's energy centroid against the mean group velocity", ("packet",)),
     ("ring_arrival", "share of eta^2 inside the calm disc r < c_g,min (t - t0) behind the first ring", ("source",)),
-    ("wake_edge", "outer edge of a moving source's wake in the last frame against the cusp line, degrees", ("wake",)),
+    ("wake_edge", "outer edge of a moving source's wake in the first frame against the cusp line, degrees", ("wake",)),
     ("wake_max", "angle of maximum amplitude on arcs behind the source (Darmon et al.), degrees",
      ("wake", "wake-size")),
+    ("normals", "the normal map against the slopes of the first frame's heights (largest angle, degrees)",
+     ("normals",)),
+    ("caustics_flux", "mean of a caustics map against flat water's irradiance (light conserved)", ("caustics",)),
+    ("resolution", "variance per octave of |k| against the same sea exported at another resolution", ("other",)),
 )
 
 EFFECTS = ("refraction", "reflection", "fresnel", "absorption", "caustics")
@@ -408,12 +412,27 @@ def cmd_check_frames(args, parser) -> int:
     except (TypeError, ValueError) as exc:
         print(f"wavephys check: {exc}", file=sys.stderr)
         return 2
+    maps = {}
+    try:
+        from wavephys.core.frames import read_map
+
+        if args.normals:
+            maps["normals"] = read_map(args.normals, name="--normals", channels=3)
+        if args.caustics:
+            maps["caustics"] = read_map(args.caustics, name="--caustics", channels=1)
+        if args.other:
+            other = args.other[0] if len(args.other) == 1 else list(args.other)
+            maps["other"] = Record.from_files(other, channel=args.channel)
+    except (TypeError, ValueError) as exc:
+        print(f"wavephys check: {exc}", file=sys.stderr)
+        return 2
     nt, ny, nx = record.shape
     print(f"{record.source}: {nt} frames of {nx} x {ny}, dx = {record.dx:.6g} m, dt = {record.dt:.6g} s", flush=True)
     try:
         report = check_record(record, Water(), only=args.only, direction=args.direction, sea=args.sea,
                               packet=args.packet, source=args.source, t0=args.t0, radius=args.radius,
                               viscosity=args.viscosity, rtol=args.rtol, wake=_wake_claim(args),
+                              convention=args.convention, **maps,
                               progress=lambda m: print(m, file=sys.stderr, flush=True))
     except (TypeError, ValueError) as exc:
         parser.error(str(exc))
@@ -518,9 +537,15 @@ def _add_check_parser(sub, fmt) -> None:
     ck.add_argument("--t0", type=float, default=0.0, help="when it happened, s from the first frame (default 0)")
     ck.add_argument("--radius", type=_float(0.0), default=0.0, help="its radius, m (default 0)")
     ck.add_argument("--viscosity", type=_float(0.0), default=0.0, help="kinematic viscosity modelled, m^2/s")
+    ck.add_argument("--normals", metavar="FILE", help="the normal map exported with the first frame (EXR RGB or PNG)")
+    ck.add_argument("--convention", choices=("auto", "opengl", "directx"), default="auto",
+                    help="the normal map's green convention claimed (default: detect and report)")
+    ck.add_argument("--caustics", metavar="FILE", help="a caustics map, relative to flat water (EXR Y or PNG)")
+    ck.add_argument("--other", nargs="+", metavar="FRAMES", help="the same sea exported at another resolution "
+                                                                 "(files with dx in their headers)")
     ck.add_argument("--wake", type=_float(0.0, open_lo=True), metavar="U", help="a source moving at U m/s (wake "
-                                                                                "checks on the last frame)")
-    ck.add_argument("--wake-at", type=_pair, metavar="X,Y", help="where that source is in the last frame, m "
+                                                                                "checks on the first frame)")
+    ck.add_argument("--wake-at", type=_pair, metavar="X,Y", help="where that source is in the first frame, m "
                                                                  "(default 0,0: the centre)")
     ck.add_argument("--wake-heading", type=float, default=0.0, metavar="DEG", help="its heading, degrees, 0 = +x")
     ck.add_argument("--wake-size", type=_float(0.0, open_lo=True), metavar="SIGMA",

@@ -29,7 +29,7 @@ import numpy as np
 
 from wavephys.core.inputs import check_int, check_scalar, describe
 
-__all__ = ["FRAME_SUFFIXES", "UNITS", "Frames", "read_exr", "read_frames"]
+__all__ = ["FRAME_SUFFIXES", "UNITS", "Frames", "read_exr", "read_frames", "read_map"]
 
 FRAME_SUFFIXES = (".exr", ".png", ".npy", ".npz")
 """The file types :func:`read_frames` reads."""
@@ -370,3 +370,73 @@ def _assemble(frames, metas, paths, dx, dt) -> Frames:
     found_dt = found_dt if found_dt is not None else from_times
     return Frames(heights * scale, _agree("dx", dx, found_dx, where), _agree("dt", dt, found_dt, where),
                   units, tuple(str(p) for p in paths), meta)
+
+
+def read_map(path, *, name: str = "path", channels: int | None = None) -> np.ndarray:
+    """One texture (a normal map, a caustics map) read from an EXR, PNG, ``.npy`` or ``.npz`` file.
+
+    Rows come back in the grid convention (an image's top row is the highest y, so image rows are flipped).
+    PNG values are divided by their largest level (255 or 65535), so a packed normal map reads as 0.5 + 0.5 n;
+    EXR channels are stacked R, G, B (or the one channel, Y, of a scalar map); npz takes the first array.
+
+    Parameters
+    ----------
+    path : str or os.PathLike
+        The file.
+    name : str, optional, keyword-only
+        The argument's name for error messages (default ``"path"``).
+    channels : int, optional, keyword-only
+        1 for a scalar map (returned (n_y, n_x)), 3 for a vector map ((n_y, n_x, 3)); default as the file holds.
+
+    Returns
+    -------
+    numpy.ndarray
+        The values, float64.
+
+    Raises
+    ------
+    ValueError
+        When the file is missing or unreadable, holds another number of channels, or a non-finite value.
+    """
+    p = _path(name, path)
+    if not p.is_file():
+        raise ValueError(f"{name}: {str(p)!r} is not a file")
+    suffix = p.suffix.lower()
+    if suffix == ".exr":
+        data, _ = read_exr(p)
+        if channels == 1 or len(data) == 1:
+            key = "Y" if "Y" in data else (next(iter(data)) if len(data) == 1 else None)
+            if key is None:
+                raise ValueError(f"{name}: {str(p)!r} has channels {', '.join(data)}; a scalar map needs Y or one "
+                                 f"channel")
+            values = np.asarray(data[key], np.float64)
+        else:
+            missing = [c for c in "RGB" if c not in data]
+            if missing:
+                raise ValueError(f"{name}: {str(p)!r} lacks channel(s) {', '.join(missing)} (it has "
+                                 f"{', '.join(data)})")
+            values = np.stack([np.asarray(data[c], np.float64) for c in "RGB"], -1)
+    elif suffix == ".png":
+        from PIL import Image
+
+        try:
+            with Image.open(p) as im:
+                raw = np.asarray(im)
+        except (OSError, ValueError) as exc:
+            raise ValueError(f"{name}: {str(p)!r} is not a readable PNG ({exc})") from None
+        top = 65535.0 if raw.dtype in (np.uint16, np.int32) else 255.0
+        values = np.flipud(raw).astype(np.float64) / top
+        if values.ndim == 3 and values.shape[-1] == 4:
+            values = values[..., :3]
+    elif suffix in (".npy", ".npz"):
+        values, _ = _np_frames(p) if suffix == ".npz" else (np.asarray(np.load(p, allow_pickle=False), np.float64),
+                                                            None)
+    else:
+        raise ValueError(f"{name}: {str(p)!r} is not an .exr, .png, .npy or .npz file")
+    if channels == 1 and values.ndim != 2:
+        raise ValueError(f"{name}: {str(p)!r} holds shape {values.shape}; a scalar map is one channel (n_y, n_x)")
+    if channels == 3 and (values.ndim != 3 or values.shape[-1] != 3):
+        raise ValueError(f"{name}: {str(p)!r} holds shape {values.shape}; a vector map is RGB (n_y, n_x, 3)")
+    if not np.all(np.isfinite(values)):
+        raise ValueError(f"{name}: {str(p)!r} holds non-finite values")
+    return values

@@ -19,10 +19,11 @@ from wavephys.core.water import Water
 
 __all__ = ["RecordCheck", "RECORD_CHECKS", "RecordReport", "check_record", "CLAIMS"]
 
-CLAIMS = ("direction", "sea", "packet", "source", "wake")
+CLAIMS = ("direction", "sea", "packet", "source", "wake", "normals", "caustics", "other")
 """Claims a check may need: a direction of travel (degrees), that the record is a travelling sea, that it is
-one wave packet, where a single disturbance was, a moving source (its speed, where it is in the last frame, its
-heading and size)."""
+one wave packet, where a single disturbance was, a moving source (its speed, where it is in the first frame, its
+heading and size), the normal map or caustics map exported with the first frame, the same sea exported at
+another resolution."""
 
 
 @dataclass(frozen=True)
@@ -101,9 +102,28 @@ def _wake(angle):
         from wavephys.harness.steady import wake_check
 
         w = dict(o["wake"])
-        return wake_check(record.eta[-1], record.dx, water=water, angle=angle, speed=w["speed"],
+        return wake_check(record.eta[0], record.dx, water=water, angle=angle, speed=w["speed"],
                           source=w.get("source", (0.0, 0.0)), direction=w.get("direction", 0.0), size=w.get("size"))
     return run
+
+
+def _normals(record, water, o):
+    from wavephys.harness.maps import normals_check
+
+    return normals_check(record.eta[0], o["normals"], record.dx, convention=o.get("convention", "auto"))
+
+
+def _caustics(record, water, o):
+    from wavephys.harness.maps import caustics_flux_check
+
+    return caustics_flux_check(o["caustics"])
+
+
+def _resolution(record, water, o):
+    from wavephys.harness.maps import resolution_check
+
+    other = o["other"]
+    return resolution_check(record.eta, record.dx, other.eta, other.dx)
 
 
 RECORD_CHECKS = {c.name: c for c in (
@@ -122,10 +142,16 @@ RECORD_CHECKS = {c.name: c for c in (
                 ("packet",), _group),
     RecordCheck("ring_arrival", "share of eta^2 inside the calm disc r < c_g,min (t - t0) behind the first ring",
                 ("source",), _ring),
-    RecordCheck("wake_edge", "outer edge of a moving source's wake in the last frame against the cusp line, degrees",
+    RecordCheck("wake_edge", "outer edge of a moving source's wake in the first frame against the cusp line, degrees",
                 ("wake",), _wake("edge")),
     RecordCheck("wake_max", "angle of maximum amplitude on arcs behind the source (Darmon et al.), degrees",
                 ("wake",), _wake("max")),
+    RecordCheck("normals", "the normal map against the slopes of the first frame's heights (largest angle, degrees)",
+                ("normals",), _normals),
+    RecordCheck("caustics_flux", "mean of a caustics map against flat water's irradiance (light conserved)",
+                ("caustics",), _caustics),
+    RecordCheck("resolution", "variance per octave of |k| against the same sea exported at another resolution",
+                ("other",), _resolution),
 )}
 """The registry of checks on a record, by name."""
 
@@ -172,10 +198,12 @@ class RecordReport:
 def _wanted(only, options) -> tuple[list, dict]:
     have = {"direction": options.get("direction") is not None, "sea": bool(options.get("sea")),
             "source": options.get("source") is not None, "packet": bool(options.get("packet")),
-            "wake": options.get("wake") is not None}
+            "wake": options.get("wake") is not None, "normals": options.get("normals") is not None,
+            "caustics": options.get("caustics") is not None, "other": options.get("other") is not None}
     flags = {"direction": "direction= (--direction DEG)", "sea": "sea=True (--sea)",
              "source": "source= (--source X,Y)", "packet": "packet=True (--packet)",
-             "wake": "wake=dict(speed=...) (--wake U)"}
+             "wake": "wake=dict(speed=...) (--wake U)", "normals": "normals= (--normals FILE)",
+             "caustics": "caustics= (--caustics FILE)", "other": "other= (--other FRAMES)"}
     wake = options.get("wake") or {}
     if only is None:
         names = [n for n, c in RECORD_CHECKS.items() if all(have[x] for x in c.needs)
@@ -200,7 +228,7 @@ def _wanted(only, options) -> tuple[list, dict]:
 def check_record(record, water: Optional[Water] = None, *, only=None, direction: Optional[float] = None,
                  sea: bool = False, packet: bool = False, source=None, t0: float = 0.0, radius: float = 0.0,
                  viscosity: float = 0.0, rtol: float = 0.02, energy_rtol: float = 0.01, k_range=(0.0, math.inf),
-                 wake: Optional[dict] = None,
+                 wake: Optional[dict] = None, normals=None, convention: str = "auto", caustics=None, other=None,
                  progress: Optional[Callable[[str], None]] = None) -> RecordReport:
     """Run the checks of :data:`RECORD_CHECKS` on a record.
 
@@ -233,9 +261,18 @@ def check_record(record, water: Optional[Water] = None, *, only=None, direction:
     k_range : (float, float), optional, keyword-only
         Band of the dispersion check, rad/m (default all).
     wake : dict, optional, keyword-only
-        A moving source in the last frame (runs the wake checks): ``speed`` (m/s, required), ``source`` (x, y)
+        A moving source in the first frame (runs the wake checks): ``speed`` (m/s, required), ``source`` (x, y)
         where it is, m, in the grid convention (default the centre), ``direction`` its heading, degrees (default
         0 = +x), ``size`` σ of a Gaussian pressure source, m (needed by ``wake_max``).
+    normals : array_like (n_y, n_x, 3), optional, keyword-only
+        The normal map exported with the first frame, packed 0.5 + 0.5 n or float n (runs ``normals``), with
+        ``convention`` ``"auto"`` (detect and report), ``"opengl"`` or ``"directx"``.
+    convention : {"auto", "opengl", "directx"}, optional, keyword-only
+        See ``normals``.
+    caustics : array_like (n_y, n_x) or (n_t, n_y, n_x), optional, keyword-only
+        A caustics map relative to flat water's irradiance (runs ``caustics_flux``).
+    other : Record, optional, keyword-only
+        The same sea exported at another resolution (runs ``resolution``).
     progress : callable, optional, keyword-only
         Called with a line of text before each check.
 
@@ -280,8 +317,11 @@ def check_record(record, water: Optional[Water] = None, *, only=None, direction:
         if wake.get("size") is not None:
             check_scalar("wake['size']", wake["size"], lo=0.0, lo_open=True)
         check_scalar("wake['direction']", wake.get("direction", 0.0), lo=-360.0, hi=360.0)
+    if other is not None:
+        check_instance("other", other, Record, "wavephys.harness.Record")
     options = dict(direction=direction, sea=sea, packet=packet, source=source, t0=t0, radius=radius,
-                   viscosity=viscosity, rtol=rtol, energy_rtol=energy_rtol, k_range=k_range, wake=wake)
+                   viscosity=viscosity, rtol=rtol, energy_rtol=energy_rtol, k_range=k_range, wake=wake,
+                   normals=normals, convention=convention, caustics=caustics, other=other)
     if source is not None:
         from wavephys.core.inputs import check_array
 
