@@ -1,4 +1,4 @@
-"""``python -m bench {propagation,boundaries,optics,jacobian,ship,wake,render,surfaces,scale,calibrate,planner} [--json PATH] [--quick]``.
+"""``python -m bench {propagation,boundaries,optics,jacobian,ship,wake,harness,render,surfaces,scale,calibrate,planner} [--json PATH] [--quick]``.
 
 Each writes its rows as JSON and its charts as PNG next to it (default
 ``bench/results/``) and prints a table.
@@ -143,6 +143,21 @@ def run_wake(args) -> None:
     _write(rows, wake.figures(rows), Path(args.json or "bench/results/wake.json"))
 
 
+def run_harness(args) -> None:
+    from bench import harness
+
+    timing = harness.timing_rows(_say)
+    print(f"{'check':<16}{'record':<24}{'seconds':>9}  floor on a correct record")
+    for r in timing:
+        floor = (f"error {r['error']:.3g} (tolerance {r['tolerance']:.3g} {r['unit']})" if r["relation"] == "~=" else
+                 f"{r['measured']:.3g} {r['relation']} {r['expected']:.3g} {r['unit']}")
+        print(f"{r['check']:<16}{r['record']:<24}{r['seconds']:>9.3f}  {floor}")
+    sens = harness.sensitivity_rows((64,) if args.quick else (64, 256), _say)
+    for r in sens:
+        print(f"{r['check']:<16}{r['frames']:>5} frames: smallest fault seen {r['smallest']} ({r['fault']})")
+    _write(dict(timing=timing, sensitivity=sens), {}, Path(args.json or "bench/results/harness.json"))
+
+
 def run_render(args) -> None:
     from bench import render
 
@@ -266,6 +281,7 @@ def main(argv=None) -> int:
                             ("jacobian", run_jacobian, "jacobian caustics: error up to and past the first fold, cost"),
                             ("ship", run_ship, "moving hulls: kernels vs stones, FD wake, speed"),
                             ("wake", run_wake, "wake angles against Froude number: measured, theory, published law"),
+                            ("harness", run_harness, "every check of a record: time on 128^2 x 256, floor, smallest fault"),
                             ("render", run_render, "renderer: frame times, texture cost, GPU vs reference"),
                             ("surfaces", run_surfaces, "noise, Gerstner, choppy: cost per frame vs physics error"),
                             ("scale", run_scale, "sharded step: overhead, memory per device, bytes per step"),
