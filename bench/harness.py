@@ -35,7 +35,7 @@ def _records():
     full = c.fft_ocean(c.phillips_h0(N, DX, seed=1, cutoff=2 * DX), DX, DT, 8)
     packet = c.travelling_packet(N, 0.1, 1 / 30, FRAMES, 2 * math.pi / 0.8, 1.0)
     stone = c.spectral_model(c.gaussian_bump(N, 0.005, 0.01), 0.005, 1 / 240, FRAMES, sigma=0.0728)[0]
-    wake = c.steady_wake_engine(N, 0.0625, 1.0, 0.15)
+    wake = c.steady_wake_engine(2 * N, 0.0625, 1.0, 0.15)  # 16 m: arcs from 8 b = 5.3 m
     normals = c.normals_from_heights(full[0], DX)
     return dict(sea=Record.from_array(sea, DX, DT), packet=Record.from_array(packet, 0.1, 1 / 30),
                 stone=Record.from_array(stone, 0.005, 1 / 240),

@@ -2,6 +2,8 @@
 worked example (docs/harness.md), whose explanation of the failure is checked."""
 
 import re
+
+import numpy as np
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parents[2]
@@ -82,3 +84,48 @@ def test_readme_wake_and_step_examples_run_as_written(tmp_path, monkeypatch, cap
             assert (tmp_path / "wake.png").stat().st_size > 10_000
         else:
             assert namespace["etas"].shape == (4, 256, 256)
+
+
+def test_guide_folder_of_exr_example_and_command_run_as_written(tmp_path, monkeypatch, capsys):
+    """The guide's engine-style EXR export is checked as written (every row ok), and its command runs on it."""
+    import shlex
+
+    from wavephys.app.cli import main
+
+    guide = (ROOT / "docs" / "harness.md").read_text()
+    section = guide.split("## Check a folder of frames", 1)[1].split("\n## ", 1)[0]
+    monkeypatch.chdir(tmp_path)
+    namespace = {}
+    exec(compile(_python_blocks(section)[0], "docs/harness.md", "exec"), namespace)
+    report = namespace["report"]
+    assert report.ok and set(report.rows) == {"dispersion", "energy", "tiling", "quantization", "standing",
+                                              "direction"}, report.report()
+    assert capsys.readouterr().out.strip() == report.report()
+    (command,) = re.findall(r"```bash\n(wavephys check [^\n]*)\n```", section)
+    assert main(shlex.split(command)[1:]) == 0
+    assert (tmp_path / "checks.xml").is_file()
+
+
+def test_readme_frames_command_runs_as_written(tmp_path, monkeypatch, capsys):
+    """The README's `wavephys check` line on an engine's bare EXR frames (no metadata: dx and dt given)."""
+    import shlex
+    import sys
+
+    import OpenEXR
+
+    sys.path.insert(0, str(ROOT / "tests" / "harness"))
+    from corpus import fft_ocean, phillips_h0
+
+    from wavephys.app.cli import main
+
+    readme = (ROOT / "README.md").read_text()
+    section = readme.split("## Check exported frames", 1)[1].split("\n## ", 1)[0]
+    (command,) = re.findall(r"```bash\n(wavephys check [^\n]*)\n```", section)
+    monkeypatch.chdir(tmp_path)
+    (tmp_path / "export" / "frames").mkdir(parents=True)
+    sea = fft_ocean(phillips_h0(32, 0.05, speed=1.0, seed=4), 0.05, 1 / 60, 384)
+    for i, frame in enumerate(sea):
+        with OpenEXR.File({}, {"Y": np.flipud(frame).astype(np.float32)}) as f:
+            f.write(str(tmp_path / "export" / "frames" / f"h{i}.exr"))
+    assert main(shlex.split(command)[1:]) == 0, capsys.readouterr()
+    assert (tmp_path / "checks.xml").is_file()

@@ -35,7 +35,7 @@ _EXPORTS = {
     "Energy": "energy", "measure_energy": "energy",
     "WakeAngle": "wake", "wake_angle": "wake", "wake_angle_max": "wake", "wake_angle_cusp": "wake",
     "WAKE_ANGLE_METHODS": "wake", "track_wavelength": "wake", "wake_angle_darmon": "wake",
-    "darmon_angle_theory": "wake", "wake_check": "steady", "WAKE_ANGLES": "steady",
+    "darmon_angle_theory": "wake", "darmon_crests": "wake", "wake_check": "steady", "WAKE_ANGLES": "steady",
     "Check": "checks", "compare": "checks", "bound": "checks", "assert_check": "checks",
     "Record": "record", "Rate": "record", "time_derivative": "record",
     "Damping": "energy", "measure_damping": "energy", "energy_check": "energy",

@@ -36,7 +36,7 @@ from wavephys.physics.dispersion import group_speed, phase_speed
 from wavephys.physics.wake import CuspLine, GaussianPressure, cusp_line, wake_envelope
 
 __all__ = ["WakeAngle", "wake_angle", "wake_angle_max", "wake_angle_cusp", "wake_angle_darmon", "WAKE_ANGLE_METHODS",
-           "track_wavelength", "max_amplitude_angle_theory", "darmon_angle_theory"]
+           "track_wavelength", "max_amplitude_angle_theory", "darmon_angle_theory", "darmon_crests"]
 
 
 @dataclass(frozen=True)
@@ -682,6 +682,76 @@ def darmon_angle_theory(speed, source: GaussianPressure, *, radii, water: Water 
         return wake_surface(-behind, lateral, speed, source, water, damping).real
 
     return _darmon(sample, radii, span, step, tolerance, "darmon (linear theory)")
+
+
+
+def _crests(phi, height, fraction: float):
+    """|φ| (degrees) of the local maxima of |ζ| on both sides whose |ζ| is within ``fraction`` of that side's
+    largest (parabolic refinement)."""
+    zeta = np.abs(np.asarray(height, np.float64))
+    centre = phi.size // 2
+    out = []
+    for sel in (np.arange(centre, phi.size), np.arange(centre, -1, -1)):
+        a, p = zeta[sel], np.abs(np.degrees(phi[sel]))
+        top = a.max()
+        inner = np.nonzero((a[1:-1] >= a[:-2]) & (a[1:-1] >= a[2:]) & (a[1:-1] >= (1 - fraction) * top))[0] + 1
+        for i in inner:
+            den = a[i - 1] - 2 * a[i] + a[i + 1]
+            frac = 0.5 * (a[i - 1] - a[i + 1]) / den if den < 0 else 0.0
+            out.append(float(p[i] + frac * (p[1] - p[0])))
+        if a[0] >= (1 - fraction) * top and a[0] >= a[1]:  # on the track
+            out.append(0.0)
+    return tuple(sorted(out))
+
+
+def darmon_crests(speed, source: GaussianPressure, *, radii, water: Water = Water(sigma=0.0), fraction: float = 0.1,
+                  span: float = 40.0, step: float | None = None) -> tuple:
+    """On each arc behind a Gaussian source, the angles at which linear theory's |ζ| has a crest within
+    ``fraction`` of its largest: where Darmon et al.'s angle of maximum amplitude may land on a field whose
+    amplitudes differ from the integral's by up to that fraction (a grid's periodic images, the near field).
+
+    Parameters
+    ----------
+    speed : float
+        Source speed U, m/s, > 0.
+    source : GaussianPressure
+        The Gaussian pressure source.
+    radii : array_like (m,), keyword-only
+        Distances of the arcs behind the source, m, > 0, 1 to 64 of them.
+    water : Water, optional, keyword-only
+        The water (default gravity waves in deep water).
+    fraction : float, optional, keyword-only
+        How far below the largest |ζ| a crest may be, in [0, 0.5] (default 0.1).
+    span : float, optional, keyword-only
+        Largest polar angle searched, degrees, in [20, 80] (default 40).
+    step : float, optional, keyword-only
+        Spacing of the points along each arc, m, > 0 (default σ/8).
+
+    Returns
+    -------
+    tuple of tuple of float
+        Per arc, the crests' polar angles |φ|, degrees, both sides together, ascending.
+
+    Raises
+    ------
+    ValueError
+        When an argument is out of range.
+    """
+    from wavephys.physics.wake import wake_surface
+
+    check_scalar("speed", speed, lo=0.0, lo_open=True)
+    check_instance("source", source, GaussianPressure, "wavephys.physics.wake.GaussianPressure")
+    check_instance("water", water, Water, "wavephys.Water")
+    radii = _check_radii(radii, 1000 * 2 * math.pi * float(speed) ** 2 / float(water.g))
+    check_scalar("fraction", fraction, lo=0.0, hi=0.5)
+    check_scalar("span", span, lo=20.0, hi=80.0)
+    step = float(source.size) / 8 if step is None else step
+    check_scalar("step", step, lo=0.0, lo_open=True)
+    out = []
+    for r in radii:
+        phi, behind, lateral = _arc_points(float(r), math.radians(span), step)
+        out.append(_crests(phi, wake_surface(-behind, lateral, speed, source, water).real, fraction))
+    return tuple(out)
 
 
 WAKE_ANGLE_METHODS = Methods("wake angle", max=wake_angle_max, cusp=wake_angle_cusp, darmon=wake_angle_darmon)
