@@ -117,6 +117,7 @@ EXAMPLES = {
     "planes": lambda: 2, "itemsize": lambda: 8, "compiled_text": lambda: "%a = f32[4]{0} all-reduce(%b)",
     "fields": lambda: np.zeros((2, N, N), np.float32), "time": lambda: np.float32(0.0), "angle": lambda: 19.5, "time_error": lambda: 0.0, "fn": lambda: (lambda x: x), "damping": lambda: 0.05,
     "froude": lambda: 1.0, "lateral": lambda: np.linspace(-0.5, 0.5, 5), "sections": lambda: 8,
+    "direction": lambda: 0.0, "sigma": lambda: 0.0728,
 }
 
 def _plan_scene():
@@ -189,7 +190,96 @@ def _dispersion_record():
     return np.asarray(surf.eta)
 
 
+def _frames():
+    """A small travelling sea, 24 frames of 16² (dx 0.125 m, dt 0.05 s): a valid record for every check."""
+    k1 = 2 * np.pi * np.fft.fftfreq(N, 0.125)
+    kx, ky = np.meshgrid(k1, k1)
+    k = np.hypot(kx, ky)
+    spec = np.fft.fft2(np.random.default_rng(3).standard_normal((N, N))) * (kx > 0) * np.exp(-(k / 12.0) ** 2)
+    w = np.sqrt(9.81 * k)
+    return np.stack([1e-3 * np.fft.ifft2(spec * np.exp(-1j * w * i * 0.05)).real for i in range(24)])
+
+
+def _record():
+    from wavephys.harness import Record
+
+    return Record(_frames(), 0.125, 0.05)
+
+
+def _frames_folder():
+    from optics.rendering.textures import export_height_frames
+
+    out = TMP / "frames_valid"
+    if not out.exists():
+        export_height_frames(list(_frames()), 2.0, 0.05, out)
+    return out
+
+
+def _wake_frame():
+    from wavephys.physics.wake import steady_wake
+
+    return np.asarray(steady_wake(Grid(256, 16.0), Water(sigma=0.0), 1.0, GaussianPressure(100.0, 0.15), damping=0.1))
+
+
+def _normal_map():
+    h = _field(1e-2).astype(np.float64)
+    sx = (np.roll(h, -1, 1) - np.roll(h, 1, 1)) / 0.25
+    sy = (np.roll(h, -1, 0) - np.roll(h, 1, 0)) / 0.25
+    n = np.stack([-sx, -sy, np.ones_like(sx)], -1)
+    return h, n / np.linalg.norm(n, axis=-1, keepdims=True)
+
+
+_RECORD = {"record": _record}
+_HEIGHTS_AND_NORMALS = {}
+
+
+def _heights_normals(part):
+    def make():
+        if "pair" not in _HEIGHTS_AND_NORMALS:
+            _HEIGHTS_AND_NORMALS["pair"] = _normal_map()
+        return _HEIGHTS_AND_NORMALS["pair"][part]
+    return make
+
+
 OVERRIDES = {
+    # the harness's records and the checks on them
+    "wavephys.harness.record.Record": {"eta": _frames, "dx": lambda: 0.125, "dt": lambda: 0.05},
+    "wavephys.harness.record.time_derivative": {"eta": _frames, "dt": lambda: 0.05},
+    "wavephys.harness.travel.measure_travel": {"eta": _frames, "dx": lambda: 0.125, "dt": lambda: 0.05},
+    "wavephys.harness.energy.measure_damping": {**_RECORD, "water": lambda: Water(sigma=0.0)},
+    "wavephys.harness.energy.energy_check": {**_RECORD, "water": lambda: Water(sigma=0.0)},
+    "wavephys.harness.travel.standing_check": _RECORD,
+    "wavephys.harness.travel.direction_check": {**_RECORD, "direction": lambda: 0.0},
+    "wavephys.harness.packets.group_velocity_check": {**_RECORD, "water": lambda: Water(sigma=0.0)},
+    "wavephys.harness.packets.ring_arrival_check": {**_RECORD, "water": lambda: Water(sigma=0.0)},
+    "wavephys.harness.packets.minimum_group_speed": {"k_max": lambda: 100.0},
+    "wavephys.harness.suite.check_record": {**_RECORD, "water": lambda: Water(sigma=0.0)},
+    "wavephys.harness.maps.resolution_check": {"eta_a": _field, "dx_a": lambda: 0.125,
+                                               "eta_b": lambda: (1e-3 * RNG.standard_normal((2 * N, 2 * N))),
+                                               "dx_b": lambda: 0.0625},
+    "wavephys.harness.maps.normals_check": {"heights": _heights_normals(0), "normals": _heights_normals(1),
+                                            "dx": lambda: 0.125},
+    "wavephys.harness.maps.caustics_flux_check": {"irradiance": lambda: 1.0 + 0.1 * _field(1.0)},
+    "wavephys.harness.wake.wake_angle_darmon": {"eta": _wake_field, "radii": lambda: np.array([0.4, 0.8])},
+    "wavephys.harness.wake.darmon_angle_theory": {"source": lambda: GaussianPressure(50.0, 0.05),
+                                                  "radii": lambda: np.array([1.0, 2.0])},
+    "wavephys.harness.wake.darmon_crests": {"source": lambda: GaussianPressure(50.0, 0.05),
+                                            "radii": lambda: np.array([1.0, 2.0])},
+    "wavephys.harness.steady.wake_check": {"eta": _wake_frame, "dx": lambda: 0.0625, "near": lambda: 2.0,
+                                           "far": lambda: 7.0, "size": lambda: 0.15},
+    "wavephys.physics.wake.wake_surface": {"x": lambda: np.array([-1.0, -2.0]), "y": lambda: np.array([0.1, 0.2]),
+                                           "source": lambda: GaussianPressure(50.0, 0.05)},
+    "wavephys.app.pytest_plugin.Checker.record": {"frames": _frames, "dx": lambda: 0.125, "dt": lambda: 0.05,
+                                                  "only": lambda: ["tiling", "quantization"]},
+    "wavephys.harness.record.Record.save": {"path": lambda: TMP / "record.npz"},
+    "wavephys.app.pytest_plugin.Checker.wake_angle": {"eta": _wake_frame, "dx": lambda: 0.0625,
+                                                      "near": lambda: 2.0, "far": lambda: 7.0, "size": lambda: 0.15},
+    "wavephys.core.frames.read_exr": {"path": _exr},
+    "wavephys.core.frames.read_map": {"path": _exr},
+    "wavephys.core.frames.read_frames": {"source": _frames_folder},
+    "optics.rendering.textures.export_height_frames": {"heights": lambda: list(_frames()[:8]), "length": lambda: 2.0,
+                                                       "out_dir": lambda: TMP / "frames_out"},
+
     "wavephys.planner.scene.Scene": _SCENE_FIELDS,
     "wavephys.planner.scene.Scene.from_dict": {"data": lambda: _plan_scene().as_dict(), "name": lambda: "fuzz"},
     "wavephys.planner.scene.Scene.from_toml": {"path": _scene_toml},
@@ -344,6 +434,10 @@ SKIP = {
     "wavephys.planner.runner.Output",
     # result records, made by the library and returned (their fields are what was measured)
     "wavephys.harness.wake.WakeAngle", "wavephys.physics.wake.CuspLine", "wavephys.harness.energy.Energy",
+    "wavephys.harness.record.Rate", "wavephys.harness.energy.Damping", "wavephys.harness.travel.Travel",
+    "wavephys.core.frames.Frames", "wavephys.harness.suite.RecordReport",
+    # a registry entry (name, words, claims, runner): the library's own table, not user input
+    "wavephys.harness.suite.RecordCheck",
     "wavephys.harness.dispersion.DispersionSamples", "wavephys.physics.stokes.StokesWave",
     "wavephys.simulation.model.Operators", "wavephys.simulation.sources.Source",
     # a matplotlib Figure: its methods are matplotlib's
@@ -392,15 +486,22 @@ SHAPE_FREE = {
     ("optics.rendering.scene.Scene", "ground"), ("optics.rendering.scene.Scene", "water"),
     ("optics.rendering.scene.texture_sample", "field"),
     ("optics.rendering.renderer.to_srgb8", "image"),
+    # a record's frames may be rectangular (n_y != n_x), the same dx along both axes
+    ("wavephys.harness.record.Record", "eta"), ("wavephys.harness.record.time_derivative", "eta"),
+    ("wavephys.harness.travel.measure_travel", "eta"), ("wavephys.harness.maps.tiling_check", "field"),
+    ("wavephys.harness.maps.quantization_check", "eta"),
 }
 RANGE_FREE = {("wavephys.physics.wake.GaussianPressure", "amplitude"),  # signed by nature
               ("wavephys.surfaces.choppy.foam", "threshold"),  # a Jacobian level: 0 (folds only) is valid
               ("wavephys.surfaces.choppy.foam_fraction_estimate", "threshold"),
               ("wavephys.surfaces.gerstner.GerstnerWaves", "steepness"),  # Q = 0: a plain sum of cosines
-              ("wavephys.harness.checks.Check", "tolerance")}  # 0 for bound rows
+              ("wavephys.harness.checks.Check", "tolerance"),  # 0 for bound rows
+              ("wavephys.harness.packets.ring_arrival_check", "radius"),  # 0: a point disturbance
+              ("wavephys.harness.suite.check_record", "radius")}
 INF_OK = {"depth", "limit", "expected", "measured"}
 NAN_OK = {"measured"}
-FREE_TEXT = {("optics.rendering.renderer.Renderer.texture", "name"),  # any slot name is valid
+FREE_TEXT = {("wavephys.core.frames.read_map", "name"),  # the caller's argument name, for messages
+             ("optics.rendering.renderer.Renderer.texture", "name"),  # any slot name is valid
              ("wavephys.planner.scene.Scene", "name"), ("wavephys.planner.scene.Scene.from_dict", "name")}
 # results that hold NaN by design, for huge but valid inputs (documented in the function)
 NAN_RESULT_OK = {"wavephys.models.finite_difference.fd_angular_frequency"}  # no real ω where unstable  # a Check row whose measurement gave NaN is a failed row, by design
@@ -418,6 +519,7 @@ _INSTANCES = {}
 def instance(cls):
     """A valid instance of a public class, to call its methods on (cached per class)."""
     from optics.rendering import Renderer
+    from wavephys.harness import Record
 
     if cls not in _INSTANCES:
         makers = {Grid: _grid, Water: Water, Model: _model, Simulation: lambda: Simulation(_grid(), Water(), dt=0.05),
@@ -427,7 +529,7 @@ def instance(cls):
                   WindSea: lambda: WindSea(jax.random.PRNGKey(0), "phillips", dict(wind_speed=5.0)),
                   Forcing: lambda: Forcing(EXAMPLES["pressure"]()),
                   HullSource: lambda: HullSource(Hull("gaussian", 0.3, 0.15)),
-                  DispersionSamples: EXAMPLES["samples"], Check: EXAMPLES["check"],
+                  DispersionSamples: EXAMPLES["samples"], Check: EXAMPLES["check"], Record: _record,
                   GerstnerWaves: lambda: GerstnerWaves(EXAMPLES["wavevectors"](), EXAMPLES["amplitudes"]())}
         from wavephys import planner as pl
 

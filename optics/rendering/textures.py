@@ -694,6 +694,10 @@ def export_height_frames(heights, length: float, dt: float, out_dir, *, start: f
     check_bool("half", half)
     if not isinstance(prefix, str) or not re.fullmatch(r"[A-Za-z0-9_-]+", prefix):
         raise ValueError(f"prefix must be letters, digits, _ and - only, got {prefix!r}")
+    if isinstance(heights, (str, bytes)) or not hasattr(heights, "__iter__"):
+        raise TypeError(f"heights must be an iterable of (n, n) height arrays, got {type(heights).__name__}")
+    if hasattr(heights, "__len__") and len(heights) == 0:
+        raise ValueError("heights holds no frames")
     out = output_folder(out_dir, "out_dir")
     paths, shape = [], None
     for i, frame in enumerate(heights):
@@ -707,4 +711,6 @@ def export_height_frames(heights, length: float, dt: float, out_dir, *, start: f
             units="m", quantity="water height", length=float(length), dx=float(length) / h.shape[0],
             dt=float(dt), time=float(start + i * dt), frame=i, grid=GRID_CONVENTION,
             precision="half" if half else "float")))
+    if not paths:
+        raise ValueError("heights holds no frames")
     return paths

@@ -4,6 +4,8 @@ from __future__ import annotations
 
 import xml.etree.ElementTree as ET
 
+__internal__ = True  # the command's JUnit writer: used through `wavephys check --junit`, not fuzzed as public API
+
 __all__ = ["junit_xml"]
 
 

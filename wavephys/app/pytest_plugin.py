@@ -236,14 +236,26 @@ class Checker:
         from wavephys.harness.record import Record
         from wavephys.harness.suite import check_record
 
-        if isinstance(frames, Record):
-            record = frames
-        elif isinstance(frames, (str, os.PathLike, list, tuple)) and not _is_numeric(frames):
-            record = Record.from_files(frames, dx=dx, dt=dt)
-        else:
-            if dx is None or dt is None:
-                raise ValueError("dx and dt: heights given as an array need dx (m) and dt (s)")
-            record = Record.from_array(frames, dx, dt, axes=axes)
+        from wavephys.core.inputs import check_instance
+        from wavephys.core.water import Water
+
+        if water is not None:
+            check_instance("water", water, Water, "wavephys.Water")
+        try:
+            if isinstance(frames, Record):
+                record = frames
+            elif isinstance(frames, (str, os.PathLike, list, tuple)) and not _is_numeric(frames):
+                record = Record.from_files(frames, dx=dx, dt=dt)
+            else:
+                if dx is None or dt is None:
+                    raise ValueError("dx and dt: heights given as an array need dx (m) and dt (s)")
+                record = Record.from_array(frames, dx, dt, axes=axes)
+        except (TypeError, ValueError) as exc:
+            import re
+
+            if re.match(r"(dx|dt|axes|channel)\b", str(exc)):
+                raise
+            raise type(exc)(f"frames: {exc}") from None
         report = check_record(record, water, only=only, **claims)
         if not report.ok:
             raise AssertionError(report.report())

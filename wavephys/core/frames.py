@@ -398,6 +398,10 @@ def read_map(path, *, name: str = "path", channels: int | None = None) -> np.nda
     ValueError
         When the file is missing or unreadable, holds another number of channels, or a non-finite value.
     """
+    if not isinstance(name, str) or not name:
+        raise TypeError(f"name must be a non-empty string (the argument's name for messages), got {describe(name)}")
+    if channels is not None and (not isinstance(channels, int) or isinstance(channels, bool) or channels not in (1, 3)):
+        raise ValueError(f"channels must be 1 (a scalar map), 3 (a vector map) or None, got {channels!r}")
     p = _path(name, path)
     if not p.is_file():
         raise ValueError(f"{name}: {str(p)!r} is not a file")

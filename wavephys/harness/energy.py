@@ -266,6 +266,9 @@ def energy_check(record, water: Water, *, rtol: float = 0.01, viscosity: float =
     drift = d.drift
     if viscosity > 0 and d.k.size:
         expected = float(np.sum(d.share * np.exp(-4 * viscosity * d.k**2 * record.duration)))
+        if not expected > 1e-12:
+            raise ValueError(f"viscosity {viscosity!r} m^2/s would decay the energy by more than 1e12 over the "
+                             f"record ({record.duration:.4g} s): no wave energy would be left to check")
         drift = (1 + d.drift) / expected - 1
     how = ("eta_dot given" if d.rate_method == "given" else
            f"eta_dot from frames by {d.rate_method}, error {d.rate_error:.2g}")

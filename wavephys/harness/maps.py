@@ -158,6 +158,10 @@ def normals_check(heights, normals, dx: float, *, convention: str = "auto", pack
 
     check_array("heights", heights, ndim=2)
     h = np.asarray(heights, np.float64)
+    if np.shape(normals)[:2] != h.shape or np.ndim(normals) != 3:
+        check_array("normals", normals, ndim=3)
+        raise ValueError(f"normals must be (n_y, n_x, 3) over the texels of heights {h.shape}, got shape "
+                         f"{np.shape(normals)}")
     check_array("normals", normals, ndim=3, shape_tail=h.shape + (3,))
     check_scalar("dx", dx, lo=0.0, lo_open=True)
     check_choice("convention", convention, NORMAL_CONVENTIONS)
@@ -257,7 +261,7 @@ def resolution_check(eta_a, dx_a: float, eta_b, dx_b: float, *, rtol: float = 0.
     k_lo = 2 * math.pi / min(length_a, length_b)
     k_hi = 0.5 * math.pi / max(dx_a, dx_b)  # half the coarser Nyquist: both resolve it well
     if k_hi <= 2 * k_lo:
-        raise ValueError(f"eta_a, eta_b: the two records share less than an octave of wavenumbers "
+        raise ValueError(f"eta_a, eta_b (dx_a, dx_b): the two records share less than an octave of wavenumbers "
                          f"({k_lo:.4g}..{k_hi:.4g} rad/m)")
     edges = k_lo * 2.0 ** np.arange(0, math.floor(math.log2(k_hi / k_lo)) + 1)
     va, ma = _band_variance(a, dx_a, edges)

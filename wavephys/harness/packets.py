@@ -54,7 +54,9 @@ def minimum_group_speed(water: Water, k_max: float, k_min: float = 0.0) -> float
         min c_g over the band, m/s.
     """
     check_instance("water", water, Water, "wavephys.Water")
-    check_scalar("k_max", k_max, lo=0.0, lo_open=True)
+    from wavephys.physics.dispersion import K_MAX
+
+    check_scalar("k_max", k_max, lo=0.0, hi=K_MAX, lo_open=True)
     check_scalar("k_min", k_min, lo=0.0, hi=k_max)
     k = np.geomspace(max(k_min, k_max * 1e-4), k_max, 4096)
     return float(_group_speed(k, water).min())

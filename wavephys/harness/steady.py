@@ -143,6 +143,13 @@ def wake_check(eta, dx: float, *, speed: float, water: Optional[Water] = None, s
     check_choice("angle", angle, WAKE_ANGLES)
     check_scalar("atol", atol, lo=0.0, lo_open=True)
     check_scalar("rtol", rtol, lo=0.0)
+    if size is not None:
+        check_scalar("size", size, lo=0.0, lo_open=True)
+    if radii is not None:
+        check_array("radii", radii, ndim=1, lo=0.0, lo_open=True)
+    for name, value in (("near", near), ("far", far)):
+        if value is not None:
+            check_scalar(name, value, lo=0.0, lo_open=True)
     grid = Grid(eta.shape[0], eta.shape[0] * float(dx))
     length = float(grid.length)
     heading = math.radians(direction)
@@ -151,6 +158,10 @@ def wake_check(eta, dx: float, *, speed: float, water: Optional[Water] = None, s
         far = 3 * length / 8 if far is None else far
         cusp = cusp_line(speed, water)
         expected = float(cusp.angle)
+        if cusp.wavenumber >= math.pi / float(dx):
+            raise ValueError(f"dx: {dx!r} m does not resolve the wake's cusp waves (k_c = {cusp.wavenumber:.4g} "
+                             f"rad/m, 2 pi/k_c = {2 * math.pi / cusp.wavenumber:.4g} m; the grid holds k < pi/dx = "
+                             f"{math.pi / float(dx):.4g} rad/m)")
         try:
             m = wake_angle_cusp(eta, grid, source=tuple(source), direction=heading, near=near, far=far,
                                 speed=speed, water=water)

@@ -14,7 +14,9 @@ import time
 from dataclasses import dataclass, field
 from typing import Callable, Optional
 
-from wavephys.core.inputs import check_bool, check_instance, check_scalar, describe
+import numpy as np
+
+from wavephys.core.inputs import check_array, check_bool, check_choice, check_instance, check_scalar, describe
 from wavephys.core.water import Water
 
 __all__ = ["RecordCheck", "RECORD_CHECKS", "RecordReport", "check_record", "CLAIMS"]
@@ -211,7 +213,7 @@ def _wanted(only, options) -> tuple[list, dict]:
         skipped = {n: "needs " + ", ".join(flags[x] for x in c.needs) for n, c in RECORD_CHECKS.items()
                    if n not in names}
         return names, skipped
-    if isinstance(only, str) or not all(isinstance(n, str) for n in only):
+    if not isinstance(only, (list, tuple)) or not all(isinstance(n, str) for n in only):
         raise TypeError(f"only must be a list of check names, got {describe(only)}")
     unknown = [n for n in only if n not in RECORD_CHECKS]
     if unknown:
@@ -294,6 +296,8 @@ def check_record(record, water: Optional[Water] = None, *, only=None, direction:
     from wavephys.harness.record import Record
 
     check_instance("record", record, Record, "wavephys.harness.Record")
+    if water is not None:
+        check_instance("water", water, Water, "wavephys.Water")
     water = record.water(water)
     check_bool("sea", sea)
     check_bool("packet", packet)
@@ -319,12 +323,18 @@ def check_record(record, water: Optional[Water] = None, *, only=None, direction:
         check_scalar("wake['direction']", wake.get("direction", 0.0), lo=-360.0, hi=360.0)
     if other is not None:
         check_instance("other", other, Record, "wavephys.harness.Record")
+    check_choice("convention", convention, ("auto", "opengl", "directx"))
+    if caustics is not None:
+        check_array("caustics", caustics, lo=0.0)
+        if np.ndim(caustics) not in (2, 3):
+            raise ValueError(f"caustics must be a map (n_y, n_x) or maps (n_t, n_y, n_x), got shape "
+                             f"{np.shape(caustics)}")
+    if normals is not None:
+        check_array("normals", normals, ndim=3)
     options = dict(direction=direction, sea=sea, packet=packet, source=source, t0=t0, radius=radius,
                    viscosity=viscosity, rtol=rtol, energy_rtol=energy_rtol, k_range=k_range, wake=wake,
                    normals=normals, convention=convention, caustics=caustics, other=other)
     if source is not None:
-        from wavephys.core.inputs import check_array
-
         check_array("source", source, ndim=1, shape_tail=(2,))
     names, skipped = _wanted(only, options)
     rows, seconds = {}, {}

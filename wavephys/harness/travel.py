@@ -154,7 +154,7 @@ def _locking(spec, power, i_neg, i_pos, keep, w, nt, dt):
     weight = w * np.minimum(1.0, 2 * np.sqrt(np.abs(a_pos) ** 2 * np.abs(a_neg) ** 2) /
                             np.maximum(np.abs(a_pos) ** 2 + np.abs(a_neg) ** 2, 1e-300))
     span = 4 * nt * dt
-    step = math.pi / (8 * max(float(omega.max()), 1e-12))
+    step = math.pi / (8 * max(float(omega.max()), 2 * math.pi / (nt * dt)))  # at least one bin's frequency
     taus = np.arange(-span, span + step, step)
     best, best_tau = 0.0, 0.0
     for chunk in np.array_split(taus, max(1, taus.size * cols.size // 2_000_000)):
