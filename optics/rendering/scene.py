@@ -384,8 +384,9 @@ class Scene:
             if a.ndim != 3 or a.shape[2] != 3:
                 raise ValueError(f"albedo must have shape (ny, nx, 3), got {a.shape}")
             _height("albedo", a[..., 0])
-            if not np.isfinite(a).all() or (a < 0).any():
-                raise ValueError("albedo must be finite and ≥ 0")
+            if not np.isfinite(a).all() or (a < 0).any() or (a > 1).any():
+                raise ValueError(f"albedo must be a reflectance in [0, 1], got values in [{a.min():.3g}, "
+                                 f"{a.max():.3g}]")
             set_("albedo", a)
         if self.caustics is not None:
             c = _height("caustics", self.caustics)

@@ -10,6 +10,7 @@ curvature): 8 bits make visible stair steps, 16 bits normalized do not (docs/phy
 from __future__ import annotations
 
 import json
+import math
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -26,6 +27,10 @@ __all__ = ["save_exr", "load_exr", "save_vector_displacement", "EncodedHeight", 
            "fresnel_texture", "absorption_texture", "save_height_png", "save_npz", "load_npz", "export_scene", "export_height_frames"]
 
 BITS = (8, 16, 32)
+HALF_MAX = 65504.0
+"""The largest finite 16-bit float: ``save_exr(..., half=True)`` refuses larger magnitudes (not written as inf)."""
+MAX_EXR_NAME = 255
+"""The longest channel or attribute name OpenEXR stores (a longer one would be cut)."""
 GRID_CONVENTION = ("cell-centred: texel (row i, column j) of an n x n texture over a square of side L is "
                    "centred at x = -L/2 + (j + 1/2) L/n, y = -L/2 + (i + 1/2) L/n; array row 0 is the lowest y, "
                    "so the top row of a PNG or EXR image (rows flipped on writing) is the highest y")
@@ -343,7 +348,14 @@ def save_exr(path, channels: dict, *, half: bool = False, attributes: dict | Non
     for name, value in channels.items():
         if not isinstance(name, str) or not name:
             raise TypeError(f"channels: names must be non-empty strings, got {name!r}")
-        check_array(f"channels[{name!r}]", value, ndim=2)
+        if len(name) > MAX_EXR_NAME or not name.isprintable():
+            raise ValueError(f"channels: a channel name must be 1-{MAX_EXR_NAME} printable characters (OpenEXR "
+                             f"would cut a longer one), got one of {len(name)}")
+        check_array(f"channels[{name[:40]!r}]", value, ndim=2)
+        if half and np.max(np.abs(np.asarray(value, np.float64))) > HALF_MAX:
+            raise ValueError(f"channels[{name!r}]: values up to {np.max(np.abs(np.asarray(value, np.float64))):.4g} "
+                             f"do not fit 16-bit floats (largest {HALF_MAX:g}; they would be written as inf): "
+                             f"write 32-bit floats (half=False) or rescale")
         shapes.add(np.shape(value))
     if len(shapes) != 1:
         raise ValueError(f"channels must all have one shape, got {sorted(shapes)}")
@@ -353,6 +365,11 @@ def save_exr(path, channels: dict, *, half: bool = False, attributes: dict | Non
     for key, value in (attributes or {}).items():
         if not isinstance(key, str) or key in header or not isinstance(value, (str, int, float)) or isinstance(value, bool):
             raise TypeError(f"attributes[{key!r}] must be a str, int or float under a new name, got {value!r}")
+        if not key or len(key) > MAX_EXR_NAME or not key.isprintable():
+            raise ValueError(f"attributes: a name must be 1-{MAX_EXR_NAME} printable characters (OpenEXR would cut a "
+                             f"longer one), got one of {len(key)}")
+        if isinstance(value, float) and not math.isfinite(value):
+            raise ValueError(f"attributes[{key!r}] must be finite, got {value!r}")
         header[key] = value
     dtype = np.float16 if half else np.float32
     pixels = {name: np.ascontiguousarray(np.flipud(np.asarray(v, np.float64)).astype(dtype)) for name, v in channels.items()}

@@ -191,7 +191,7 @@ def test_wake_angle_bad_input(kw, name):
 def test_cusp_needs_the_speed():
     with pytest.raises(TypeError, match="speed"):
         wake_angle(np.zeros((64, 64)), Grid(64, 8.0), method="cusp", near=1.0, far=3.0)
-    assert set(WAKE_ANGLE_METHODS) == {"max", "cusp"}
+    assert set(WAKE_ANGLE_METHODS) == {"max", "cusp", "darmon"}
 
 
 def test_unresolved_cusp_waves():

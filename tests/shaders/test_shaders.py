@@ -121,7 +121,7 @@ def test_command_usage_errors(shaders, tmp_path, capsys):
     assert "does not compile" in err and "0:2(" in err  # the driver's message with the user's line number
     for argv, words in [
         (["check", "--glsl", str(tmp_path / "missing.glsl"), "--function", "f", "--against", "fresnel"], "no file"),
-        (["check", "--function", "f", "--against", "fresnel"], "give --glsl"),
+        (["check", "--function", "f", "--against", "fresnel"], "or --glsl FILE, --function NAME"),
         (["check", "--glsl", str(src), "--function", "f", "--against", "fresnel", "--option", "nonsense"],
          "KEY=VALUE"),
         (["check", "--glsl", str(src), "--function", "f", "--against", "colour"], "against must be one of"),

@@ -127,9 +127,6 @@ def wake_check(eta, dx: float, *, speed: float, water: Optional[Water] = None, s
     >>> wake_check(np.asarray(eta), 16.0 / 256, speed=1.0, near=2.0, far=7.0).ok
     True
     """
-    from wavephys.harness.wake import darmon_angle_theory, darmon_crests, wake_angle_cusp, wake_angle_darmon
-    from wavephys.physics.wake import GaussianPressure, cusp_line, froude_number
-
     check_array("eta", eta, ndim=2)
     eta = np.asarray(eta, np.float64)
     if eta.shape[0] != eta.shape[1]:
@@ -151,70 +148,87 @@ def wake_check(eta, dx: float, *, speed: float, water: Optional[Water] = None, s
         if value is not None:
             check_scalar(name, value, lo=0.0, lo_open=True)
     grid = Grid(eta.shape[0], eta.shape[0] * float(dx))
-    length = float(grid.length)
-    heading = math.radians(direction)
     if angle == "edge":
-        near = length / 8 if near is None else near
-        far = 3 * length / 8 if far is None else far
-        cusp = cusp_line(speed, water)
-        expected = float(cusp.angle)
-        if cusp.wavenumber >= math.pi / float(dx):
-            raise ValueError(f"dx: {dx!r} m does not resolve the wake's cusp waves (k_c = {cusp.wavenumber:.4g} "
-                             f"rad/m, 2 pi/k_c = {2 * math.pi / cusp.wavenumber:.4g} m; the grid holds k < pi/dx = "
-                             f"{math.pi / float(dx):.4g} rad/m)")
-        try:
-            m = wake_angle_cusp(eta, grid, source=tuple(source), direction=heading, near=near, far=far,
-                                speed=speed, water=water)
-        except ValueError as exc:
-            if "too few sections" not in str(exc):
-                raise
-            m = None
-        measured = math.nan if m is None else m.angle
-        note = (f"outer edge (cusp line) {near:.4g}-{far:.4g} m behind the source"
-                + ("" if m is None else f", measured ± {m.uncertainty:.2f}°"))
-        quantity = f"wake outer edge, U = {speed:g} m/s"
-    else:
-        if size is None:
-            raise ValueError("size: the angle of maximum amplitude needs the source's size σ (m) to give theory's "
-                             "value (it depends on the Froude number); or check angle='edge'")
-        check_scalar("size", size, lo=0.0, lo_open=True)
-        b = math.pi * math.sqrt(2) * float(size)
-        nearest = NEAREST_ARC * b
-        if radii is None:
-            if nearest > 0.45 * length:
-                raise ValueError(f"eta: the grid ({length:.4g} m) is too small to check this source's angle of maximum "
-                                 f"amplitude: its arcs must lie {NEAREST_ARC:g} b = {nearest:.4g} m or more behind the "
-                                 f"source (b = pi sqrt(2) sigma = {b:.4g} m) and within 0.45 L = {0.45 * length:.4g} m")
-            radii = np.linspace(nearest, 0.45 * length, 3)
-        check_array("radii", radii, ndim=1)
-        if np.min(radii) < nearest * (1 - 1e-9):
-            raise ValueError(f"radii: the angle of maximum amplitude is compared with theory from {NEAREST_ARC:g} b = "
-                             f"{nearest:.4g} m behind the source (b = pi sqrt(2) sigma); nearer, the source's local "
-                             f"field and a small grid's images move it; got {float(np.min(radii)):.4g} m")
-        m = wake_angle_darmon(eta, grid, source=tuple(source), direction=heading, radii=radii)
-        gaussian = GaussianPressure(1.0, float(size))
-        t = darmon_angle_theory(speed, gaussian, radii=radii, water=water)
-        crests = darmon_crests(speed, gaussian, radii=radii, water=water, fraction=CREST_FRACTION)
-        # per arc: how far the measured angle is from the nearest crest theory rates within 10 % of its largest
-        off = [min(abs(a - c) for c in cs) if cs else math.inf for a, cs in zip(m.angles, crests)]
-        tolerance = max(atol, rtol * abs(t.angle))
-        fr = froude_number(speed, size, water)
-        each = "; ".join(f"{r:.4g} m: {a:.2f}° (theory {e:.2f}°, crests within 10 %: "
-                         f"{', '.join(dict.fromkeys(f'{c:.1f}' for c in cs))})" for r, a, e, cs in zip(m.radii, m.angles, t.angles,
-                                                                                         crests))
-        note = f"Fr = {fr:.3g}, arcs behind the source (Darmon et al.'s definition): {each}"
-        quantity = (f"wake angle of maximum amplitude, U = {speed:g} m/s, Fr = {fr:.3g}: worst distance from "
-                    f"theory's near-largest crests")
-        row = bound(quantity, max(off), tolerance, unit="deg", note=note)
-        if row.ok:
-            return row
-        cause = ("the source's size or speed is not what was claimed (the angle follows Fr = U/sqrt(g b), "
-                 "b = pi sqrt(2) sigma: near 0 below Fr ~ 0.35, about Kelvin's 19.5 deg for Fr 0.4-0.8, "
-                 "~ 0.2243/Fr rad above), or the short diverging waves are damped (smoothing, a coarse grid)")
-        return bound(quantity, max(off), tolerance, unit="deg", note=f"{note}; likely cause: {cause}")
+        return _edge_row(eta, grid, speed, water, tuple(source), math.radians(direction), near, far, atol, rtol)
+    if size is None:
+        raise ValueError("size: the angle of maximum amplitude needs the source's size σ (m) to give theory's "
+                         "value (it depends on the Froude number); or check angle='edge'")
+    return _max_row(eta, grid, speed, water, tuple(source), math.radians(direction), float(size), radii, atol, rtol)
+
+
+def _edge_row(eta, grid: Grid, speed, water, source, heading, near, far, atol, rtol):
+    """The outer edge against the cusp line (:func:`wake_check`, ``angle="edge"``)."""
+    from wavephys.harness.wake import wake_angle_cusp
+    from wavephys.physics.wake import cusp_line
+
+    length, dx = float(grid.length), float(grid.dx)
+    near = length / 8 if near is None else near
+    far = 3 * length / 8 if far is None else far
+    cusp = cusp_line(speed, water)
+    expected = float(cusp.angle)
+    if cusp.wavenumber >= math.pi / dx:
+        raise ValueError(f"dx: {dx!r} m does not resolve the wake's cusp waves (k_c = {cusp.wavenumber:.4g} "
+                         f"rad/m, 2 pi/k_c = {2 * math.pi / cusp.wavenumber:.4g} m; the grid holds k < pi/dx = "
+                         f"{math.pi / dx:.4g} rad/m)")
+    try:
+        m = wake_angle_cusp(eta, grid, source=source, direction=heading, near=near, far=far, speed=speed, water=water)
+    except ValueError as exc:
+        if "too few sections" not in str(exc):
+            raise
+        m = None
+    measured = math.nan if m is None else m.angle
+    note = (f"outer edge (cusp line) {near:.4g}-{far:.4g} m behind the source"
+            + ("" if m is None else f", measured ± {m.uncertainty:.2f}°"))
+    quantity = f"wake outer edge, U = {speed:g} m/s"
     tolerance = max(atol, rtol * abs(expected))
     row = compare(quantity, measured, expected, atol=tolerance, unit="deg", note=note)
     if row.ok:
         return row
     cause = _cause_edge(measured, expected, speed, water)
     return compare(quantity, measured, expected, atol=tolerance, unit="deg", note=f"{note}; likely cause: {cause}")
+
+
+def _default_radii(size: float, length: float, radii):
+    """The arcs of the maximum-amplitude check: from :data:`NEAREST_ARC` b to 0.45 L, or the given ones checked."""
+    b = math.pi * math.sqrt(2) * size
+    nearest = NEAREST_ARC * b
+    if radii is None:
+        if nearest > 0.45 * length:
+            raise ValueError(f"eta: the grid ({length:.4g} m) is too small to check this source's angle of maximum "
+                             f"amplitude: its arcs must lie {NEAREST_ARC:g} b = {nearest:.4g} m or more behind the "
+                             f"source (b = pi sqrt(2) sigma = {b:.4g} m) and within 0.45 L = {0.45 * length:.4g} m")
+        return np.linspace(nearest, 0.45 * length, 3)
+    if np.min(radii) < nearest * (1 - 1e-9):
+        raise ValueError(f"radii: the angle of maximum amplitude is compared with theory from {NEAREST_ARC:g} b = "
+                         f"{nearest:.4g} m behind the source (b = pi sqrt(2) sigma); nearer, the source's local "
+                         f"field and a small grid's images move it; got {float(np.min(radii)):.4g} m")
+    return radii
+
+
+def _max_row(eta, grid: Grid, speed, water, source, heading, size, radii, atol, rtol):
+    """The angle of maximum amplitude on arcs against theory's crests (:func:`wake_check`, ``angle="max"``)."""
+    from wavephys.harness.wake import darmon_angle_theory, darmon_crests, wake_angle_darmon
+    from wavephys.physics.wake import GaussianPressure, froude_number
+
+    radii = _default_radii(size, float(grid.length), radii)
+    m = wake_angle_darmon(eta, grid, source=source, direction=heading, radii=radii)
+    gaussian = GaussianPressure(1.0, size)
+    t = darmon_angle_theory(speed, gaussian, radii=radii, water=water)
+    crests = darmon_crests(speed, gaussian, radii=radii, water=water, fraction=CREST_FRACTION)
+    # per arc: how far the measured angle is from the nearest crest theory rates within 10 % of its largest
+    off = [min(abs(a - c) for c in cs) if cs else math.inf for a, cs in zip(m.angles, crests)]
+    tolerance = max(atol, rtol * abs(t.angle))
+    fr = froude_number(speed, size, water)
+    each = "; ".join(f"{r:.4g} m: {a:.2f}° (theory {e:.2f}°, crests within 10 %: "
+                     f"{', '.join(dict.fromkeys(f'{c:.1f}' for c in cs))})"
+                     for r, a, e, cs in zip(m.radii, m.angles, t.angles, crests))
+    note = f"Fr = {fr:.3g}, arcs behind the source (Darmon et al.'s definition): {each}"
+    quantity = (f"wake angle of maximum amplitude, U = {speed:g} m/s, Fr = {fr:.3g}: worst distance from "
+                f"theory's near-largest crests")
+    row = bound(quantity, max(off), tolerance, unit="deg", note=note)
+    if row.ok:
+        return row
+    cause = ("the source's size or speed is not what was claimed (the angle follows Fr = U/sqrt(g b), "
+             "b = pi sqrt(2) sigma: near 0 below Fr ~ 0.35, about Kelvin's 19.5 deg for Fr 0.4-0.8, "
+             "~ 0.2243/Fr rad above), or the short diverging waves are damped (smoothing, a coarse grid)")
+    return bound(quantity, max(off), tolerance, unit="deg", note=f"{note}; likely cause: {cause}")

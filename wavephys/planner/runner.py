@@ -18,7 +18,7 @@ import jax.numpy as jnp
 import numpy as np
 
 from wavephys.core.grid import Grid
-from wavephys.core.inputs import check_instance
+from wavephys.core.inputs import check_array, check_instance, check_scalar
 from wavephys.planner.model import SceneModel, interior, texel_shift_phase
 from wavephys.planner.scene import Scene
 
@@ -48,6 +48,15 @@ class Output:
     image: np.ndarray
     seconds: float
     shade_seconds: float
+
+    def __post_init__(self):
+        # a run whose heights or image went non-finite (a blown-up model) is refused here, never compared
+        check_array("heights", self.heights, ndim=3)
+        check_array("image", self.image, ndim=3, lo=0.0, hi=1.0)
+        if np.shape(self.image)[-1] != 3:
+            raise ValueError(f"image must be RGB (n, n, 3), got shape {np.shape(self.image)}")
+        check_scalar("seconds", self.seconds, lo=0.0)
+        check_scalar("shade_seconds", self.shade_seconds, lo=0.0)
 
 
 def _initial_state(model: SceneModel):

@@ -167,7 +167,8 @@ def fold_choppiness(height, grid: Grid) -> float:
     Returns
     -------
     float
-        λ, dimensionless; ``inf`` if no λ ≤ :data:`MAX_CHOPPINESS` folds it.
+        λ, dimensionless; ``inf`` means the surface never folds: no λ ≤ :data:`MAX_CHOPPINESS` folds it
+        (a flat or nearly flat sea).
 
     References
     ----------

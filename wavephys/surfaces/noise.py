@@ -295,7 +295,7 @@ def _octave(x, y, t, i, frequency, seed, period, basis, animation, evolution, ti
     return (1 - a) * r0 + a * r1
 
 
-_FBM_SPECS = dict(x=_POINTS, y=_POINTS, t=Maybe(Real()), octaves=Int(lo=1, hi=MAX_OCTAVES), hurst=Real(lo=0.0, hi=4.0),
+_FBM_SPECS = dict(x=_POINTS, y=_POINTS, t=Maybe(Real()), octaves=Int(lo=1, hi=MAX_OCTAVES), hurst=Real(lo=0.0, hi=4.0, lo_open=True),
                   frequency=Real(lo=0.0, lo_open=True, hi=1e6), amplitude=Real(lo=0.0, lo_open=True, hi=1e6), seed=_SEED,
                   basis=Choice(_BASES), animation=Choice(_ANIMATIONS), evolution=Real(lo=0.0, hi=1e6),
                   time_exponent=Real(lo=0.0, hi=2.0), tile=Maybe(Real(lo=0.0, lo_open=True, hi=1e7)),
@@ -317,7 +317,7 @@ def fbm(x, y, t=None, *, octaves: int = 2, hurst: float = 1.0, frequency: float 
     octaves : int
         Number of octaves O, 1–24 (S&W use two).
     hurst : float
-        H in 0–4: octave i weighs 2^{−H·i}. The height spectrum falls as k^{−(2H+2)}
+        H in (0, 4] (H = 0 weighs every octave alike: no fBm): octave i weighs 2^{−H·i}. The height spectrum falls as k^{−(2H+2)}
         (:func:`fbm_spectrum_slope`); H = 1 matches a wind sea's k⁻⁴ tail.
     frequency : float
         f₀, lattice cells per metre of octave 0 (its features are ~1/f₀ m across).
@@ -613,7 +613,7 @@ class NoiseSea:
         object.__setattr__(self, "frequency", cells / self.length)
         check_int("octaves", self.octaves, lo=1, hi=MAX_OCTAVES)
         _octave_period(self.length, self.frequency, self.octaves - 1, "octaves")
-        check_scalar("hurst", self.hurst, lo=0.0, hi=4.0)
+        check_scalar("hurst", self.hurst, lo=0.0, hi=4.0, lo_open=True)
         _SEED("seed", self.seed, {})
         check_scalar("evolution", self.evolution, lo=0.0, hi=1e6)
         check_scalar("time_exponent", self.time_exponent, lo=0.0, hi=2.0)
