@@ -1,4 +1,4 @@
-"""``python -m bench {propagation,boundaries,optics,jacobian,ship,wake,harness,render,surfaces,scale,calibrate,planner} [--json PATH] [--quick]``.
+"""``python -m bench {propagation,boundaries,optics,jacobian,ship,wake,harness,halffloat,render,surfaces,scale,calibrate,planner} [--json PATH] [--quick]``.
 
 Each writes its rows as JSON and its charts as PNG next to it (default
 ``bench/results/``) and prints a table.
@@ -158,6 +158,16 @@ def run_harness(args) -> None:
     _write(dict(timing=timing, sensitivity=sens), {}, Path(args.json or "bench/results/harness.json"))
 
 
+def run_halffloat(args) -> None:
+    from bench.render import half_float_rows
+
+    rows = half_float_rows((512,) if args.quick else (512, 1024), progress=_say)
+    for r in rows:
+        print(f"N={r['n']:<5} {r['heights']:<26}{r['dtype']:<9} numpy {r['numpy_seconds'] * 1e3:7.2f} ms  "
+              f"to_float16 {r['seconds'] * 1e3:7.2f} ms  (x{r['ratio']:.2f}, identical bits: {r['identical']})")
+    _write(rows, {}, Path(args.json or "bench/results/halffloat.json"))
+
+
 def run_render(args) -> None:
     from bench import render
 
@@ -282,6 +292,7 @@ def main(argv=None) -> int:
                             ("ship", run_ship, "moving hulls: kernels vs stones, FD wake, speed"),
                             ("wake", run_wake, "wake angles against Froude number: measured, theory, published law"),
                             ("harness", run_harness, "every check of a record: time on 128^2 x 256, floor, smallest fault"),
+                            ("halffloat", run_halffloat, "16-bit float encoding: numpy against to_float16, heights of every size"),
                             ("render", run_render, "renderer: frame times, texture cost, GPU vs reference"),
                             ("surfaces", run_surfaces, "noise, Gerstner, choppy: cost per frame vs physics error"),
                             ("scale", run_scale, "sharded step: overhead, memory per device, bytes per step"),

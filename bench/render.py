@@ -117,6 +117,28 @@ def texture_rows(sizes=(512, 1024), progress=print) -> list[dict]:
     return rows
 
 
+def half_float_rows(sizes=(512, 1024), repeats: int = 7, progress=print) -> list[dict]:
+    """16-bit float encoding per frame: numpy's ``astype(float16)`` (what a user writes) against
+    :func:`wavephys.core.halffloat.to_float16`, for heights of every size: a swell (0.5 m), a ripple tank
+    (1 mm), calm water (20 µm: float16 subnormals) and float32 and float64 input."""
+    from wavephys.core.halffloat import to_float16
+
+    rows = []
+    rng = np.random.default_rng(0)
+    for n in sizes:
+        for label, scale in (("swell, 0.5 m", 0.5), ("ripples, 1 mm", 1e-3), ("calm, 20 um (subnormal)", 2e-5)):
+            for dtype in (np.float32, np.float64):
+                h = (scale * rng.standard_normal((n, n))).astype(dtype)
+                base = median_seconds(lambda: h.astype(np.float16), repeats=repeats)
+                ours = median_seconds(lambda: to_float16(h), repeats=repeats)
+                same = bool(np.array_equal(to_float16(h).view(np.uint16), h.astype(np.float16).view(np.uint16)))
+                rows.append(dict(family="half float", n=n, heights=label, dtype=np.dtype(dtype).name,
+                                 numpy_seconds=base, seconds=ours, ratio=ours / base, identical=same))
+                progress(f"N = {n} {label} {np.dtype(dtype).name}: numpy {base * 1e3:.2f} ms, to_float16 "
+                         f"{ours * 1e3:.2f} ms, identical bits: {same}")
+    return rows
+
+
 def agreement_rows(width: int = 320, height: int = 240, repeats: int = 5, progress=print) -> list[dict]:
     """PSNR of the GPU image against the CPU reference, per scene and effect; and each
     effect's effect (PSNR of the frame with it off against all on) and its cost (frame

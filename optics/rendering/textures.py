@@ -371,8 +371,14 @@ def save_exr(path, channels: dict, *, half: bool = False, attributes: dict | Non
         if isinstance(value, float) and not math.isfinite(value):
             raise ValueError(f"attributes[{key!r}] must be finite, got {value!r}")
         header[key] = value
-    dtype = np.float16 if half else np.float32
-    pixels = {name: np.ascontiguousarray(np.flipud(np.asarray(v, np.float64)).astype(dtype)) for name, v in channels.items()}
+    from wavephys.core.halffloat import to_float16
+
+    def stored(v):  # float32 values stay float32 before halving (no double rounding either way)
+        v = np.asarray(v)
+        v = v if v.dtype in (np.float32, np.float64) else v.astype(np.float64)
+        return np.ascontiguousarray(np.flipud(to_float16(v) if half else v.astype(np.float32)))
+
+    pixels = {name: stored(v) for name, v in channels.items()}
     with atomic_path(path) as tmp, OpenEXR.File(header, pixels) as f:
         f.write(str(tmp))
     return path
