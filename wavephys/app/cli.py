@@ -308,8 +308,13 @@ def cmd_report(args, parser) -> int:
     from wavephys.core.files import output_folder
 
     out = _checked(parser, output_folder, args.out, "--out")
-    if args.validation is not None and not Path(args.validation).is_file():
-        parser.error(f"--validation: {args.validation!r} is not a file (write one with wavephys validate --json)")
+    if args.validation is not None:
+        from wavephys.app.report import read_validation
+
+        try:
+            read_validation(args.validation)
+        except ValueError as exc:
+            parser.error(f"--{exc}")
     from wavephys.app.registry import registry
 
     if args.checks:

@@ -21,7 +21,7 @@ import time
 from pathlib import Path
 from typing import Callable, Optional
 
-__all__ = ["build_report", "FIGURES"]
+__all__ = ["build_report", "read_validation", "FIGURES"]
 
 FIGURES = Path(__file__).resolve().parents[2] / "bench" / "figures"
 """The bench's charts in a checkout (absent from an installed package: the report says so)."""
@@ -68,9 +68,50 @@ def _figure(img: str, caption: str) -> str:
     return f"<figure>{img}<figcaption>{html.escape(caption)}</figcaption></figure>"
 
 
+_ROW_KEYS = ("quantity", "expected", "measured", "relation", "margin", "ok")
+
+
+def read_validation(path) -> list:
+    """The rows of a ``wavephys validate --json`` file, checked: a JSON list of rows with their keys.
+
+    Parameters
+    ----------
+    path : str or os.PathLike
+        The file.
+
+    Returns
+    -------
+    list of dict
+        The rows.
+
+    Raises
+    ------
+    ValueError
+        When the file is missing, not UTF-8 JSON, or not a list of validation rows (the message names
+        ``validation`` and the path).
+    """
+    p = Path(path)
+    if not p.is_file():
+        raise ValueError(f"validation: {str(p)!r} is not a file (write one with wavephys validate --json)")
+    try:
+        rows = json.loads(p.read_text(encoding="utf-8"))
+    except (UnicodeDecodeError, json.JSONDecodeError, RecursionError) as exc:
+        raise ValueError(f"validation: {str(p)!r} is not a JSON file of validation rows ({type(exc).__name__}: "
+                         f"{str(exc)[:120]})") from None
+    if not isinstance(rows, list) or not all(isinstance(r, dict) and all(k in r for k in _ROW_KEYS) for r in rows):
+        raise ValueError(f"validation: {str(p)!r} must hold a list of rows with {', '.join(_ROW_KEYS)} "
+                         f"(what wavephys validate --json writes)")
+    for r in rows:
+        if not isinstance(r["quantity"], str) or not all(
+                isinstance(r[k], (int, float)) and not isinstance(r[k], bool) for k in ("expected", "measured", "margin")):
+            raise ValueError(f"validation: {str(p)!r} has a row whose quantity is not text or whose numbers are not "
+                             f"numbers: {str(r)[:120]}")
+    return rows
+
+
 def _validation(names, validation: Optional[Path], say) -> str:
     if validation is not None:
-        rows = json.loads(Path(validation).read_text())
+        rows = read_validation(validation)
         source = f"from {html.escape(str(validation))}"
     else:
         from wavephys.app.registry import registry

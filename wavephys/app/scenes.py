@@ -309,11 +309,17 @@ def _storm_ground(n):
     return ground.astype(np.float32), albedo.astype(np.float32)
 
 
-def _calm_sea():
+def _calm_sea(n: int = 256):
+    """The pond's noise: two octaves, or one on a grid too coarse for the second (the finest octave's lattice
+    cell must span 2 texels, or it aliases: one octave at n = 64)."""
+    import math
+
     from wavephys.surfaces.noise import NoiseSea
 
-    return NoiseSea(length=CALM_LENGTH, amplitude=0.01, frequency=1.5, octaves=2, hurst=1.0, seed=3,
-                    evolution=0.35, time_exponent=0.5, base_amplitude=0.03)
+    frequency, dx = 1.5, CALM_LENGTH / n
+    fits = int(math.floor(math.log2(1.0 / (frequency * 2 * dx)))) + 1  # octaves whose cell spans >= 2 texels
+    return NoiseSea(length=CALM_LENGTH, amplitude=0.01, frequency=frequency, octaves=max(1, min(2, fits)),
+                    hurst=1.0, seed=3, evolution=0.35, time_exponent=0.5, base_amplitude=0.03)
 
 
 def _calm_ground(n):
@@ -371,7 +377,7 @@ def scene_water(name: str, n: int = 256, time: float = 0.0, ship: bool = True) -
     if name == "storm":
         return _storm_frames(n, [float(time)])[0][0]
     if name == "calm":
-        return np.asarray(_calm_sea().heights(scene_grid("calm", n), float(time)), np.float32)
+        return np.asarray(_calm_sea(n).heights(scene_grid("calm", n), float(time)), np.float32)
     return _ship_wake(n, time) if ship else np.zeros((n, n), np.float32)
 
 

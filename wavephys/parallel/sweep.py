@@ -34,12 +34,22 @@ def sweep(fn: Callable, items: Sequence, *, devices=None, per_device: int = 1) -
     devices : sequence of jax devices, optional
         Default: ``jax.devices()`` (every device of every process under ``jax.distributed``).
     per_device : int
-        Items each device evaluates at once (≥ 1): memory against fewer dispatches.
+        Items each device evaluates at once (≥ 1): memory against fewer dispatches. More than the items
+        need (``ceil(len(items) / devices)``) is the same as that many.
 
     Returns
     -------
     list
-        ``fn(item)`` for every item, in order, as numpy pytrees.
+        ``fn(item)`` for every item, in order, as numpy pytrees. An output holding NaN or inf is returned with
+        a ``RuntimeWarning`` that names the items.
+
+    Raises
+    ------
+    TypeError
+        When ``fn`` is not callable, ``items`` is not a sequence, or an item holds a leaf that is not an array of
+        real or complex numbers.
+    ValueError
+        When an item holds NaN, or ``per_device`` < 1.
     """
     if not callable(fn):
         raise TypeError(f"fn must be a function of one item, got {describe(fn)}")
@@ -50,10 +60,17 @@ def sweep(fn: Callable, items: Sequence, *, devices=None, per_device: int = 1) -
     if not items:
         return []
     mesh = row_mesh(jax.devices() if devices is None else devices, BATCH)
-    chunk = mesh.size * per_device
+    chunk = mesh.size * min(per_device, -(-len(items) // mesh.size))  # no batch larger than the items need
     groups: dict = {}  # one program per structure and leaf shapes
     for i, item in enumerate(items):
         leaves, tree = jax.tree_util.tree_flatten(item)
+        for leaf in leaves:
+            kind = np.result_type(leaf) if isinstance(leaf, (int, float, complex, np.generic, np.ndarray, jax.Array)) \
+                else None
+            if kind is None or not (np.issubdtype(kind, np.number) or kind == np.bool_):
+                raise TypeError(f"items[{i}] holds a leaf that is not an array of numbers: {describe(leaf)}")
+            if np.issubdtype(kind, np.inexact) and np.any(np.isnan(np.asarray(leaf))):
+                raise ValueError(f"items[{i}] holds NaN")  # inf is a value (deep water's depth)
         shapes = tuple((np.shape(a), np.result_type(a).str) for a in leaves)
         groups.setdefault((tree, shapes), []).append((i, leaves))
     out: list = [None] * len(items)
@@ -67,6 +84,13 @@ def sweep(fn: Callable, items: Sequence, *, devices=None, per_device: int = 1) -
             result = jax.tree_util.tree_map(_gather, batched(*sharded))
             for k, (index, _) in enumerate(part):
                 out[index] = jax.tree_util.tree_map(lambda a: a[k], result)
+    bad = [i for i, r in enumerate(out) if not all(np.all(np.isfinite(a)) for a in jax.tree_util.tree_leaves(r)
+                                                   if np.issubdtype(np.asarray(a).dtype, np.inexact))]
+    if bad:
+        import warnings
+
+        warnings.warn(f"sweep: fn returned NaN or inf for items {bad[:10]}{' ...' if len(bad) > 10 else ''} "
+                      f"(from items without NaN)", RuntimeWarning, stacklevel=2)
     return out
 
 

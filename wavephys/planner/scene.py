@@ -367,6 +367,9 @@ class Scene:
             if not isinstance(water, dict):
                 raise TypeError(f"water must be a table of Water fields, got {describe(water)}")
             _refuse_unknown("water", water, {"g", "rho", "sigma"})
+            for k, v in water.items():
+                if isinstance(v, bool) or not isinstance(v, (int, float)):
+                    raise TypeError(f"water.{k} must be a number, got {describe(v)}")
             data["water"] = Water(**{k: float(v) for k, v in water.items()})
         for key, spec in (("stones", StoneSpec), ("ships", ShipSpec)):
             if key in data:
@@ -405,12 +408,19 @@ class Scene:
         if not isinstance(path, (str, Path)):
             raise TypeError(f"path must be a str or pathlib.Path, got {describe(path)}")
         p = Path(path)
+        if p.is_dir():
+            raise ValueError(f"path: {str(p)!r} is a folder, not a scene file (.toml)")
         if not p.is_file():
             raise FileNotFoundError(f"scene file {str(p)!r} does not exist")
         try:
-            data = tomllib.loads(p.read_text())
+            data = tomllib.loads(p.read_text(encoding="utf-8"))
+        except UnicodeDecodeError as exc:
+            raise ValueError(f"path: {str(p)!r} is not a text file (UTF-8 TOML): {exc.reason} at byte {exc.start}") \
+                from None
         except tomllib.TOMLDecodeError as exc:
-            raise ValueError(f"{p}: not valid TOML: {exc}") from None
+            raise ValueError(f"path: {str(p)!r} is not valid TOML: {exc}") from None
+        except RecursionError:
+            raise ValueError(f"path: {str(p)!r} nests its arrays or tables too deeply to be a scene") from None
         return cls.from_dict(data, name=p.stem)
 
     def as_dict(self) -> dict:

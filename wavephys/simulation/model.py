@@ -122,6 +122,9 @@ class Model:
             check_mesh(self.mesh, self.mesh_axis, self.grid.n)
         elif not isinstance(self.mesh_axis, str):
             raise TypeError(f"mesh_axis must be a str, got {type(self.mesh_axis).__name__}")
+        elif self.mesh_axis != AXIS:
+            raise ValueError(f"mesh_axis {self.mesh_axis!r} names an axis of a mesh, but mesh is None (no sharding): "
+                             f"give the mesh too, or leave mesh_axis at {AXIS!r}")
 
     @property
     def real_dtype(self):
