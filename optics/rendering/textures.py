@@ -533,10 +533,17 @@ def load_npz(path) -> dict:
     path = _as_path("path", path)
     if not path.is_file():
         raise ValueError(f"path {str(path)!r} is not a file")
-    with np.load(path) as f:
-        if "metadata" not in f.files:
+    try:
+        f = np.load(path, allow_pickle=False)
+    except (OSError, EOFError, ValueError) as exc:
+        raise ValueError(f"path {str(path)!r} is not a readable .npz file ({str(exc)[:100]})") from None
+    with f:
+        if not hasattr(f, "files") or "metadata" not in f.files:
             raise ValueError(f"path {str(path)!r} is not a texture file written by save_npz (no metadata)")
-        meta = json.loads(str(f["metadata"]))
+        try:
+            meta = json.loads(str(f["metadata"]))
+        except (ValueError, json.JSONDecodeError) as exc:
+            raise ValueError(f"path {str(path)!r} has unreadable metadata ({str(exc)[:100]})") from None
         out = {}
         for name in f.files:
             if name == "metadata":

@@ -54,14 +54,15 @@ class _Parser(argparse.ArgumentParser):
         self.exit(2, f"{self.prog}: error: {message} (see '{self.prog} --help')\n")
 
 
-def _int(lo: int, even: bool = False):
+def _int(lo: int, even: bool = False, hi: int | None = None):
     def parse(text: str) -> int:
         try:
             value = int(text)
         except ValueError:
             raise argparse.ArgumentTypeError(f"expected an integer, got {text!r}") from None
-        if value < lo:
-            raise argparse.ArgumentTypeError(f"must be ≥ {lo}, got {value}")
+        if value < lo or (hi is not None and value > hi):
+            raise argparse.ArgumentTypeError(f"must be ≥ {lo}" + (f" and ≤ {hi}" if hi is not None else "") +
+                                             f", got {value}")
         if even and value % 2:
             raise argparse.ArgumentTypeError(f"must be even, got {value}")
         return value
@@ -69,17 +70,32 @@ def _int(lo: int, even: bool = False):
     return parse
 
 
-def _float(lo: float, open_lo: bool = False):
+def _float(lo: float, open_lo: bool = False, hi: float | None = None):
     def parse(text: str) -> float:
         try:
             value = float(text)
         except ValueError:
             raise argparse.ArgumentTypeError(f"expected a number, got {text!r}") from None
-        if not math.isfinite(value) or value < lo or (open_lo and value == lo):
-            raise argparse.ArgumentTypeError(f"must be a finite number {'>' if open_lo else '≥'} {lo}, got {text}")
+        if not math.isfinite(value) or value < lo or (open_lo and value == lo) or (hi is not None and value > hi):
+            raise argparse.ArgumentTypeError(f"must be a finite number {'>' if open_lo else '≥'} {lo}"
+                                             + (f" and ≤ {hi:g}" if hi is not None else "") + f", got {text}")
         return value
 
     return parse
+
+
+def _real(text: str) -> float:
+    """Any finite number (a signed angle, a time offset)."""
+    try:
+        value = float(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"expected a number, got {text!r}") from None
+    if not math.isfinite(value):
+        raise argparse.ArgumentTypeError(f"must be a finite number, got {text}")
+    return value
+
+
+MAX_N, MAX_TIME, MAX_FPS, MAX_STEPS = 8192, 3600.0, 1000.0, 10**6  # wavephys.app.scenes' limits (light: --help)
 
 
 def _checked(parser, check, *args):
@@ -191,6 +207,10 @@ def cmd_render(args, parser) -> int:
     from wavephys.app.scenes import builtin_scene, scene_frames
 
     off = {e: False for e in args.off or []}
+    last = args.time + (args.frames - 1) / args.fps
+    if last > MAX_TIME:  # checked before any work: the frames must end by the scenes' last time
+        parser.error(f"--frames: {args.frames} frames at {args.fps:g} fps from {args.time:g} s end at {last:.6g} s, "
+                     f"after the scenes' last time {MAX_TIME:g} s")
     start = time.perf_counter()
     try:
         renderer = Renderer(args.width, args.height, steps=args.steps)
@@ -281,7 +301,7 @@ def cmd_plan(args, parser) -> int:
     except FileNotFoundError as exc:
         parser.error(f"{exc} (or name a built-in scene: {', '.join(BUILTIN_SCENES)})")
     except (TypeError, ValueError) as exc:
-        parser.error(f"{args.scene}: {exc}")
+        parser.error(str(exc) if args.scene in str(exc) else f"{args.scene}: {exc}")
     unit, value = args.tolerance
     tolerance = value * scene.height_quantum if unit == "q" else value
     colour = None if args.colour_tolerance is None else args.colour_tolerance * scene.image_quantum
@@ -536,10 +556,10 @@ def _add_check_parser(sub, fmt) -> None:
     ck.add_argument("--channel", metavar="NAME", help="the EXR channel holding the heights (default Y or the only one)")
     ck.add_argument("--only", nargs="+", metavar="CHECK", help="run only these checks (names above)")
     ck.add_argument("--sea", action="store_true", help="the frames are a sea meant to travel (standing-wave check)")
-    ck.add_argument("--direction", type=float, metavar="DEG", help="claimed direction of travel, degrees, 0 = +x")
+    ck.add_argument("--direction", type=_real, metavar="DEG", help="claimed direction of travel, degrees, 0 = +x")
     ck.add_argument("--packet", action="store_true", help="the frames are one wave packet (group-velocity check)")
     ck.add_argument("--source", type=_pair, metavar="X,Y", help="where one disturbance was, m (ring-arrival check)")
-    ck.add_argument("--t0", type=float, default=0.0, help="when it happened, s from the first frame (default 0)")
+    ck.add_argument("--t0", type=_real, default=0.0, help="when it happened, s from the first frame (default 0)")
     ck.add_argument("--radius", type=_float(0.0), default=0.0, help="its radius, m (default 0)")
     ck.add_argument("--viscosity", type=_float(0.0), default=0.0, help="kinematic viscosity modelled, m^2/s")
     ck.add_argument("--normals", metavar="FILE", help="the normal map exported with the first frame (EXR RGB or PNG)")
@@ -552,7 +572,7 @@ def _add_check_parser(sub, fmt) -> None:
                                                                                 "checks on the first frame)")
     ck.add_argument("--wake-at", type=_pair, metavar="X,Y", help="where that source is in the first frame, m "
                                                                  "(default 0,0: the centre)")
-    ck.add_argument("--wake-heading", type=float, default=0.0, metavar="DEG", help="its heading, degrees, 0 = +x")
+    ck.add_argument("--wake-heading", type=_real, default=0.0, metavar="DEG", help="its heading, degrees, 0 = +x")
     ck.add_argument("--wake-size", type=_float(0.0, open_lo=True), metavar="SIGMA",
                     help="its size as a Gaussian pressure, m (wake_max check)")
     ck.add_argument("--rtol", type=_float(0.0, open_lo=True), default=0.02, help="dispersion tolerance (default "
@@ -593,8 +613,9 @@ def build_parser() -> argparse.ArgumentParser:
     r = sub.add_parser("run", help="simulate the built-in default scene (the main job)", epilog=EXIT_CODES,
                        formatter_class=fmt, description="Three stones in 16 m of open water; writes surface.npz "
                                                         "(heights, m) and surface.png.")
-    r.add_argument("--n", type=_int(128, even=True), default=256, help="grid points per side (even, ≥ 128)")
-    r.add_argument("--steps", type=_int(1), default=120, help="steps of 1/30 s (≥ 1)")
+    r.add_argument("--n", type=_int(128, even=True, hi=MAX_N), default=256,
+                   help=f"grid points per side (even, 128 to {MAX_N})")
+    r.add_argument("--steps", type=_int(1, hi=MAX_STEPS), default=120, help=f"steps of 1/30 s (1 to {MAX_STEPS})")
     r.add_argument("--out", default="wavephys-out", help="output folder (created if its parent exists)")
     r.set_defaults(func=cmd_run)
     g = sub.add_parser("render", help="render a built-in scene with the headless moderngl renderer",
@@ -602,23 +623,28 @@ def build_parser() -> argparse.ArgumentParser:
     g.add_argument("--scene", choices=SCENES, default="pool")
     g.add_argument("--out", default="frame.png", help="a .png file (one frame) or a folder (--frames > 1)")
     g.add_argument("--frames", type=_int(1), default=1, help="number of frames (an animation when > 1)")
-    g.add_argument("--fps", type=_float(0.0, open_lo=True), default=30.0, help="frames per second of the animation")
-    g.add_argument("--time", type=_float(0.0), default=1.0, help="scene time of the (first) frame, s")
+    g.add_argument("--fps", type=_float(0.0, open_lo=True, hi=MAX_FPS), default=30.0,
+                   help=f"frames per second of the animation (up to {MAX_FPS:g})")
+    g.add_argument("--time", type=_float(0.0, hi=MAX_TIME), default=1.0,
+                   help=f"scene time of the (first) frame, s (0 to {MAX_TIME:g})")
     g.add_argument("--width", type=_int(1), default=800, help="image width, pixels")
     g.add_argument("--height", type=_int(1), default=600, help="image height, pixels")
-    g.add_argument("--n", type=_int(64, even=True), default=256, help="height-field texels per side (even, ≥ 64)")
-    g.add_argument("--steps", type=_int(1), default=256, help="ray-march steps")
+    g.add_argument("--n", type=_int(64, even=True, hi=MAX_N), default=256,
+                   help=f"height-field texels per side (even, 64 to {MAX_N})")
+    g.add_argument("--steps", type=_int(1, hi=4096), default=256, help="ray-march steps (1 to 4096)")
     g.add_argument("--off", nargs="+", choices=EFFECTS, metavar="EFFECT", help=f"switch effects off: {', '.join(EFFECTS)}")
     g.add_argument("--video", metavar="NAME", help="also write a video in the folder (needs imageio-ffmpeg)")
     g.set_defaults(func=cmd_render)
     t = sub.add_parser("textures", help="export a built-in scene's textures", epilog=EXIT_CODES, formatter_class=fmt)
     t.add_argument("--scene", choices=SCENES, default="pool")
     t.add_argument("--out", default="textures", help="output folder (created if its parent exists)")
-    t.add_argument("--n", type=_int(64, even=True), default=256, help="texels per side (even, ≥ 64)")
-    t.add_argument("--time", type=_float(0.0), default=1.0, help="scene time, s (of the first frame with --frames)")
+    t.add_argument("--n", type=_int(64, even=True, hi=MAX_N), default=256, help=f"texels per side (even, 64 to {MAX_N})")
+    t.add_argument("--time", type=_float(0.0, hi=MAX_TIME), default=1.0,
+                   help=f"scene time, s, 0 to {MAX_TIME:g} (of the first frame with --frames)")
     t.add_argument("--frames", type=_int(8), default=0, metavar="N",
                    help="also write N >= 8 numbered EXR height frames to OUT/frames/ (a record for wavephys check)")
-    t.add_argument("--fps", type=_float(0.0, open_lo=True), default=30.0, help="frames per second of --frames")
+    t.add_argument("--fps", type=_float(0.0, open_lo=True, hi=MAX_FPS), default=30.0,
+                   help=f"frames per second of --frames (up to {MAX_FPS:g})")
     t.set_defaults(func=cmd_textures)
     pl = sub.add_parser("plan", help="the cheapest model that meets a tolerance (the scene planner)",
                         epilog=EXIT_CODES + "\n  1  (plan) no model meets the tolerance", formatter_class=fmt,

@@ -88,17 +88,22 @@ def read_exr(path) -> tuple[dict, dict]:
     ValueError
         When ``path`` is not a file, or not a readable OpenEXR image (corrupt or truncated).
     """
+    return _read_exr(path, "path")
+
+
+def _read_exr(path, name: str) -> tuple[dict, dict]:
+    """:func:`read_exr`, its errors naming the caller's argument ``name``."""
     import OpenEXR
 
-    path = _path("path", path)
+    path = _path(name, path)
     if not path.is_file():
-        raise ValueError(f"path {str(path)!r} is not a file")
+        raise ValueError(f"{name} {str(path)!r} is not a file")
     try:
         with OpenEXR.File(str(path), separate_channels=True) as f:
-            channels = {name: np.flipud(np.asarray(c.pixels)) for name, c in f.channels().items()}
+            channels = {c_name: np.flipud(np.asarray(c.pixels)) for c_name, c in f.channels().items()}
             attributes = {k: v for k, v in f.header().items() if isinstance(v, (str, int, float))}
     except (RuntimeError, OSError) as exc:
-        raise ValueError(f"path {str(path)!r} is not a readable OpenEXR image ({exc})") from None
+        raise ValueError(f"{name} {str(path)!r} is not a readable OpenEXR image ({exc})") from None
     return channels, attributes
 
 
@@ -154,7 +159,7 @@ def _units(name: str, value, where: str) -> float:
 
 
 def _exr_frame(path: Path, channel):
-    channels, attrs = read_exr(path)
+    channels, attrs = _read_exr(path, "source")
     if channel is not None:
         if channel not in channels:
             raise ValueError(f"channel: {str(path)!r} has no channel {channel!r} (it has {', '.join(channels)})")
@@ -407,7 +412,7 @@ def read_map(path, *, name: str = "path", channels: int | None = None) -> np.nda
         raise ValueError(f"{name}: {str(p)!r} is not a file")
     suffix = p.suffix.lower()
     if suffix == ".exr":
-        data, _ = read_exr(p)
+        data, _ = _read_exr(p, name)
         if channels == 1 or len(data) == 1:
             key = "Y" if "Y" in data else (next(iter(data)) if len(data) == 1 else None)
             if key is None:

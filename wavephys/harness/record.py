@@ -377,8 +377,23 @@ class Record:
         -------
         Record
             The saved record.
+
+        Raises
+        ------
+        ValueError
+            When ``path`` is not a file, or not a record (an unreadable or foreign ``.npz``).
         """
-        return cls.from_files(path)
+        from wavephys.core.files import _as_path
+
+        p = _as_path("path", path)
+        if not p.is_file():
+            raise ValueError(f"path: {str(p)!r} is not a file (a record saved by Record.save)")
+        try:
+            return cls.from_files(p)
+        except ValueError as exc:
+            text = str(exc)
+            raise ValueError("path" + text[len("source"):] if text.startswith("source") else f"path: {text}") \
+                from None
 
     def save(self, path) -> "Path":
         """Write the record as one ``.npz`` (atomically): ``eta``, ``dx``, ``dt``, ``units``, and η̇ and the

@@ -421,7 +421,10 @@ class Scene:
             raise ValueError(f"path: {str(p)!r} is not valid TOML: {exc}") from None
         except RecursionError:
             raise ValueError(f"path: {str(p)!r} nests its arrays or tables too deeply to be a scene") from None
-        return cls.from_dict(data, name=p.stem)
+        try:
+            return cls.from_dict(data, name=p.stem)
+        except (TypeError, ValueError) as exc:
+            raise type(exc)(f"path {str(p)!r}: {exc}") from None
 
     def as_dict(self) -> dict:
         """The scene as the TOML layout's dict (``from_dict(scene.as_dict())`` equals it)."""

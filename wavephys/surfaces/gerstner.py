@@ -109,8 +109,9 @@ class GerstnerWaves:
         if np.shape(phases) != (m,):
             raise ValueError(f"phases must have one entry per wave, shape ({m},), got {np.shape(phases)}")
         check_array("steepness", self.steepness, lo=0.0, hi=1.0)
-        q = np.broadcast_to(np.asarray(self.steepness, np.float64), (m,)) if np.ndim(self.steepness) <= 1 else None
-        if q is None or (np.ndim(self.steepness) == 1 and np.shape(self.steepness) != (m,)):
+        shape_ok = np.ndim(self.steepness) == 0 or np.shape(self.steepness) == (m,)
+        q = np.broadcast_to(np.asarray(self.steepness, np.float64), (m,)) if shape_ok else None
+        if q is None:
             raise ValueError(f"steepness must be a number or one per wave, shape ({m},), got {np.shape(self.steepness)}")
         check_instance("water", self.water, Water, "wavephys.Water")
         c = 1.0 / np.asarray(depth_factor(kmag, self.water), np.float64)
