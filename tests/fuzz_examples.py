@@ -241,7 +241,16 @@ def _heights_normals(part):
     return make
 
 
+def _validation_json():
+    import json
+
+    path = TMP / "validation.json"
+    path.write_text(json.dumps([dict(quantity="x", expected=1.0, measured=1.0, relation="~=", margin=0.5, ok=True)]))
+    return path
+
+
 OVERRIDES = {
+    "wavephys.app.report.read_validation": {"path": _validation_json},
     # the harness's records and the checks on them
     "wavephys.harness.record.Record": {"eta": _frames, "dx": lambda: 0.125, "dt": lambda: 0.05},
     "wavephys.harness.record.time_derivative": {"eta": _frames, "dt": lambda: 0.05},

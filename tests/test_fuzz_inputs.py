@@ -41,7 +41,7 @@ def _readers():
         "read_map": ("path", read_map, ".exr"), "read_frames": ("source", read_frames, ".exr"),
         "Record.from_files": ("source", lambda p: Record.from_files(p, dx=0.1, dt=0.1), ".exr"),
         "Record.load": ("path", Record.load, ".npz"), "load_npz": ("path", load_npz, ".npz"),
-        "Scene.from_toml": ("path", Scene.from_toml, ".toml"), "read_validation": ("validation", read_validation,
+        "Scene.from_toml": ("path", Scene.from_toml, ".toml"), "read_validation": ("path", read_validation,
                                                                                   ".json"),
         "read_frames (png)": ("source", read_frames, ".png"), "read_frames (npy)": ("source", read_frames, ".npy"),
     }
@@ -72,7 +72,7 @@ def test_deeply_nested_files_are_refused(tmp_path):
         Scene.from_toml(toml)
     js = tmp_path / "deep.json"
     js.write_text("[" * 100000 + "]" * 100000)
-    with pytest.raises(ValueError, match="validation"):
+    with pytest.raises(ValueError, match="path"):
         read_validation(js)
 
 

@@ -333,8 +333,8 @@ def cmd_report(args, parser) -> int:
 
         try:
             read_validation(args.validation)
-        except ValueError as exc:
-            parser.error(f"--{exc}")
+        except (TypeError, ValueError) as exc:
+            parser.error(f"--validation{str(exc)[len('path'):]}")
     from wavephys.app.registry import registry
 
     if args.checks:

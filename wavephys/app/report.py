@@ -87,24 +87,26 @@ def read_validation(path) -> list:
     Raises
     ------
     ValueError
-        When the file is missing, not UTF-8 JSON, or not a list of validation rows (the message names
-        ``validation`` and the path).
+        When the file is missing, not UTF-8 JSON, or not a list of validation rows (the message names ``path``
+        and the file).
     """
-    p = Path(path)
+    from wavephys.core.files import _as_path
+
+    p = _as_path("path", path)
     if not p.is_file():
-        raise ValueError(f"validation: {str(p)!r} is not a file (write one with wavephys validate --json)")
+        raise ValueError(f"path: {str(p)!r} is not a file (write one with wavephys validate --json)")
     try:
         rows = json.loads(p.read_text(encoding="utf-8"))
     except (UnicodeDecodeError, json.JSONDecodeError, RecursionError) as exc:
-        raise ValueError(f"validation: {str(p)!r} is not a JSON file of validation rows ({type(exc).__name__}: "
+        raise ValueError(f"path: {str(p)!r} is not a JSON file of validation rows ({type(exc).__name__}: "
                          f"{str(exc)[:120]})") from None
     if not isinstance(rows, list) or not all(isinstance(r, dict) and all(k in r for k in _ROW_KEYS) for r in rows):
-        raise ValueError(f"validation: {str(p)!r} must hold a list of rows with {', '.join(_ROW_KEYS)} "
+        raise ValueError(f"path: {str(p)!r} must hold a list of rows with {', '.join(_ROW_KEYS)} "
                          f"(what wavephys validate --json writes)")
     for r in rows:
         if not isinstance(r["quantity"], str) or not all(
                 isinstance(r[k], (int, float)) and not isinstance(r[k], bool) for k in ("expected", "measured", "margin")):
-            raise ValueError(f"validation: {str(p)!r} has a row whose quantity is not text or whose numbers are not "
+            raise ValueError(f"path: {str(p)!r} has a row whose quantity is not text or whose numbers are not "
                              f"numbers: {str(r)[:120]}")
     return rows
 
