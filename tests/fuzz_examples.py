@@ -251,6 +251,7 @@ def _validation_json():
 
 OVERRIDES = {
     "wavephys.app.report.read_validation": {"path": _validation_json},
+    "wavephys.core.frames.resolve_axes": {"shape": lambda: (24, 16, 16), "axes": lambda: "tyx"},
     # the harness's records and the checks on them
     "wavephys.harness.record.Record": {"eta": _frames, "dx": lambda: 0.125, "dt": lambda: 0.05},
     "wavephys.harness.record.time_derivative": {"eta": _frames, "dt": lambda: 0.05},
@@ -462,7 +463,7 @@ for cls in ("wavephys.physics.disturbances.Stones", "wavephys.physics.wind.WindS
             "wavephys.physics.forcing.Forcing", "wavephys.physics.ship_waves.Ship"):
     SKIP |= {f"{cls}.impulse", f"{cls}.rate", f"{cls}.add"}
 
-NONE_OK = {"wind", "colour_tolerance", "budget", "measured", "mesh", "devices", "resolution", "ship_patch", "damping", "camera", "progress", "limit", "environment", "albedo",
+NONE_OK = {"axes", "wind", "colour_tolerance", "budget", "measured", "mesh", "devices", "resolution", "ship_patch", "damping", "camera", "progress", "limit", "environment", "albedo",
            "caustics", "count", "video", "speed", "columns", "mask", "iterations"}
 CHOICES = {"method", "kind", "mode", "cutoff", "spectrum", "illuminant", "gamut", "norm", "normals", "relation",
            "name", "ship_method", "dtype"}
@@ -496,7 +497,7 @@ SHAPE_FREE = {
     ("optics.rendering.scene.texture_sample", "field"),
     ("optics.rendering.renderer.to_srgb8", "image"),
     # a record's frames may be rectangular (n_y != n_x), the same dx along both axes
-    ("wavephys.harness.record.Record", "eta"), ("wavephys.harness.record.time_derivative", "eta"),
+    ("wavephys.harness.record.time_derivative", "eta"),
     ("wavephys.harness.travel.measure_travel", "eta"), ("wavephys.harness.maps.tiling_check", "field"),
     ("wavephys.harness.maps.quantization_check", "eta"),
 }

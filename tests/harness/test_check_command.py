@@ -113,3 +113,54 @@ def test_record(wavephys_check, name, path, sigma, g, check, cause, claims):
 """)
     result = pytester.runpytest_subprocess("-q", "-p", "no:cacheprovider", "-p", "no:xdist")
     result.assert_outcomes(passed=len(cases))
+
+
+def test_one_array_of_frames_time_last_is_refused_not_guessed(sea, tmp_path, capsys):
+    """A time-last .npy (the layout many engines write) and a cube are refused by Record.from_files, the
+    command and the fixture alike, naming axes; with axes (--axes) named they are read right."""
+    from wavephys import Water
+    from wavephys.harness import check_record
+
+    longer = fft_ocean(phillips_h0(32, DX, seed=1), DX, DT, 96)
+    np.save(tmp_path / "last.npy", np.moveaxis(longer, 0, -1))
+    np.save(tmp_path / "cube.npy", np.moveaxis(longer[:32], 0, -1))
+    for name in ("last.npy", "cube.npy"):
+        with pytest.raises(ValueError, match="axes"):
+            Record.from_files(tmp_path / name, dx=DX, dt=DT)
+        assert main(["check", str(tmp_path / name), "--dx", "0.25", "--dt", "1/15"]) == 2
+        assert "--axes" in capsys.readouterr().err
+    rec = Record.from_files(tmp_path / "last.npy", dx=DX, dt=DT, axes="yxt")
+    np.testing.assert_allclose(rec.eta, longer)
+    assert check_record(rec, Water(sigma=0.0), only=["dispersion"]).ok
+    assert main(["check", str(tmp_path / "last.npy"), "--dx", "0.25", "--dt", "1/15", "--axes", "yxt", "--sigma",
+                 "0", "--only", "dispersion"]) == 0
+    from optics.rendering.textures import export_height_frames
+
+    export_height_frames(list(longer[:8]), 32 * DX, DT, tmp_path / "exr")
+    with pytest.raises(ValueError, match="axes"):  # images are one frame each: no layout to name
+        Record.from_files(tmp_path / "exr", axes="yxt")
+
+
+def test_saved_cube_record_reads_back(tmp_path):
+    cube = fft_ocean(phillips_h0(16, DX, seed=1), DX, DT, 16)
+    back = Record.load(Record(cube, DX, DT).save(tmp_path / "cube.npz"))  # the .npz says its layout
+    np.testing.assert_array_equal(back.eta, cube)
+
+
+def test_rectangular_frames_are_refused(sea):
+    with pytest.raises(ValueError, match="square"):
+        Record(sea[:, :, :16], DX, DT)
+
+
+def test_options_are_checked_before_the_frames_are_read(tmp_path, capsys):
+    """Unknown checks, a named check's missing claim, and wake companions without --wake: exit 2 at once,
+    naming the options, for frames that do not even exist."""
+    missing = str(tmp_path / "not-read")
+    for argv, words in ((["--only", "dispersion", "bogus"], "--only: unknown check(s) bogus"),
+                        (["--only", "direction"], "needs --direction"), (["--only", "wake_max", "--wake", "1"],
+                                                                          "needs --wake-size"),
+                        (["--wake-at", "1,2"], "--wake U")):
+        with pytest.raises(SystemExit) as exc:
+            main(["check", missing, *argv])
+        err = capsys.readouterr().err
+        assert exc.value.code == 2 and words in err and "not-read" not in err, (argv, err)

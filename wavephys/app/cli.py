@@ -410,6 +410,21 @@ def _seconds(text: str) -> float:
     return value
 
 
+_CLAIM_OPTIONS = (("only:", "--only:"), ("direction= (--direction DEG)", "--direction DEG"),
+                  ("sea=True (--sea)", "--sea"), ("source= (--source X,Y)", "--source X,Y"),
+                  ("packet=True (--packet)", "--packet"), ("wake=dict(speed=...) (--wake U)", "--wake U"),
+                  ("the source's size, wake=dict(size=...) (--wake-size SIGMA)", "--wake-size M"),
+                  ("normals= (--normals FILE)", "--normals FILE"), ("caustics= (--caustics FILE)", "--caustics FILE"),
+                  ("other= (--other FRAMES)", "--other FRAMES"))
+
+
+def _option_words(text: str) -> str:
+    """A message of :func:`wavephys.harness.check_record` in the command's words (its options, not Python's)."""
+    for python, option in _CLAIM_OPTIONS:
+        text = text.replace(python, option)
+    return text
+
+
 def _wake_claim(args):
     """The ``wake=`` claim of :func:`wavephys.harness.check_record` from ``--wake`` and its companions."""
     if args.wake is None:
@@ -427,13 +442,28 @@ def cmd_check_frames(args, parser) -> int:
 
     json_path = _checked(parser, output_file, args.json, "--json", (".json",)) if args.json else None
     junit_path = _checked(parser, output_file, args.junit, "--junit", (".xml",)) if args.junit else None
+    names = [n for n, _, _ in RECORD_CHECK_HELP]
+    if args.only:  # checked before the frames are read
+        unknown = [n for n in args.only if n not in names]
+        if unknown:
+            parser.error(f"--only: unknown check(s) {', '.join(unknown)}; the checks are {', '.join(names)}")
+    given = {"direction": args.direction is not None, "sea": args.sea, "packet": args.packet,
+             "source": args.source is not None, "wake": args.wake is not None, "wake-size": args.wake_size is not None,
+             "normals": bool(args.normals), "caustics": bool(args.caustics), "other": bool(args.other)}
+    for name, _, needs in RECORD_CHECK_HELP:
+        missing = [f"--{x}" for x in needs if not given[x]]
+        if args.only and name in args.only and missing:
+            parser.error(f"--only: the {name} check needs {', '.join(missing)}")
+    if args.wake is None and (args.wake_at is not None or args.wake_size is not None or args.wake_heading != 0.0):
+        parser.error("--wake-at, --wake-heading and --wake-size describe a moving source: give its speed with "
+                     "--wake U")
     from wavephys import Water
     from wavephys.harness import Record, check_record
 
     source = args.frames[0] if len(args.frames) == 1 else list(args.frames)
     try:
         record = Record.from_files(source, dx=args.dx, dt=args.dt, channel=args.channel, depth=args.depth,
-                                   sigma=args.sigma)
+                                   sigma=args.sigma, axes=args.axes)
     except (TypeError, ValueError) as exc:
         print(f"wavephys check: {exc}", file=sys.stderr)
         return 2
@@ -459,12 +489,12 @@ def cmd_check_frames(args, parser) -> int:
                               viscosity=args.viscosity, rtol=args.rtol, wake=_wake_claim(args),
                               convention=args.convention, **maps,
                               progress=lambda m: print(m, file=sys.stderr, flush=True))
-    except (TypeError, ValueError) as exc:
-        parser.error(str(exc))
+    except (TypeError, ValueError) as exc:  # a claim a named check needs: the option's name, not Python's
+        parser.error(_option_words(str(exc)))
     for name, row in report.rows.items():
         print(f"{'ok    ' if row.ok else 'FAILED'} {name}: {row.report()}")
     for name, why in report.skipped.items():
-        print(f"skip   {name}: {why}")
+        print(f"skip   {name}: {_option_words(why)}")
     if json_path is not None:
         with atomic_path(json_path) as tmp:
             tmp.write_text(json.dumps(report.as_dict(), indent=2))
@@ -553,6 +583,9 @@ def _add_check_parser(sub, fmt) -> None:
     ck.add_argument("--dt", type=_seconds, help="time between frames, s: 0.0167 or 1/60 (when the files do not say)")
     ck.add_argument("--depth", type=_float(0.0, open_lo=True), help="the water's depth, m (default: deep)")
     ck.add_argument("--sigma", type=_float(0.0), help="surface tension, N/m (default 0.0728; 0 for gravity waves)")
+    ck.add_argument("--axes", choices=("tyx", "yxt", "txy", "xyt", "ytx", "xty"),
+                    help="the layout of one .npy/.npz array of frames (yxt: time last); needed when its shape could "
+                         "be read more than one way")
     ck.add_argument("--channel", metavar="NAME", help="the EXR channel holding the heights (default Y or the only one)")
     ck.add_argument("--only", nargs="+", metavar="CHECK", help="run only these checks (names above)")
     ck.add_argument("--sea", action="store_true", help="the frames are a sea meant to travel (standing-wave check)")
@@ -573,7 +606,7 @@ def _add_check_parser(sub, fmt) -> None:
     ck.add_argument("--wake-at", type=_pair, metavar="X,Y", help="where that source is in the first frame, m "
                                                                  "(default 0,0: the centre)")
     ck.add_argument("--wake-heading", type=_real, default=0.0, metavar="DEG", help="its heading, degrees, 0 = +x")
-    ck.add_argument("--wake-size", type=_float(0.0, open_lo=True), metavar="SIGMA",
+    ck.add_argument("--wake-size", type=_float(0.0, open_lo=True), metavar="M",
                     help="its size as a Gaussian pressure, m (wake_max check)")
     ck.add_argument("--rtol", type=_float(0.0, open_lo=True), default=0.02, help="dispersion tolerance (default "
                                                                                    "0.02)")

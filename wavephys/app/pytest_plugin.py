@@ -211,7 +211,8 @@ class Checker:
         dx, dt : float, optional, keyword-only
             Grid spacing, m, and time between frames, s, > 0 (for arrays; for files when the headers lack them).
         axes : str, optional, keyword-only
-            The array's layout, e.g. ``"tyx"`` or ``"yxt"`` (time last).
+            The layout of an array, or of one ``.npy``/``.npz`` file of frames, e.g. ``"tyx"`` or ``"yxt"``
+            (time last): needed when the shape could be read more than one way.
         only : list of str, optional, keyword-only
             The checks to run (default: every one whose claims are given).
         **claims
@@ -245,7 +246,7 @@ class Checker:
             if isinstance(frames, Record):
                 record = frames
             elif isinstance(frames, (str, os.PathLike, list, tuple)) and not _is_numeric(frames):
-                record = Record.from_files(frames, dx=dx, dt=dt)
+                record = Record.from_files(frames, dx=dx, dt=dt, axes=axes)
             else:
                 if dx is None or dt is None:
                     raise ValueError("dx and dt: heights given as an array need dx (m) and dt (s)")

@@ -27,9 +27,11 @@ from pathlib import Path
 
 import numpy as np
 
-from wavephys.core.inputs import check_int, check_scalar, describe
+from typing import Optional
 
-__all__ = ["FRAME_SUFFIXES", "UNITS", "Frames", "read_exr", "read_frames", "read_map"]
+from wavephys.core.inputs import check_choice, check_int, check_scalar, describe
+
+__all__ = ["FRAME_SUFFIXES", "UNITS", "AXES", "Frames", "read_exr", "read_frames", "read_map", "resolve_axes"]
 
 FRAME_SUFFIXES = (".exr", ".png", ".npy", ".npz")
 """The file types :func:`read_frames` reads."""
@@ -38,6 +40,53 @@ UNITS = {"m": 1.0, "cm": 0.01, "mm": 0.001}
 """Height units a file may declare (its ``units`` entry), with their size in metres."""
 
 _NPZ_HEIGHTS = ("eta", "heights", "height", "frames")
+_PNG_MODES = {"L": "8-bit grayscale", "RGB": "8-bit RGB", "RGBA": "8-bit RGBA", "P": "palette", "1": "1-bit",
+              "LA": "8-bit grayscale with alpha"}
+
+AXES = ("tyx", "txy", "yxt", "xyt", "ytx", "xty")
+"""The layouts :meth:`Record.from_array` takes: t (time), y (rows), x (columns) in array order."""
+
+def resolve_axes(shape, axes: Optional[str]) -> str:
+    """The layout of a 3-D array: ``axes`` when given, else inferred only where one reading is possible.
+
+    Parameters
+    ----------
+    shape : tuple of int
+        The array's shape (three axes).
+    axes : str or None
+        One of :data:`AXES`, or None to infer: only ``(n_t, n, n)`` with n_t ≠ n is unambiguous.
+
+    Returns
+    -------
+    str
+        The layout, one of :data:`AXES`.
+
+    Raises
+    ------
+    ValueError
+        When ``axes`` is not a layout, or is None and the shape can be read more than one way.
+    """
+    if (not isinstance(shape, tuple) or len(shape) != 3
+            or not all(isinstance(s, (int, np.integer)) and not isinstance(s, bool) and s > 0 for s in shape)):
+        raise TypeError(f"shape must be a tuple of three positive ints (an array's shape), got {describe(shape)}")
+    if axes is not None:
+        return check_choice("axes", axes, AXES)
+    a, b, c = shape
+    if b == c and a != b:
+        return "tyx"
+    if a == b == c:
+        raise ValueError(f"axes: a cube of shape {tuple(shape)} could hold time on any axis; say which with "
+                         f"axes='tyx' (time first) or axes='yxt' (time last)")
+    if a == b:
+        raise ValueError(f"axes: shape {tuple(shape)} looks like time last (n, n, n_t), the layout many engines "
+                         f"export; say axes='yxt' to read it so (or axes='tyx' if it really is {a} frames of "
+                         f"{b} x {c})")
+    raise ValueError(f"axes: shape {tuple(shape)} has no two equal axes, so the time axis cannot be told from it; "
+                     f"say which with axes='tyx', 'yxt', ... (t = time, y = rows, x = columns)")
+
+
+def _to_tyx(data: np.ndarray, axes: str) -> np.ndarray:
+    return np.transpose(data, [axes.index(c) for c in "tyx"])
 
 
 @dataclass(frozen=True)
@@ -184,7 +233,7 @@ def _png_frame(path: Path, channel):
     except (OSError, ValueError) as exc:
         raise ValueError(f"source: {str(path)!r} is not a readable PNG ({exc})") from None
     if data.ndim != 2 or data.dtype not in (np.uint16, np.int32):
-        raise ValueError(f"source: {str(path)!r} is a {mode} PNG; heights need a 16-bit grayscale PNG "
+        raise ValueError(f"source: {str(path)!r} is a {_PNG_MODES.get(mode, mode)} PNG (mode {mode}); heights need a 16-bit grayscale PNG "
                          f"(8 bits hold 256 levels: too coarse for a wave record)")
     if channel is not None:
         raise ValueError(f"channel: {str(path)!r} is a grayscale PNG with one channel; leave channel unset")
@@ -268,7 +317,7 @@ def _times(metas, paths):
 
 
 def read_frames(source, *, channel: str | None = None, dx: float | None = None, dt: float | None = None,
-                max_frames: int = 65536) -> Frames:
+                max_frames: int = 65536, axes: Optional[str] = None) -> Frames:
     """Read a time series of height images: one frame per file, or one ``.npy``/``.npz`` array of frames.
 
     Parameters
@@ -290,6 +339,10 @@ def read_frames(source, *, channel: str | None = None, dx: float | None = None, 
         they must agree.
     max_frames : int, optional, keyword-only
         Most frames read, >= 1 (default 65536): a guard against a pattern that matches far more than meant.
+    axes : str, optional, keyword-only
+        The layout of one ``.npy``/``.npz`` array of frames, one of :data:`AXES` (``"yxt"``: time last). Needed
+        when the shape can be read more than one way (time last, a cube), unless the ``.npz`` says (``axes``
+        beside the heights, as ``Record.save`` writes); refused for image files, which are one frame each.
 
     Returns
     -------
@@ -321,11 +374,22 @@ def read_frames(source, *, channel: str | None = None, dx: float | None = None, 
         raise ValueError(f"source: frames must be files of one kind ({', '.join(FRAME_SUFFIXES)}), got "
                          f"{', '.join(sorted(kinds))}")
     (kind,) = kinds
+    if axes is not None:
+        check_choice("axes", axes, AXES)
+        if not (kind in (".npy", ".npz") and len(paths) == 1):
+            raise ValueError(f"axes: only one .npy/.npz array of frames has a layout to name; {len(paths)} "
+                             f"{kind} file(s) are one frame each")
     if kind in (".npy", ".npz") and len(paths) == 1:
         data, meta = _np_frames(paths[0])
         if data.ndim != 3:
             raise ValueError(f"source: {str(paths[0])!r} holds an array of shape {data.shape}; a record is "
-                             f"(n_t, n_y, n_x) (Record.from_array takes other layouts with axes=)")
+                             f"(n_t, n_y, n_x), or another layout named with axes=")
+        saved = meta.get("axes") if isinstance(meta.get("axes"), str) else None
+        try:  # one array: its time axis is never guessed (a time-last export must say so)
+            layout = resolve_axes(data.shape, axes if axes is not None else saved)
+        except ValueError as exc:
+            raise ValueError(f"{exc} (the array in {str(paths[0])!r}; --axes on the command line)") from None
+        data = _to_tyx(data, layout)
         frames, metas = list(data), [meta] * data.shape[0]
     else:
         frames, metas = [], []

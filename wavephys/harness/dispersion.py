@@ -115,7 +115,7 @@ def measure_dispersion(eta, dx: float, dt: float, *, min_relative_power: float =
     >>> samples = measure_dispersion(frames, dx=0.01, dt=1 / 60)           # doctest: +SKIP
     >>> print(dispersion_check(samples, Water(depth=0.5)))                # doctest: +SKIP
     """
-    from wavephys.harness.record import resolve_axes
+    from wavephys.core.frames import resolve_axes
 
     check_array("eta", eta, ndim=3)
     eta = np.asarray(eta, dtype=np.float64)

@@ -29,55 +29,15 @@ import numpy as np
 
 from wavephys.core.files import atomic_path, output_file
 from wavephys.core.inputs import check_array, check_choice, check_instance, check_scalar, describe
+from pathlib import Path
+
+from wavephys.core.frames import AXES, _to_tyx, resolve_axes  # noqa: F401  (AXES: this module's name too)
 from wavephys.core.water import Water
 
 __all__ = ["Record", "Rate", "time_derivative", "AXES", "RATE_METHODS"]
 
-AXES = ("tyx", "txy", "yxt", "xyt", "ytx", "xty")
-"""The layouts :meth:`Record.from_array` takes: t (time), y (rows), x (columns) in array order."""
-
 RATE_METHODS = ("auto", "fd4", "spectral")
 """How :func:`time_derivative` differentiates frames in time (``auto``: spectral for a loop, else fd4)."""
-
-
-def resolve_axes(shape, axes: Optional[str]) -> str:
-    """The layout of a 3-D array: ``axes`` when given, else inferred only where one reading is possible.
-
-    Parameters
-    ----------
-    shape : tuple of int
-        The array's shape (three axes).
-    axes : str or None
-        One of :data:`AXES`, or None to infer: only ``(n_t, n, n)`` with n_t ≠ n is unambiguous.
-
-    Returns
-    -------
-    str
-        The layout, one of :data:`AXES`.
-
-    Raises
-    ------
-    ValueError
-        When ``axes`` is not a layout, or is None and the shape can be read more than one way.
-    """
-    if axes is not None:
-        return check_choice("axes", axes, AXES)
-    a, b, c = shape
-    if b == c and a != b:
-        return "tyx"
-    if a == b == c:
-        raise ValueError(f"axes: a cube of shape {tuple(shape)} could hold time on any axis; say which with "
-                         f"axes='tyx' (time first) or axes='yxt' (time last)")
-    if a == b:
-        raise ValueError(f"axes: shape {tuple(shape)} looks like time last (n, n, n_t), the layout many engines "
-                         f"export; say axes='yxt' to read it so (or axes='tyx' if it really is {a} frames of "
-                         f"{b} x {c})")
-    raise ValueError(f"axes: shape {tuple(shape)} has no two equal axes, so the time axis cannot be told from it; "
-                     f"say which with axes='tyx', 'yxt', ... (t = time, y = rows, x = columns)")
-
-
-def _to_tyx(data: np.ndarray, axes: str) -> np.ndarray:
-    return np.transpose(data, [axes.index(c) for c in "tyx"])
 
 
 @dataclass(frozen=True)
@@ -215,6 +175,9 @@ class Record:
             raise ValueError(f"eta must have at least 8 frames on its time axis, got shape {eta.shape}")
         if min(eta.shape[1:]) < 4:
             raise ValueError(f"eta must be at least 4 x 4 per frame, got shape {eta.shape}")
+        if eta.shape[1] != eta.shape[2]:
+            raise ValueError(f"eta: the frames must be square (n_y = n_x, one dx), got {eta.shape[1]} x "
+                             f"{eta.shape[2]} (shape {eta.shape}); crop or pad them to a square")
         object.__setattr__(self, "eta", eta)
         object.__setattr__(self, "dx", check_scalar("dx", self.dx, lo=0.0, lo_open=True))
         object.__setattr__(self, "dt", check_scalar("dt", self.dt, lo=0.0, lo_open=True))
@@ -324,7 +287,7 @@ class Record:
     @classmethod
     def from_files(cls, source, *, dx: Optional[float] = None, dt: Optional[float] = None,
                    channel: Optional[str] = None, depth: Optional[float] = None,
-                   sigma: Optional[float] = None) -> "Record":
+                   sigma: Optional[float] = None, axes: Optional[str] = None) -> "Record":
         """A record from exported frames (:func:`wavephys.core.frames.read_frames`).
 
         Parameters
@@ -339,6 +302,9 @@ class Record:
             The EXR channel of the heights (default ``Y`` or the only one).
         depth, sigma : float, optional, keyword-only
             The claimed depth (m) and surface tension (N/m); a saved record's own claims otherwise.
+        axes : str, optional, keyword-only
+            The layout of one ``.npy``/``.npz`` array of frames (``"tyx"``, ``"yxt"``, …): needed when its shape
+            can be read more than one way (time last, a cube); never guessed.
 
         Returns
         -------
@@ -352,7 +318,7 @@ class Record:
         """
         from wavephys.core.frames import read_frames
 
-        frames = read_frames(source, channel=channel, dx=dx, dt=dt)
+        frames = read_frames(source, channel=channel, dx=dx, dt=dt, axes=axes)
         for name, value in (("dx", frames.dx), ("dt", frames.dt)):
             if value is None:
                 raise ValueError(f"{name}: the frames ({frames.paths[0]}, ...) do not say their {name}; give "
@@ -410,7 +376,7 @@ class Record:
             The path written.
         """
         path = output_file(path, "path", (".npz",))
-        entries = dict(eta=self.eta, dx=self.dx, dt=self.dt, units="m")
+        entries = dict(eta=self.eta, dx=self.dx, dt=self.dt, units="m", axes="tyx")
         if self.eta_dot is not None:
             entries["eta_dot"] = self.eta_dot
         for name in ("depth", "sigma"):
