@@ -211,3 +211,21 @@ def test_half_float_exr_never_holds_inf(tmp_path):
         save_exr(tmp_path / "h.exr", {"Y": np.ones((4, 4))}, attributes={"dx": math.nan})
     assert not (tmp_path / "h.exr").exists()  # nothing half-written
     json.dumps({})  # (json imported for the report's files above)
+
+
+@pytest.mark.parametrize("command, option, kind", OPTIONS, ids=[f"{c} {o}" for c, o, _ in OPTIONS])
+def test_every_numeric_option_at_its_limits_parses(command, option, kind):
+    """The documented limits themselves are accepted (and one step past them refused) by the parser."""
+    parse = next(a.type for a in _actions(command) if option in a.option_strings)
+    limits = getattr(parse, "limits", None)
+    if limits is None:
+        pytest.skip("no documented range (any finite number, a pair, a fraction of seconds, a setting)")
+    lo, hi, lo_open = limits
+    if not lo_open:
+        assert parse(str(lo)) == lo
+    if hi is not None:
+        assert parse(str(hi)) == hi
+        with pytest.raises(argparse.ArgumentTypeError):
+            parse(str(hi + 2 if isinstance(hi, int) else hi * 1.001))
+    with pytest.raises(argparse.ArgumentTypeError):
+        parse(str(lo - 2 if isinstance(lo, int) else lo - 1.0))

@@ -67,6 +67,7 @@ def _int(lo: int, even: bool = False, hi: int | None = None):
             raise argparse.ArgumentTypeError(f"must be even, got {value}")
         return value
 
+    parse.limits = (lo, hi, False)  # for the tests: the documented range (lo, hi, lo excluded)
     return parse
 
 
@@ -80,6 +81,8 @@ def _float(lo: float, open_lo: bool = False, hi: float | None = None):
             raise argparse.ArgumentTypeError(f"must be a finite number {'>' if open_lo else '≥'} {lo}"
                                              + (f" and ≤ {hi:g}" if hi is not None else "") + f", got {text}")
         return value
+
+    parse.limits = (lo, hi, open_lo)
 
     return parse
 
