@@ -227,3 +227,20 @@ def test_group_velocity_and_ring_functions_refuse_bad_input():
         ring_arrival_check(rec, DEEP, max_share=1.0)
     with pytest.raises(TypeError, match="record"):
         ring_arrival_check(rec.eta, DEEP)
+
+
+def test_small_correct_seas_pass_the_direction_check_at_any_heading():
+    """Correct one-way seas of 32² and 64² at random headings: the claim passes (a 32² sea's mean direction
+    scattered up to 21° before the tolerance took its sampling error), and the opposite claim fails with its
+    cause."""
+    from wavephys.harness import direction_check
+
+    rng = np.random.default_rng(26)
+    for n in (32, 64):
+        for seed in range(4):
+            deg = float(rng.uniform(-180.0, 180.0))
+            wind = (math.cos(math.radians(deg)), math.sin(math.radians(deg)))
+            rec = Record.from_array(fft_ocean(phillips_h0(n, DX, wind=wind, seed=seed + 300), DX, DT, 128), DX, DT)
+            assert direction_check(rec, deg).ok, (n, deg)
+            row = direction_check(rec, deg + 180.0)
+            assert not row.ok and "opposite to the claim" in row.note, (n, deg, row.report())

@@ -52,6 +52,10 @@ class Travel:
         ½(Σw)²/Σw² over the (up to 2048) strongest modes, w their amplitude √power (k and −k are one pair): how many
         independent pairs the coherence averages; a random sea's coherence is about 1/√(effective_modes), and
         stays below 5/√(effective_modes).
+    direction_error : float
+        The sampling error (one standard deviation) of ``direction``, degrees: each mode's power of a random sea
+        scatters about its mean as much as the mean (an exponential), so the mean direction of a few strong
+        modes scatters too; √(Σ p²(u·e⊥)²)/|Σ p u| with e⊥ across the mean direction.
     """
 
     direction: float
@@ -61,6 +65,7 @@ class Travel:
     release: float
     modes: int
     effective_modes: float
+    direction_error: float = math.nan
 
 
 def _peaks(spec, nt, min_bins):
@@ -125,6 +130,9 @@ def measure_travel(eta, dx: float, dt: float, *, min_bins: float = 2.0) -> Trave
     # direction: the wave along +k holds p_neg (and its twin at -k, the same wave, holds p_pos there)
     ux, uy = kx[keep] / kmag[keep], ky[keep] / kmag[keep]
     d = np.array([np.sum(p_neg[keep] * ux), np.sum(p_neg[keep] * uy)]) / np.sum(p_neg[keep] + 1e-300)
+    across = (-ux * d[1] + uy * d[0]) / max(float(np.hypot(*d)), 1e-300)  # u·e⊥ of each mode
+    spread = math.sqrt(float(np.sum((p_neg[keep] * across) ** 2))) / max(float(np.sum(p_neg[keep])), 1e-300)
+    direction_error = math.degrees(spread / max(float(np.hypot(*d)), 1e-300))
     balance = 2 * np.sqrt(p_neg * p_pos) / np.maximum(total, 1e-300)
     w = total[keep]
     mean_balance = float(np.sum(w * balance[keep]) / np.sum(w))
@@ -133,7 +141,7 @@ def measure_travel(eta, dx: float, dt: float, *, min_bins: float = 2.0) -> Trave
     faint = (kmag > 0) & (total > 1e-8 * total.max())
     coherence, release, n_eff = _locking(spec, power, i_neg, i_pos, faint, np.sqrt(total[faint]), nt, dt)
     return Travel(float(math.degrees(math.atan2(d[1], d[0]))), float(np.hypot(*d)), mean_balance, coherence,
-                  release, int(keep.sum()), n_eff)
+                  release, int(keep.sum()), n_eff, min(direction_error, 180.0))
 
 
 def _locking(spec, power, i_neg, i_pos, keep, w, nt, dt):
@@ -222,7 +230,9 @@ def direction_check(record, direction: float, *, tolerance: float = 15.0, min_co
         The claimed direction of travel (downwind for a wind sea), degrees, 0 = +x, 90 = +y (counter-clockwise
         in the grid convention, row 0 = lowest y).
     tolerance : float, optional, keyword-only
-        Largest allowed difference, degrees, in (0, 180] (default 15).
+        Allowed difference, degrees, in (0, 180] (default 15). The row's tolerance is the larger of this and 4 ×
+        the measured direction's own sampling error (``Travel.direction_error``): a small random sea's mean
+        direction scatters (a correct 32² sea: up to 21° over 12 draws, 1.7 of its sampling error).
     min_concentration : float, optional, keyword-only
         Below this concentration of directions (0–1) the record has no direction to check and the row fails
         (default 0.2).
@@ -243,7 +253,9 @@ def direction_check(record, direction: float, *, tolerance: float = 15.0, min_co
     t = measure_travel(record.eta, record.dx, record.dt)
     claimed = (float(direction) + 180.0) % 360.0 - 180.0
     diff = (t.direction - claimed + 180.0) % 360.0 - 180.0 if math.isfinite(t.direction) else math.nan
-    note = f"{t.modes} modes; concentration {t.concentration:.2f}; claimed {claimed:.1f} deg"
+    tolerance = max(float(tolerance), 4.0 * t.direction_error) if math.isfinite(t.direction_error) else tolerance
+    note = (f"{t.modes} modes; concentration {t.concentration:.2f}; claimed {claimed:.1f} deg; sampling error "
+            f"{t.direction_error:.2g} deg (tolerance the larger of the given and 4 x it)")
     measured = claimed + diff
     if not (t.concentration >= min_concentration):
         return compare("mean direction of travel", math.nan, claimed, atol=tolerance, unit="deg",
