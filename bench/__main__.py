@@ -95,19 +95,31 @@ def run_optics(args) -> None:
 def run_jacobian(args) -> None:
     from bench import jacobian
 
-    rows = jacobian.boundary_rows(_say, seeds=(1,) if args.quick else (1, 2), n=64 if args.quick else 128)
+    rows = jacobian.boundary_rows(_say, seeds=(1,), n=64 if args.quick else 128)
+    rows += jacobian.size_rows(_say, sizes=(64,) if args.quick else (64, 256, 512))
     rows += jacobian.speed_rows(_say, sizes=(256,) if args.quick else (256, 512))
+    rows += jacobian.scene_rows(_say, n=128 if args.quick else 256, times=(1.0,))
     for fraction in jacobian.FRACTIONS:
         sel = [r for r in rows if r["family"] == "jacobian boundary" and r["fraction"] == fraction]
-        gather = [r for r in sel if r["answered"] == "gather"]
-        worst = f"max-norm {max(r['error'] for r in gather):.2e}, L2 {max(r['l2_error'] for r in gather):.2e}" \
-            if gather else "none answered by the gather"
-        print(f"{fraction:4.2f} of the first fold: {len(gather)}/{len(sel)} gathered ({worst}); "
-              f"worst overall {max(r['error'] for r in sel):.2e}")
+        count = {a: sum(r["answered"] == a for r in sel) for a in ("gather", "windows", "beam")}
+        windows = [r["windows"] for r in sel if r["answered"] == "windows"]
+        print(f"{fraction:4.2f} of the first fold: gather {count['gather']}, windows {count['windows']}"
+              + (f" ({min(windows):.0%}-{max(windows):.0%} of the floor)" if windows else "")
+              + f", beam {count['beam']} of {len(sel)}; max-norm {max(r['error'] for r in sel):.2e}, "
+              f"L2 {max(r['l2_error'] for r in sel):.2e}")
     for r in rows:
         if r["family"] == "jacobian speed":
             print(f"speed n={r['n']} {r['method']}: {r['seconds'] * 1e3:.1f} ms = {r['ratio']:.1f} steps "
                   f"(step {r['baseline_seconds'] * 1e3:.2f} ms)")
+        if r["family"] == "jacobian wind seas":
+            print(f"wind sea {r['spectrum']} n={r['n']} sun {r['elevation']:.0f}: {r['answered']} "
+                  f"(supersample {r['supersample']}, windows {r['windows']:.0%}): max-norm {r['error']:.2e}, "
+                  f"L2 {r['l2_error']:.2e} (reference bound {r['reference_bound']:.1e})")
+        if r["family"] == "jacobian scenes":
+            print(f"scene {r['scene']} t={r['time']} n={r['n']}: {r['answered']} (windows {r['windows']:.0%}), "
+                  f"beam {r['beam_seconds'] * 1e3:.0f} ms, jacobian {r['jacobian_seconds'] * 1e3:.0f} ms "
+                  f"(x{r['saving']:.2f}); max error beam {r['beam_error']:.2%} jacobian {r['jacobian_error']:.2%}, "
+                  f"L2 {r['beam_l2_error']:.3%} / {r['jacobian_l2_error']:.3%} (reference bound {r['reference_bound']:.2%})")
     _write(rows, jacobian.figures(rows), Path(args.json or "bench/results/jacobian.json"))
 
 
@@ -304,7 +316,7 @@ def main(argv=None) -> int:
         if name == "scale":
             s.add_argument("--huge", action="store_true", help="a 16384² run on 1 and on 4 devices (20 GiB, minutes)")
         if name == "calibrate":
-            s.add_argument("--only", choices=("caustics", "shade", "texture", "surface", "ship", "ship_impulses"), help="measure this table alone and update its entry")
+            s.add_argument("--only", choices=("caustics", "caustics_jacobian", "shade", "texture", "surface", "ship", "ship_impulses"), help="measure this table alone and update its entry")
         if name == "propagation":
             s.add_argument("--device", choices=("cpu", "gpu", "tpu"),
                            help="time the step on this device against its own FFT floor (N = 1024–8192)")

@@ -184,6 +184,28 @@ def caustics_seconds(progress=print) -> dict:
     return dict(n=cells, seconds=[table[c] for c in cells])
 
 
+def caustics_jacobian_seconds(progress=print) -> dict:
+    """One frame's floor irradiance by the Jacobian gather (eager, as the planner's shading calls it),
+    by texels per side, on the beam table's surfaces with the floor at half their first fold (where
+    the planner offers it); the median of 3 after one compiling call."""
+    import jax.numpy as jnp
+
+    from optics.caustics import first_fold_depth, floor_irradiance_jacobian
+    from optics.caustics.surfaces import random_surface
+    from wavephys.core.grid import Grid
+
+    sizes = sorted({n for n, _ in CAUSTICS_CELLS} | {512})
+    out = []
+    for n in sizes:
+        grid = Grid(n, 2.0)
+        eta = jnp.asarray(random_surface(grid, "band", 0.08, 1), jnp.float32)
+        sun = (-0.5, 0.0, 0.87)
+        depth = 0.5 * first_fold_depth(eta, grid, sun)
+        out.append(_median(lambda: floor_irradiance_jacobian(eta, grid, depth, sun, fold="raise"), repeats=3))
+    progress("jacobian caustics per frame: " + ", ".join(f"{n}² {t * 1e3:.1f} ms" for n, t in zip(sizes, out)))
+    return dict(n=sizes, seconds=out)
+
+
 def texture_seconds(progress=print) -> dict:
     """Seconds per million texels of storing frames in each height texture format
     (:func:`wavephys.planner.runner.encode_texture`, as a run does), over 64 frames of 128²."""
@@ -283,13 +305,14 @@ def kappa(progress=print, count: int = KAPPA_SCENES, seed: int = 99) -> dict:
 
 def calibrate(progress=print, only=None) -> dict:
     """Measure everything the cost model needs and write the calibration file (module doc).
-    ``only="caustics"``, ``"shade"``, ``"texture"``, ``"surface"``, ``"ship"`` or ``"ship_impulses"``: measure that table alone and update the shipped file's entry."""
+    ``only="caustics"``, ``"caustics_jacobian"``, ``"shade"``, ``"texture"``, ``"surface"``, ``"ship"`` or ``"ship_impulses"``: measure that table alone and update the shipped file's entry."""
     import platform
 
     from wavephys.core.files import atomic_path
 
     if only is not None:
-        parts = {"caustics": caustics_seconds, "shade": shade_seconds, "texture": texture_seconds,
+        parts = {"caustics": caustics_seconds, "caustics_jacobian": caustics_jacobian_seconds,
+                 "shade": shade_seconds, "texture": texture_seconds,
                  "surface": surface_seconds, "ship": ship_seconds,
                  "ship_impulses": lambda p: ship_seconds(p, "impulses")}
         if only not in parts:
@@ -307,13 +330,14 @@ def calibrate(progress=print, only=None) -> dict:
     fresnel, absorption = optics_seconds(progress)
     overhead = overhead_seconds(progress)
     caustics = caustics_seconds(progress)
+    caustics_jacobian = caustics_jacobian_seconds(progress)
     shade = shade_seconds(progress, dict(fresnel=fresnel, absorption=absorption))
     texture = texture_seconds(progress)
     surface = surface_seconds(progress)
     k = kappa(progress)
     data = dict(machine=f"{platform.machine()} {os.cpu_count()} cores, {platform.python_version()}",
                 date=time.strftime("%Y-%m-%d"), step=step, ship=ship, ship_impulses=ship_impulses, frame=frame, blend=blend, refine=refine,
-                fresnel=fresnel, absorption=absorption, caustics=caustics, shade=shade, texture=texture, surface=surface, run_overhead=overhead, kappa=k["kappa"],
+                fresnel=fresnel, absorption=absorption, caustics=caustics, caustics_jacobian=caustics_jacobian, shade=shade, texture=texture, surface=surface, run_overhead=overhead, kappa=k["kappa"],
                 kappa_measured=k["measured"],
                 kappa_note="4 × the worst measured max|η32 − η64| / s0 over the scenes")
     with atomic_path(CAL_PATH) as tmp:

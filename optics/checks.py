@@ -135,7 +135,7 @@ def check_caustics() -> list[Check]:
         at 0° and 45°, the peak (2) and trough (2/3) of E/E0 at half the focal depth by the beam and
         the reference methods, and the first fold depth against the focal depth, m (rtol 0.01); then,
         on a generated 2-D sea, the converged reference's bound, the beam and jacobian methods against
-        it, the jacobian's refusal and hand-over to the beam past the first fold, and the GPU drawing
+        it, the jacobian's refusal, hand-over to the beam and folded windows past the first fold, and the GPU drawing
         against the reference (or a failing "GPU drawing available" row without OpenGL).
     """
     rows = []
@@ -191,9 +191,18 @@ def _generated_surface_rows() -> list[Check]:
                       relation=">="))
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
-        handed = np.asarray(floor_irradiance(eta, grid, deep, sun, method="jacobian"), np.float64)
+        handed = np.asarray(floor_irradiance(eta, grid, deep, sun, method="jacobian", fold="beam"), np.float64)
     rows.append(bound("jacobian at 1.5 x the first fold, fold='beam': max |E - beam| (the beam answers)",
                       float(np.max(np.abs(handed - np.asarray(floor_irradiance(eta, grid, deep, sun))))), 0.0))
+    past = 1.1 * first_fold_depth(eta, grid, sun)
+    ref_past = converged_floor_irradiance(eta, grid, past, sun, tolerance=2e-3)
+    peak_past = float(ref_past.irradiance.max())
+    windows = np.asarray(floor_irradiance(eta, grid, past, sun, method="jacobian"), np.float64)
+    beam_past = np.asarray(floor_irradiance(eta, grid, past, sun), np.float64)
+    rows.append(bound("jacobian at 1.1 x the first fold (the beam on the folded windows): max |error| / peak, "
+                      "minus the default beam's",
+                      float(np.max(np.abs(windows - ref_past.irradiance)) - np.max(np.abs(beam_past - ref_past.irradiance)))
+                      / peak_past, 0.005))
     try:
         gl = floor_irradiance(eta, grid, depth, sun, method="gl", refine=3, supersample=8)
         rows.append(bound("GPU drawing (refine 3, supersample 8) vs the reference, same sea: max |error| / peak",

@@ -353,6 +353,8 @@ OVERRIDES = {
     "wavephys.app.scenes.scene_water": {"n": lambda: 64},
     "wavephys.app.scenes.scene_frames": {"n": lambda: 64},
     "wavephys.app.scenes.scene_grid": {"n": lambda: 64},
+    "wavephys.app.scenes.scene_caustics": {"name": lambda: "calm", "water": lambda: np.zeros((64, 64), np.float32),
+                                         "method": lambda: "beam"},
     "wavephys.harness.dispersion.measure_dispersion": {"eta": lambda: RNG.standard_normal((16, 8, 8))},
     "wavephys.app.pytest_plugin.Checker.dispersion": {
         "eta": _dispersion_record, "dx": lambda: 1.0, "dt": lambda: 0.4, "water": lambda: Water(sigma=0.0)},

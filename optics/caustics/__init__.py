@@ -12,8 +12,9 @@ The methods (:data:`FLOOR_IRRADIANCE_METHODS`), one module each:
 * ``"beam"`` — :func:`floor_irradiance_beam`, beam tracing by exact rasterization: every
   surface cell's two triangles spread their flux over their exact landed footprints;
 * ``"jacobian"`` — :func:`floor_irradiance_jacobian`, the area ratio of the landing map from
-  spectral curvatures, gathered per floor texel by Newton's method (below the first fold;
-  past it the beam answers, or it refuses by name);
+  spectral curvatures, gathered per floor texel by Newton's method where one smooth sheet
+  lights the floor, with the exact beam on the texels folded sheets reach (or, by option,
+  the beam everywhere or a refusal by name);
 * ``"gl"`` — :func:`floor_irradiance_gl`, the same beams drawn by OpenGL (moderngl) into a
   float target with additive blending, the way Loviscach and WebGL Water do it in hardware;
 * ``"photon"`` — :func:`floor_irradiance_photon`, photon splatting with a bilateral filter;

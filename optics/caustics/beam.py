@@ -126,6 +126,17 @@ def floor_irradiance_beam(eta, grid: Grid, depth, sun=(0.0, 0.0, 1.0), *, resolu
         raise ValueError(f"refine {refine} traces {grid.n * refine}² cells: n·refine must be at most 8192")
     check_bool("blur", blur)
     check_choice("normals", normals, ("spectral", "central"))
+    tri_u, tri_v, flux, origin = beam_triangles(light, refine, fresnel, normals)
+    m = light.resolution
+    return _irradiance(rasterize_triangles(tri_u, tri_v, flux, (m, m), origin), float(grid.length) / m, blur)
+
+
+def beam_triangles(light, refine: int, fresnel: bool, normals: str = "spectral"):
+    """The landed triangles of a checked :class:`~optics.caustics.common.Lighting` traced ``refine``
+    times finer: ``(tri_u, tri_v, flux, origin)`` as :func:`wavephys.core.sampling.rasterize_triangles`
+    takes them (vertices ``(3, 2, n', n')`` in floor texels relative to ``origin``, fluxes ``(2, n', n')``,
+    m²). Refuses a non-finite surface by name."""
+    grid = light.grid
     length = float(grid.length)
     fine = Grid(grid.n * refine, grid.length)
     if refine > 1 and not bool(jnp.isfinite(light.eta).all()):
@@ -135,9 +146,8 @@ def floor_irradiance_beam(eta, grid: Grid, depth, sun=(0.0, 0.0, 1.0), *, resolu
               else central_gradient(surface, float(fine.dx)))
     d = light.direction
     tri_u, tri_v, flux, origin, finite = _vertices(surface, gx, gy, length, jnp.asarray(d, jnp.float32), light.floor,
-                                           light.n_water, light.resolution, fresnel, light.ground,
-                                           shadow_steps(surface, fine, d), grid.n)
+                                                   light.n_water, light.resolution, fresnel, light.ground,
+                                                   shadow_steps(surface, fine, d), grid.n)
     if not bool(finite):
         raise ValueError("eta must be finite everywhere; it contains NaN or inf")
-    m = light.resolution
-    return _irradiance(rasterize_triangles(tri_u, tri_v, flux, (m, m), origin), length / m, blur)
+    return tri_u, tri_v, flux, origin

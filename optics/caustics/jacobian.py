@@ -26,9 +26,22 @@ towards the first fold E has peaks narrower than a texel, so the gather is made 
 grid ``supersample`` times finer and averaged down (``"auto"`` chooses from how fast log E
 changes across a floor texel, :data:`SHARPNESS_LIMIT`, measured over surface families).
 
-Folds (det ∂X/∂x below :data:`MIN_AREA_RATIO` somewhere on the surface, light that even an
-8-fold supersampling cannot resolve, or Newton not converging) are never answered silently: ``fold="beam"`` (default) returns the
-exact beam rasterization instead, ``fold="raise"`` refuses by name.
+On a ground height field the rays land on the ground by the beam's own fixed point (bilinear
+ground, 5 steps), and the forward-mode derivatives go through it.
+
+Folds are never answered silently. The map counts as folded where det ∂X/∂x falls below
+:data:`MIN_AREA_RATIO`, where the light varies faster than the gather resolves, where the
+ground is too steep for the landing ray to settle (:data:`MAX_CONTRACTION`), where the map jumps
+between neighbouring samples (:data:`MAX_GAP`: light either side of a wall's edge), or where
+Newton does not converge. (A crest's shadow at a low sun steps the light, but its edge is where
+the sunlight grazes the facet and the transmittance falls steeply, which the sharpness test
+already leaves to the beam: measured on generated seas at 15°, the same maps with and without
+a rule of its own.) ``fold="windows"`` (default) keeps the gather where one smooth sheet
+lights the floor and rasterizes the exact beam on the texels that the folded parts of the
+surface can reach (their landed cells' boxes, plus one texel; around a jump, the
+:data:`JUMP_REACH` samples the spline rings over); those texels are the beam's, the others the
+gather's, corrected to texel averages by the local Δx²∇²E/24. ``fold="beam"`` returns the beam
+everywhere with a warning; ``fold="raise"`` refuses by name.
 """
 
 from __future__ import annotations
@@ -45,10 +58,11 @@ from optics.caustics.common import land, prepare, shadow_steps, sunlit
 from optics.light.fresnel import N_WATER
 from wavephys.core.grid import Grid
 from wavephys.core.inputs import check_choice, check_int
-from wavephys.core.sampling import bspline
+from wavephys.core.sampling import bspline, rasterize_triangles
 from wavephys.core.spectral import bspline_coefficients, central_gradient, spectral_derivatives
 
-__all__ = ["floor_irradiance_jacobian", "CausticsFold", "SHARPNESS_LIMIT", "MIN_AREA_RATIO"]
+__all__ = ["floor_irradiance_jacobian", "CausticsFold", "SHARPNESS_LIMIT", "MIN_AREA_RATIO", "MAX_CONTRACTION", "MAX_KINK", "MAX_GAP",
+           "JUMP_REACH", "MAX_WINDOWS", "FOLD_CHOICES"]
 
 SHARPNESS_LIMIT = 0.4
 """``supersample="auto"`` gathers s = 1, 2, 4 or 8 points per floor texel side, the fewest with
@@ -58,6 +72,29 @@ surface's own fields). Measured over the surface families (docs/physics.md §2.4
 
 MIN_AREA_RATIO = 0.02
 """Smallest det ∂X/∂x (E up to 50 E0) the method answers; below it the map counts as folded."""
+
+MAX_CONTRACTION = 0.5
+"""Steepest ground the gather lands on: |∇z_g·t_h|/(−t_z), the rate at which the ray–ground
+fixed point (5 steps, as the beam) contracts; steeper ground is a folded window."""
+
+MAX_WINDOWS = 0.5
+"""Largest fraction of the floor ``fold="windows"`` rasterizes by the beam; past it the beam
+draws the whole map (the gather would save nothing)."""
+
+MAX_KINK = 0.02
+"""Largest jump in E (relative) where the bilinear ground's slope changes between its texels,
+|Δ∇z_g|·|t_h|/(−t_z); a sharper bend (a kink in the ground) is a folded window."""
+
+MAX_GAP = 0.1
+"""Largest step (floor texels) between two neighbouring samples' landing points beyond what their
+Jacobians predict; a larger one is a jump in the map (light either side of a steep wall's edge)."""
+
+JUMP_REACH = 8
+"""Surface samples around a jump left to the beam: the interpolating spline's ringing decays as
+(2 − √3)^k per sample, below 1e-3 of a 20-texel jump after 8."""
+
+FOLD_CHOICES = ("windows", "beam", "raise")
+"""What a folded map gets (``fold``)."""
 
 NEWTON_TOLERANCE = 1e-3
 """Largest Newton residual |X(x) − X| accepted, in floor texels (converged ones reach 1e-5–1e-4)."""
@@ -73,28 +110,58 @@ def _derivatives(eta, dx):
     return spectral_derivatives(eta, dx)
 
 
-@partial(jax.jit, static_argnames=("fresnel", "shadow"))
-def _fields(eta, derivs, d, depth, n_water, fresnel, shadow, length):
-    """D = X − x (2 planes), the numerator T·s·det ∂c/∂x, det ∂X/∂x and how fast E changes on
-    the floor (max |J⁻ᵀ∇ log E|, 1/m), on the surface grid."""
+@partial(jax.jit, static_argnames=("fresnel", "shadow", "ground", "coarse"))
+def _fields(eta, derivs, d, floor, n_water, fresnel, shadow, length, ground, coarse):
+    """On the surface grid: D = X − x (2 planes) and the numerator T·s·det ∂c/∂x, stacked;
+    det ∂X/∂x; how fast E changes on the floor, |J⁻ᵀ∇ log E| (1/m); and on a ground height
+    field how far it is from landing smoothly (at most 1: the ray–ground fixed point contracts,
+    |∇z_g·t_h|/(−t_z) ≤ :data:`MAX_CONTRACTION`, and E jumps by at most :data:`MAX_KINK` where the
+    bilinear ground's slope changes; 0 on a flat floor); the gap between a sample's landed neighbours and what its Jacobian predicts
+    (m: large where the map jumps between samples); and whether η is finite."""
     gx, gy, hxx, hxy, hyy = derivs
-    zero = jnp.zeros_like(eta)
-
-    def landing(e, sx, sy):
-        return land(zero, zero, e, sx, sy, d, depth, n_water, fresnel)
-
-    (dxx, dyx, trans), (dxx_x, dyx_x, _) = jax.jvp(landing, (eta, gx, gy), (gx, hxx, hxy))
-    _, (dxx_y, dyx_y, _) = jax.jvp(landing, (eta, gx, gy), (gy, hxy, hyy))
-    a, b, c, e = 1.0 + dxx_x, dxx_y, dyx_x, 1.0 + dyx_y
-    det = a * e - b * c
     grid = Grid(eta.shape[-1], length)
+    xv, yv = grid.mesh()
+    xv, yv = jnp.broadcast_to(xv, eta.shape), jnp.broadcast_to(yv, eta.shape)
+    floor_fn = (lambda x, y: Grid(coarse, length).sample(floor, x, y)) if ground else floor
+    one, zero = jnp.ones_like(eta), jnp.zeros_like(eta)
+
+    def landing(x, y, e, sx, sy):
+        return land(x, y, e, sx, sy, d, floor_fn, n_water, fresnel)
+
+    point = (xv, yv, eta, gx, gy)
+    (X, Y, trans), (a, c, _) = jax.jvp(landing, point, (one, zero, gx, hxx, hxy))
+    _, (b, e, _) = jax.jvp(landing, point, (zero, one, gy, hxy, hyy))
+    det = a * e - b * c
+    if ground:  # the fixed point s = (η − z_g(x + s t_h))/(−t_z) contracts by |dz_g/ds|/(−t_z)
+        t_x, t_y, drop = (X - xv), (Y - yv), jnp.maximum(eta - floor_fn(X, Y), 1e-6)
+        _, slope = jax.jvp(lambda s: floor_fn(X + s * t_x, Y + s * t_y), (zero,), (one,))
+        contraction = jnp.abs(slope) / drop
+        # the bilinear ground's slope changes from texel to texel: E jumps by about that change × |t_h|/(−t_z)
+        hg = length / coarse
+        bend = jnp.maximum(jnp.abs(jnp.roll(floor, -1, 1) - 2 * floor + jnp.roll(floor, 1, 1)),
+                           jnp.abs(jnp.roll(floor, -1, 0) - 2 * floor + jnp.roll(floor, 1, 0))) / hg
+        for axis in (0, 1):  # a point samples the four texels around it
+            bend = jnp.maximum(bend, jnp.maximum(jnp.roll(bend, 1, axis), jnp.roll(bend, -1, axis)))
+        kink = Grid(coarse, length).sample(bend, X, Y) * jnp.hypot(t_x, t_y) / drop
+    else:
+        contraction = kink = zero
+    # where the samples do not resolve the map (a jump: rays either side of a steep wall's edge):
+    # a step between neighbours against the step the local Jacobians predict, m
+    h = grid.dx
+    step = lambda f, axis: jnp.roll(f, -1, axis) - f
+    mean = lambda f, axis: 0.5 * (jnp.roll(f, -1, axis) + f)
+    gap_x = jnp.hypot(step(X - xv, 1) - h * (mean(a, 1) - 1.0), step(Y - yv, 1) - h * mean(c, 1))
+    gap_y = jnp.hypot(step(X - xv, 0) - h * mean(b, 0), step(Y - yv, 0) - h * (mean(e, 0) - 1.0))
+    gap = jnp.maximum(jnp.maximum(gap_x, jnp.roll(gap_x, 1, 1)), jnp.maximum(gap_y, jnp.roll(gap_y, 1, 0)))
     lit = sunlit(eta, grid, d, shadow)
-    numerator = trans * lit * (1.0 - (d[0] * gx + d[1] * gy) / d[2])
+    flux = trans * (1.0 - (d[0] * gx + d[1] * gy) / d[2])
+    numerator = flux * lit
     # how fast E changes on the floor: |J⁻ᵀ ∇ log E| (1/m), E at the surface samples (lit ones)
-    log_e = jnp.log(jnp.maximum(trans * (1.0 - (d[0] * gx + d[1] * gy) / d[2]), 1e-6) / jnp.maximum(det, 1e-6))
+    log_e = jnp.log(jnp.maximum(flux, 1e-6) / jnp.maximum(det, 1e-6))
     lx, ly = central_gradient(log_e, grid.dx)
-    sharpness = jnp.max(jnp.hypot(e * lx - c * ly, -b * lx + a * ly) / jnp.maximum(det, 1e-6))
-    return jnp.stack([dxx, dyx, numerator]), jnp.min(det), sharpness, jnp.isfinite(eta).all()
+    sharpness = jnp.hypot(e * lx - c * ly, -b * lx + a * ly) / jnp.maximum(det, 1e-6)
+    return (jnp.stack([X - xv, Y - yv, numerator]), det, sharpness, jnp.maximum(contraction / MAX_CONTRACTION, kink / MAX_KINK),
+            gap, jnp.isfinite(eta).all())
 
 
 @jax.jit
@@ -105,7 +172,8 @@ def _coefficients(planes):
 
 @partial(jax.jit, static_argnames=("m", "iterations"))
 def _gather(coefficients, length, m, iterations):
-    """Newton per floor point of Grid(m, L): E at the preimage, and the largest residual (texels of the floor)."""
+    """Newton per floor point of Grid(m, L): E at the preimage, and the residual |X(x) − X| (floor
+    texels; inf where the spline's own area ratio there is at most :data:`MIN_AREA_RATIO`)."""
     n = coefficients.shape[0]
     h = length / n
     X, Y = Grid(m, length).mesh()
@@ -125,9 +193,9 @@ def _gather(coefficients, length, m, iterations):
         x, y = x - (e * rx - b * ry) / det, y - (a * ry - c * rx) / det
     value, du, dv = bspline(coefficients, tex(x), tex(y), derivatives=True)
     det = (1.0 + du[:, 0] / h) * (1.0 + dv[:, 1] / h) - (dv[:, 0] / h) * (du[:, 1] / h)
-    residual = jnp.max(jnp.hypot(x + value[:, 0] - X, y + value[:, 1] - Y)) / (length / m)
+    residual = jnp.hypot(x + value[:, 0] - X, y + value[:, 1] - Y) / (length / m)
     irradiance = jnp.maximum(value[:, 2], 0.0) / det  # a spline of a shadow edge may undershoot 0
-    return irradiance.reshape(m, m), residual, jnp.min(det)
+    return irradiance.reshape(m, m), jnp.where(det > MIN_AREA_RATIO, residual, jnp.inf).reshape(m, m)
 
 
 @partial(jax.jit, static_argnames=("s",))
@@ -153,17 +221,90 @@ def _supersampling(sharpness: float, texel: float, supersample):
     return None
 
 
+def _cell_footprints(displacement, bad, m: int, length: float):
+    """Floor texels (m, m, bool) that the landed cells touching a ``bad`` surface sample can
+    reach: each such cell marks the texels of its landed corners' bounding box (numpy, host)."""
+    disp = np.asarray(displacement, np.float64)
+    n = bad.shape[0]
+    h, p = length / n, length / m
+    cells = bad | np.roll(bad, -1, 0) | np.roll(bad, -1, 1) | np.roll(bad, (-1, -1), (0, 1))
+    iy, ix = np.nonzero(cells)
+    mask = np.zeros((m, m), bool)
+    if iy.size == 0:
+        return mask
+    base = (np.arange(n) + 0.5) * h
+    us = [(base[ix] + b * h + disp[0, (iy + a) % n, (ix + b) % n]) / p - 0.5 for a, b in ((0, 0), (0, 1), (1, 1), (1, 0))]
+    vs = [(base[iy] + a * h + disp[1, (iy + a) % n, (ix + b) % n]) / p - 0.5 for a, b in ((0, 0), (0, 1), (1, 1), (1, 0))]
+    u0, u1 = np.floor(np.min(us, 0) + 0.5).astype(np.int64), np.floor(np.max(us, 0) + 0.5).astype(np.int64)
+    v0, v1 = np.floor(np.min(vs, 0) + 0.5).astype(np.int64), np.floor(np.max(vs, 0) + 0.5).astype(np.int64)
+    wu, wv = np.minimum(u1 - u0, m - 1), np.minimum(v1 - v0, m - 1)
+    narrow = (wu < 8) & (wv < 8)
+    for du in range(8):
+        for dv in range(8):
+            sel = narrow & (du <= wu) & (dv <= wv)
+            mask[(v0[sel] + dv) % m, (u0[sel] + du) % m] = True
+    for k in np.flatnonzero(~narrow):  # the few cells that spread wide: their boxes one by one
+        mask[np.ix_(np.arange(v0[k], v0[k] + wv[k] + 1) % m, np.arange(u0[k], u0[k] + wu[k] + 1) % m)] = True
+    return mask
+
+
+def _grow(mask, steps: int = 1):
+    """``mask`` grown by ``steps`` texels (3 × 3 neighbourhoods, periodic)."""
+    for _ in range(steps):
+        mask = mask | np.roll(mask, 1, 0) | np.roll(mask, -1, 0)
+        mask = mask | np.roll(mask, 1, 1) | np.roll(mask, -1, 1)
+    return mask
+
+
+@jax.jit
+def _point_to_texel(point):
+    """Texel average of a smooth field from its centre values: E + Δx²∇²E/24, by the 5-point
+    Laplacian (local, so values outside the gathered region never enter)."""
+    lap = (jnp.roll(point, 1, 0) + jnp.roll(point, -1, 0) + jnp.roll(point, 1, 1) + jnp.roll(point, -1, 1)
+           - 4.0 * point)
+    return point + lap / 24.0
+
+
+def _beam_windows(light, fresnel, windows, refine: int = 3):
+    """The exact beam rasterization (refine ``refine``) of every triangle that can reach a texel
+    of ``windows``: right on those texels, partial elsewhere (E/E0, (m, m))."""
+    from optics.caustics.beam import beam_triangles
+
+    m, length = light.resolution, float(light.grid.length)
+    tri_u, tri_v, flux, origin = beam_triangles(light, refine, fresnel)
+    u = np.asarray(tri_u).reshape(3, 2, -1)
+    v = np.asarray(tri_v).reshape(3, 2, -1)
+    ou, ov = np.asarray(origin[0]).ravel(), np.asarray(origin[1]).ravel()
+    first_u = ou + np.floor(u[0, 0] + 0.5).astype(np.int64)
+    first_v = ov + np.floor(v[0, 0] + 0.5).astype(np.int64)
+    wide = (np.ptp(u, axis=(0, 1)) >= 2) | (np.ptp(v, axis=(0, 1)) >= 2)
+    near = _grow(windows, 2)[first_v % m, first_u % m]  # a narrow group lies within 2 texels of its first vertex
+    index = np.flatnonzero(near | wide)
+    if index.size == 0:
+        return jnp.zeros((m, m), jnp.float32)
+    quantum = 1 << max(int(index.size).bit_length() - 4, 0)  # padded to 1/8–1/16 of its octave: few programs
+    size = -(-index.size // quantum) * quantum
+    keep = jnp.asarray(np.arange(size) < index.size)
+    index = jnp.asarray(np.pad(index, (0, size - index.size), constant_values=index[0]))
+    pick = lambda a: jnp.take(a.reshape(a.shape[:-2] + (-1,)), index, axis=-1)
+    deposited = rasterize_triangles(pick(tri_u), pick(tri_v), jnp.where(keep, pick(flux), 0.0), (m, m),
+                                    (pick(origin[0]), pick(origin[1])))
+    return deposited / (length / m) ** 2
+
+
 def floor_irradiance_jacobian(eta, grid: Grid, depth, sun=(0.0, 0.0, 1.0), *, resolution: int | None = None,
                               n_water: float = N_WATER, fresnel: bool = True, refine: int = 1, supersample="auto",
-                              iterations: int = 4, fold: str = "beam"):
+                              iterations: int = 4, fold: str = "windows"):
     """Floor irradiance E/E0 from the Jacobian of the landing map (module doc), shape (m, m).
 
     Parameters
     ----------
     eta, grid, sun, resolution, n_water, fresnel
         As :func:`optics.caustics.floor_irradiance`.
-    depth : float
-        Depth of a flat floor, m, > 0 (a ground height field is refused by name: use "beam").
+    depth : float or array_like (n, n)
+        Depth of a flat floor, m, > 0; or a ground height field z_g (m, below the water
+        everywhere) on the surface's grid, landed on as the beam does; where it is too steep
+        for the ray to settle (:data:`MAX_CONTRACTION`) the folded-window rule applies.
     refine : int
         Fourier-refine the surface this many times (1 to 8) before the fields are built
         (the default 1 suffices down to 4 samples per shortest wave: the error measured is the
@@ -173,53 +314,83 @@ def floor_irradiance_jacobian(eta, grid: Grid, depth, sun=(0.0, 0.0, 1.0), *, re
         takes the fewest of 1, 2, 4, 8 that resolve E (:data:`SHARPNESS_LIMIT`).
     iterations : int
         Newton steps per floor point (1 to 16); a residual above 1e-3 texel counts as a fold.
-    fold : {"beam", "raise"}
-        What a folded map gets: the exact beam rasterization (its default refinement), or
-        :class:`CausticsFold` (a ValueError) naming the smallest area ratio.
+    fold : {"windows", "beam", "raise"}
+        What a map that folds (or nearly folds) somewhere gets: ``"windows"`` gathers the
+        floor where it is lit by one smooth sheet and rasterizes the exact beam (refine 3)
+        on the texels the folded or sharp parts of the surface reach, plus one texel;
+        ``"beam"`` the exact beam rasterization everywhere, with a warning; ``"raise"``
+        :class:`CausticsFold` (a ValueError) naming the reason.
 
     Returns
     -------
     jax.Array (m, m)
         Floor irradiance / E0 at the cell centres of ``Grid(m, L)``.
     """
+    return _jacobian(eta, grid, depth, sun, resolution, n_water, fresnel, refine, supersample, iterations, fold)[0]
+
+
+def _jacobian(eta, grid, depth, sun, resolution, n_water, fresnel, refine, supersample, iterations, fold):
+    """:func:`floor_irradiance_jacobian`, and how it answered: ``{"answer": "gather" | "windows" |
+    "beam", "windows": fraction of the floor rasterized, "supersample": s}``."""
     light = prepare(eta, grid, depth, sun, resolution, n_water, fresnel, check_values=False)
-    if light.ground:
-        raise ValueError("depth must be a number (a flat floor) for the jacobian method; on a ground height field "
-                         "use method='beam' (the gather's inverse map needs the floor's own smooth slopes)")
     if supersample != "auto":
         supersample = check_int("supersample", supersample, lo=1, hi=8)
     iterations = check_int("iterations", iterations, lo=1, hi=16)
-    check_choice("fold", fold, ("beam", "raise"))
+    check_choice("fold", fold, FOLD_CHOICES)
     length, m, d = float(grid.length), light.resolution, jnp.asarray(light.direction, jnp.float32)
     r = check_int("refine", refine, lo=1, hi=8)
     if grid.n * r > 8192:
         raise ValueError(f"refine {r} traces {grid.n * r}² samples: n·refine must be at most 8192")
+    if light.ground and r > 1:
+        raise ValueError("refine must be 1 on a ground height field (the ground lives on the surface's grid)")
     fine = Grid(grid.n * r, grid.length)
     surface = grid.refine(light.eta, r) if r > 1 else light.eta
-    planes, min_det, sharpness, finite = _fields(surface, _derivatives(surface, fine.dx), d, light.floor,
-                                                 light.n_water, fresnel, shadow_steps(surface, fine, light.direction),
-                                                 length)
+    planes, det, sharpness, rough, gap, finite = _fields(
+        surface, _derivatives(surface, fine.dx), d, light.floor, light.n_water, fresnel,
+        shadow_steps(surface, fine, light.direction), length, light.ground, grid.n)
     if not bool(finite):
         raise ValueError("eta must be finite everywhere; it contains NaN or inf")
-    min_det = float(min_det)
-    s = _supersampling(float(sharpness), length / m, supersample) if min_det > MIN_AREA_RATIO else None
+    min_det, steepest, jump = float(jnp.min(det)), float(jnp.max(rough)), float(jnp.max(gap)) / (length / m)
+    s = (_supersampling(float(jnp.max(sharpness)), length / m, supersample)
+         if min_det > MIN_AREA_RATIO and steepest <= 1.0 and jump <= MAX_GAP else None)
     if s is not None and m * s > 8192:
         raise ValueError(f"resolution × supersample = {m * s} must be at most 8192")
     if s is not None:
-        point, residual, _ = _gather(_coefficients(planes), length, m * s, iterations)
-        if float(residual) <= NEWTON_TOLERANCE:
-            return _texel_average(point, length, s)
-        reason = f"Newton did not converge (residual {float(residual):.2g} texel)"
+        point, residual = _gather(_coefficients(planes), length, m * s, iterations)
+        worst = float(jnp.max(residual))
+        if worst <= NEWTON_TOLERANCE:
+            return _texel_average(point, length, s), dict(answer="gather", windows=0.0, supersample=s)
+        reason = f"Newton did not converge (residual {worst:.2g} texel)"
     elif min_det <= MIN_AREA_RATIO:
         reason = (f"the smallest area ratio det ∂X/∂x on the surface is {min_det:.3g} (the map folds at 0; the "
                   f"method answers down to {MIN_AREA_RATIO})")
+    elif jump > MAX_GAP:
+        reason = (f"the landing map jumps between neighbouring samples (by up to {jump:.3g} texels more than "
+                  f"its Jacobian predicts; at most {MAX_GAP})")
+    elif steepest > 1.0:
+        reason = (f"the ground is too steep or bends too sharply between its samples for a smooth landing "
+                  f"({steepest:.3g} × the most the gather lands on: MAX_CONTRACTION, MAX_KINK)")
     else:
-        reason = (f"the light varies too fast on the floor (log E changes by {float(sharpness) * length / m:.3g} "
-                  f"per texel; 8-fold supersampling resolves {8 * SHARPNESS_LIMIT})")
+        reason = (f"the light varies too fast on the floor (log E changes by "
+                  f"{float(jnp.max(sharpness)) * length / m:.3g} per texel; 8-fold supersampling resolves "
+                  f"{8 * SHARPNESS_LIMIT})")
     if fold == "raise":
         raise CausticsFold(f"depth: the landing map folds or nearly folds on this floor: {reason}; "
-                           "use fold='beam' or method='beam'")
+                           "use fold='windows', fold='beam' or method='beam'")
+    if fold == "windows" and r == 1:
+        bad = np.array((det <= MIN_AREA_RATIO) | (sharpness * (length / m) > SHARPNESS_LIMIT)
+                         | (rough > 1.0))
+        bad |= _grow(np.asarray(gap > MAX_GAP * length / m), JUMP_REACH)  # the spline rings around a jump
+        folded = _cell_footprints(planes[:2], bad, m, length)
+        if _grow(folded).mean() <= MAX_WINDOWS:
+            point, residual = _gather(_coefficients(planes), length, m, iterations)
+            windows = _grow(folded | np.asarray(residual > NEWTON_TOLERANCE))
+            beam = _beam_windows(light, fresnel, windows)
+            out = jnp.where(jnp.asarray(windows), beam, _point_to_texel(point))
+            return out, dict(answer="windows", windows=float(windows.mean()), supersample=1)
     from optics.caustics.beam import floor_irradiance_beam
 
-    warnings.warn(f"jacobian caustics: {reason}; the exact beam rasterization is used instead", stacklevel=2)
-    return floor_irradiance_beam(eta, grid, depth, sun, resolution=resolution, n_water=n_water, fresnel=fresnel)
+    if fold == "beam":
+        warnings.warn(f"jacobian caustics: {reason}; the exact beam rasterization is used instead", stacklevel=3)
+    return (floor_irradiance_beam(eta, grid, depth, sun, resolution=resolution, n_water=n_water, fresnel=fresnel),
+            dict(answer="beam", windows=1.0, supersample=None))

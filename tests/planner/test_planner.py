@@ -16,6 +16,7 @@ from wavephys.planner import (BUILTIN_SCENES, Choices, Infeasible, KINDS, Scene,
                               WindSpec, builtin_scene, compare, full_model, generate_scenes, plan, run)
 from wavephys.planner.model import TERMS
 from wavephys.planner.predict import height_bounds
+from wavephys.planner.caustics import MARGIN
 
 
 def _pool(n=32, frames=12, depth=0.5, fps=30.0, **kw):
@@ -186,34 +187,82 @@ def test_eight_bit_image_picks_a_cheap_fresnel_form_and_sixteen_bits_do_not():
 
 # -- caustics ---------------------------------------------------------------------------------
 def test_caustics_term_on_pools_with_and_without_light_to_show():
-    """A clear pool with ripples (stones, 8-bit image) keeps the caustics and, traced at each
-    refinement, stays within the error the planner evaluated; the same pool with waves a
-    hundred times lower drops them (E/E₀ within a quantum of 1); a 16-bit image traces at
-    least as finely as an 8-bit one."""
+    """A clear pool with ripples (stones, 8-bit image) keeps the caustics (below its first fold the
+    Jacobian gather, ten times cheaper than the beam) and, traced by each option, stays within the
+    error the planner evaluated; the same pool with waves a hundred times lower drops them (E/E₀
+    within a quantum of 1); a 16-bit image keeps them too."""
     from wavephys.planner.caustics import caustics_errors
     from wavephys.planner.runner import floor_light
 
     scene = _pool(depth=0.4, caustics=True)
     p = plan(scene, scene.height_quantum)
-    assert p.model.choices.caustics >= 1, p.card()
+    assert p.model.choices.caustics == "jacobian", p.card()
     row = {t.term: t for t in p.terms}["caustics"]
-    assert row.error <= p.colour_tolerance and "refine" in row.reason
+    assert row.error <= p.colour_tolerance and "Jacobian" in row.reason
     errors = caustics_errors(scene)
     ref = run(scene, full_model(scene))
     light = {r: floor_light(scene, SceneModel(scene, replace(full_model(scene).choices, caustics=r)),
-                            ref.heights[-1]) for r in (0, 1, 2, 3, 4)}
+                            ref.heights[-1]) for r in (0, 1, 2, 3, 4, "jacobian")}
     for r in (0, 1, 2, 3):  # the run's last frame against the traces of the closed-form surface
         measured = float(np.abs(light[r] - light[4]).max())
         assert measured <= errors.delta[r], (r, measured, errors.delta[r])
         assert measured >= 0.3 * errors.delta[r] or r == 0, (r, measured, errors.delta[r])  # a close estimate
+    # the gather at the frames the planner traced (frame k is the run's frame k - 1): the run agrees
+    models = {r: SceneModel(scene, replace(full_model(scene).choices, caustics=r)) for r in (4, "jacobian")}
+    measured = max(float(np.abs(floor_light(scene, models["jacobian"], ref.heights[k - 1])
+                                - floor_light(scene, models[4], ref.heights[k - 1])).max()) for k in errors.frames)
+    assert 0.7 * errors.delta["jacobian"] <= MARGIN * measured <= 1.01 * errors.delta["jacobian"], (measured, errors.delta)
     assert errors.delta[1] > errors.delta[2] > errors.delta[3] > 0  # finer traces err less
+    assert errors.delta["jacobian"] < errors.delta[2]  # the gather: closer than a beam refined twice
     err = compare(run(scene, p.model), ref)
     assert err["colour_max"] <= p.colour_tolerance, (err, p.card())
 
     calm = replace(scene, stones=tuple(replace(s, depth=s.depth / 100) for s in scene.stones), height_range=0.0002)
     assert plan(calm, calm.height_quantum).model.choices.caustics == 0
     fine = replace(scene, image_bits=16)
-    assert plan(fine, fine.height_quantum).model.choices.caustics >= p.model.choices.caustics
+    assert plan(fine, fine.height_quantum).model.choices.caustics != 0
+
+
+@pytest.mark.xfail(strict=True, reason="known planner defect (issue 33): the caustics term traces 5 frames and "
+                   "multiplies by MARGIN = 1.25, but focusing peaks between them: over the frames of a run "
+                   "the differences reach 2.0-2.3 x the evaluated bound (generated pools, every option)")
+def test_the_caustics_bound_holds_over_every_frame_of_a_run():
+    from wavephys.planner import generate_scenes
+    from wavephys.planner.caustics import caustics_errors
+    from wavephys.planner.runner import floor_light
+
+    scene = generate_scenes(3, seed=5, kinds=("pool", "shore"), texels=(32, 48, 64))[2]  # pool-2: 54 frames
+    errors = caustics_errors(scene)
+    full = full_model(scene)
+    frames = run(scene, full).heights
+    models = {r: SceneModel(scene, replace(full.choices, caustics=r)) for r in (1, 2, 3, 4)}
+    for r in (1, 2, 3):
+        worst = max(float(np.abs(floor_light(scene, models[r], h) - floor_light(scene, models[4], h)).max())
+                    for h in frames)
+        assert worst <= errors.delta[r], (r, worst, errors.delta[r])
+
+
+def test_past_the_first_fold_the_jacobian_is_not_offered():
+    """A pool 20 times deeper folds its light: the gather refuses (CausticsFold) on the traced
+    frames, so the choice is the beam, and the card says why."""
+    from wavephys.planner.caustics import caustics_errors
+
+    scene = _pool(depth=8.0, caustics=True)
+    errors = caustics_errors(scene)
+    assert math.isinf(errors.delta["jacobian"])
+    p = plan(scene, scene.height_quantum)
+    assert p.model.choices.caustics in (1, 2, 3, 4), p.card()
+    assert "traced frames fold" in {t.term: t for t in p.terms}["caustics"].reason
+
+
+def test_an_old_calibration_without_the_gather_offers_only_the_beam():
+    from wavephys.planner.cost import calibration
+    from wavephys.planner.terms import TERMS
+
+    scene = _pool(depth=0.4, caustics=True)
+    old = {k: v for k, v in calibration().items() if k != "caustics_jacobian"}
+    assert "jacobian" not in TERMS["caustics"].options(scene, old)
+    assert plan(scene, scene.height_quantum, calibration=old).model.choices.caustics in (1, 2, 3, 4)
 
 
 def test_caustics_need_a_floor_and_a_periodic_scene():

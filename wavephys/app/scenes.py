@@ -2,7 +2,8 @@
 ``pool``, ``shore`` and ``ship``.
 
 ``pool``  an 8 m pool (tiled floor 1.5 m deep, walls out of the water) with ring waves of
-          three stones from the spectral simulation, caustics by the beam method;
+          three stones from the spectral simulation, caustics by the Jacobian gather
+          (:data:`CAUSTICS_METHODS`);
 ``shore`` a 16 m sandy beach rising out of the water under a three-component swell
           (deep-water dispersion), caustics on the sloping ground;
 ``ship``  a 40 m patch of 8 m deep water with the steady Kelvin wake of a hull at 2 m/s;
@@ -30,12 +31,12 @@ import numpy as np
 from optics.rendering.scene import Camera, Scene, look_at
 from wavephys.app import SCENES
 from wavephys.core.grid import Grid
-from wavephys.core.inputs import check_bool, check_choice, check_instance, check_int, check_scalar
+from wavephys.core.inputs import check_array, check_bool, check_choice, check_instance, check_int, check_scalar
 from wavephys.core.water import Water
 from wavephys.physics.disturbances import Stones
 
 __all__ = ["default_scene", "SCENES", "builtin_scene", "scene_frames", "scene_water", "scene_grid",
-           "scene_displacement"]
+           "scene_displacement", "scene_caustics", "CAUSTICS_METHODS"]
 
 SUN = (0.35, -0.45, 0.82)
 MAX_TIME = 3600.0
@@ -51,6 +52,14 @@ STORM_FOAM = dict(threshold=0.35, softness=0.12, decay_time=1.0, history=1.5, fp
 CALM_LENGTH = 16.0
 LENGTHS = {"pool": POOL_LENGTH, "shore": SHORE_LENGTH, "ship": SHIP_LENGTH, "storm": STORM_LENGTH,
            "calm": CALM_LENGTH}
+
+CAUSTICS_METHODS = {"pool": "jacobian", "shore": "jacobian", "ship": "jacobian", "storm": "beam", "calm": "beam"}
+"""Each built-in scene's caustics method (:data:`optics.caustics.FLOOR_IRRADIANCE_METHODS`): the
+Jacobian gather (with the exact beam on its folded windows) where it is as close to the converged
+reference as the beam on the scene's own surface, else the beam; measured by
+``python -m bench jacobian`` (docs/physics.md §2.4): the storm folds over more than half its
+floor (the gather would save nothing) and the calm pond's noise has waves of 2–3 samples, where
+the gather errs 1.4 % of the peak against the beam's 0.4 %."""
 
 
 def default_scene(n: int = 256, steps: int = 120, progress: Optional[Callable[[str], None]] = None):
@@ -137,13 +146,13 @@ def _smoothstep(e0, e1, x):
     return t * t * (3 - 2 * t)
 
 
-def _caustics(eta, grid: Grid, ground):
-    """Floor irradiance relative to flat water (beam method, ground height field below the water)."""
+def _caustics(eta, grid: Grid, ground, method: str = "beam", **options):
+    """Floor irradiance relative to flat water (ground height field below the water) by ``method``."""
     from optics.caustics import floor_irradiance
 
     floor = np.minimum(ground, eta.min() - 0.05).astype(np.float32)
-    wavy = np.asarray(floor_irradiance(eta.astype(np.float32), grid, floor, SUN))
-    flat = np.asarray(floor_irradiance(np.zeros_like(eta, np.float32), grid, floor, SUN))
+    wavy = np.asarray(floor_irradiance(eta.astype(np.float32), grid, floor, SUN, method=method, **options))
+    flat = np.asarray(floor_irradiance(np.zeros_like(eta, np.float32), grid, floor, SUN, method=method, **options))
     return (wavy / np.maximum(flat, 1e-6)).astype(np.float32)
 
 
@@ -386,10 +395,46 @@ SEA_WATER = dict(absorption=(0.42, 0.095, 0.075), deep_color=(0.0, 0.015, 0.03))
 scattering and particles (Jerlov type II-like, 1/m), so the 20 m floor fades out."""
 
 
+def _ground(name, n):
+    return {"pool": _pool_ground, "shore": _shore_ground, "ship": _ship_ground, "storm": _storm_ground,
+            "calm": _calm_ground}[name](n)
+
+
+def scene_caustics(name: str, water, method: str | None = None, **options) -> np.ndarray:
+    """The caustics map of built-in scene ``name`` over ``water``, relative to flat water's light.
+
+    Parameters
+    ----------
+    name : str
+        A built-in scene, one of :data:`SCENES`.
+    water : array_like (n, n)
+        Water heights on :func:`scene_grid` (e.g. :func:`scene_water`), m; n even, 64 to 8192.
+    method : str, optional
+        A caustics method of :data:`optics.caustics.FLOOR_IRRADIANCE_METHODS` (default: the
+        scene's own, :data:`CAUSTICS_METHODS`).
+    options
+        The method's own options (e.g. ``refine`` for the beam).
+
+    Returns
+    -------
+    numpy.ndarray
+        float32 (n, n): the floor's irradiance under ``water`` over its irradiance under flat
+        water, on the scene's ground (the ground kept 5 cm below the lowest water).
+    """
+    check_choice("name", name, SCENES)
+    check_array("water", water, ndim=2)
+    n = check_int("n", np.shape(water)[0], lo=64, hi=MAX_N, even=True)
+    if np.shape(water) != (n, n):
+        raise ValueError(f"water must be square, got shape {np.shape(water)}")
+    if method is not None:
+        check_instance("method", method, str, "a caustics method's name")
+    return _caustics(np.asarray(water, np.float32), scene_grid(name, n), _ground(name, n)[0],
+                     CAUSTICS_METHODS[name] if method is None else method, **options)
+
+
 def _assemble(name, n, water, caustics=True, camera=None, foam=None):
-    ground, albedo = {"pool": _pool_ground, "shore": _shore_ground, "ship": _ship_ground, "storm": _storm_ground,
-                      "calm": _calm_ground}[name](n)
-    c = _caustics(water, scene_grid(name, n), ground) if caustics else None
+    ground, albedo = _ground(name, n)
+    c = _caustics(water, scene_grid(name, n), ground, CAUSTICS_METHODS[name]) if caustics else None
     extra = SEA_WATER if name == "storm" else {}
     return Scene(ground, water, LENGTHS[name], camera or _cameras()[name], sun=SUN, albedo=albedo, caustics=c,
                  foam=foam, sky="preetham", surroundings=SURROUNDINGS[name], **extra)
@@ -416,7 +461,7 @@ def builtin_scene(name: str, *, n: int = 256, time: float = 1.0, ship: bool = Tr
     ship : bool
         ``"ship"`` only: False gives flat water, the same frame without the ship.
     caustics : bool
-        Compute the caustics map (beam method); False leaves the flat-water light.
+        Compute the caustics map (:data:`CAUSTICS_METHODS`); False leaves the flat-water light.
     camera : Camera, optional
         Replaces the scene's camera.
 
@@ -470,7 +515,7 @@ def scene_frames(name: str, count: int, *, fps: float = 30.0, n: int = 256, star
         Time of the first frame, s, 0 to 3600 (:data:`MAX_TIME`); the last frame must end by
         :data:`MAX_TIME` too (``start + count / fps <= MAX_TIME``).
     caustics : bool, keyword-only
-        Compute the caustics map of each frame (beam method).
+        Compute the caustics map of each frame (:data:`CAUSTICS_METHODS`).
 
     Returns
     -------

@@ -10,8 +10,10 @@ This term is *evaluated*, not bounded. The full model's surface is known in clos
 any frame (every Fourier mode of the linear surface, :mod:`wavephys.planner.predict`, and
 η₂ = ½ Re(η_c Λη_c) computed from it on the grid, as the simulation does), so the planner
 traces it at a few frames (:data:`SAMPLED_FRAMES`: the first, the last and three between)
-at every refinement and takes the largest difference from the full model's refinement,
-:data:`FULL_REFINE`, times :data:`MARGIN` for the frames it did not trace. Tracing one frame
+at every refinement, and by the Jacobian gather (:data:`CAUSTICS_JACOBIAN`, with ``fold="raise"``:
+a traced frame past its first fold makes that choice unavailable), and takes the largest
+difference from the full model's refinement, :data:`FULL_REFINE`, times :data:`MARGIN` for the
+frames it did not trace. Tracing one frame
 at all refinements costs about 30 traces of the plain surface, once per plan; the plan
 saves it on every frame it renders. Scenes with caustics are planned up to
 :data:`MAX_CAUSTICS_TEXELS` texels per side (the planner traces 4× finer).
@@ -29,7 +31,7 @@ from types import MappingProxyType
 
 import numpy as np
 
-from wavephys.planner.model import CAUSTICS_REFINE, FULL_REFINE, SceneModel
+from wavephys.planner.model import CAUSTICS_JACOBIAN, CAUSTICS_OPTIONS, CAUSTICS_REFINE, FULL_REFINE, SceneModel
 
 __all__ = ["full_surfaces", "CausticsErrors", "caustics_errors", "MARGIN",
            "SAMPLED_FRAMES", "MAX_CAUSTICS_TEXELS"]
@@ -104,7 +106,7 @@ def _caustics_errors(scene) -> CausticsErrors:
 
     import jax.numpy as jnp
 
-    from optics.caustics import floor_irradiance_beam
+    from optics.caustics import CausticsFold, floor_irradiance_beam, floor_irradiance_jacobian
 
     start = time.perf_counter()
     grid = SceneModel(scene).output_grid
@@ -114,15 +116,20 @@ def _caustics_errors(scene) -> CausticsErrors:
     sun = sun_direction(scene.sun_elevation, 180.0)  # behind the viewer, who looks along +x
     e0 = flat_irradiance(scene.sun_elevation)
     frames, heights = full_surfaces(scene)
-    delta = {r: 0.0 for r in CAUSTICS_REFINE}
-    e_max = {r: 0.0 for r in CAUSTICS_REFINE}
+    delta = {r: 0.0 for r in CAUSTICS_OPTIONS}
+    e_max = {r: 0.0 for r in CAUSTICS_OPTIONS}
     for eta in heights:
         eta = jnp.asarray(eta, jnp.float32)
         light = {r: np.asarray(floor_irradiance_beam(eta, grid, scene.depth, sun, refine=r), np.float64) / e0
                  for r in CAUSTICS_REFINE if r}
         light[0] = np.ones_like(light[FULL_REFINE])
+        try:  # offered only below the first fold, where the gather answers alone
+            light[CAUSTICS_JACOBIAN] = np.asarray(floor_irradiance_jacobian(eta, grid, scene.depth, sun, fold="raise"),
+                                                  np.float64) / e0
+        except CausticsFold:
+            light[CAUSTICS_JACOBIAN] = np.full_like(light[0], np.inf)
         ref = light[FULL_REFINE]
-        for r in CAUSTICS_REFINE:
+        for r in CAUSTICS_OPTIONS:
             finite = bool(np.isfinite(light[r]).all() and np.isfinite(ref).all())
             delta[r] = max(delta[r], float(np.abs(light[r] - ref).max()) if finite else math.inf)
             e_max[r] = max(e_max[r], float(light[r].max()) if finite else math.inf)

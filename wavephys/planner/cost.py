@@ -11,7 +11,7 @@ holds wall times of the pieces a scene's run is made of, each measured after com
 * ``refine``: the extra of Fourier interpolation of a frame from a grid 2× coarser, by the fine n;
 * ``fresnel``, ``absorption``: seconds per million pixels of each form;
 * ``caustics``: one frame's floor irradiance by beam rasterization, by traced cells per side
-  (texels × refinement);
+  (texels × refinement); ``caustics_jacobian``: by the Jacobian gather, by texels per side;
 * ``surface``: one output frame of each surface model other than the spectral step, by texels
   per side;
 * ``texture``: encoding a frame into each height texture format, seconds per million texels;
@@ -95,12 +95,14 @@ def colour_cost(scene, fresnel: str, absorption: str, cal: dict | None = None) -
     return per_frame * scene.frames
 
 
-def caustics_cost(scene, refine: int, cal: dict | None = None) -> float:
+def caustics_cost(scene, refine, cal: dict | None = None) -> float:
     """Predicted seconds of the floor irradiance of every output frame at tracing refinement
-    ``refine`` (0: off, free; scenes without caustics: 0)."""
+    ``refine`` (0: off, free; ``"jacobian"``: the Jacobian gather; scenes without caustics: 0)."""
     if not refine or not scene.caustics:
         return 0.0
     cal = cal or calibration()
+    if refine == "jacobian":
+        return interpolate(cal["caustics_jacobian"], scene.texels) * scene.frames
     return interpolate(cal["caustics"], scene.texels * refine) * scene.frames
 
 

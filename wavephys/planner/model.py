@@ -27,7 +27,7 @@ from wavephys.core.water import Water
 from wavephys.planner.scene import Scene
 
 __all__ = ["Choices", "SceneModel", "TERMS", "COARSEN", "STEPS_PER_FRAME",
-           "CAUSTICS_REFINE", "FULL_REFINE", "TEXTURES", "TEXTURE_BYTES", "SURFACES", "SHIP_METHODS", "SHIP_PATCHES", "MARGINS", "full_choices"]
+           "CAUSTICS_REFINE", "CAUSTICS_JACOBIAN", "CAUSTICS_OPTIONS", "FULL_REFINE", "TEXTURES", "TEXTURE_BYTES", "SURFACES", "SHIP_METHODS", "SHIP_PATCHES", "MARGINS", "full_choices"]
 
 COARSEN = (1, 2, 4)
 """Simulation grid spacings the planner considers, in output texels."""
@@ -36,6 +36,11 @@ STEPS_PER_FRAME = (1, 2, 4, 8)
 CAUSTICS_REFINE = (0, 1, 2, 3, 4)
 """Caustics tracing refinements the planner considers (0: off, the floor lit as under flat water;
 r: beam rasterization of the surface refined r times, :func:`optics.caustics.floor_irradiance_beam`)."""
+CAUSTICS_JACOBIAN = "jacobian"
+"""The caustics choice by the Jacobian of the landing map (:func:`optics.caustics.floor_irradiance_jacobian`),
+offered where the traced frames stay below their first fold and the calibration has its cost."""
+CAUSTICS_OPTIONS = CAUSTICS_REFINE + (CAUSTICS_JACOBIAN,)
+"""Every value of :attr:`Choices.caustics`."""
 FULL_REFINE = 4
 """The full model's caustics refinement."""
 SURFACES = ("spectral", "gerstner-16", "gerstner-64", "gerstner-256", "choppy", "noise")
@@ -116,9 +121,10 @@ class Choices:
     absorption : str
         A name in :data:`optics.light.attenuation.WATER_TRANSMITTANCE_METHODS` (``"spectral"``,
         ``"rgb"``; the planner offers the ones its calibration has a cost for).
-    caustics : int
-        Caustics tracing refinement (:data:`CAUSTICS_REFINE`; 0 off). Only scenes with
-        ``caustics = true`` show them; the others run with 0.
+    caustics : int or str
+        Caustics tracing refinement (:data:`CAUSTICS_REFINE`; 0 off), or ``"jacobian"``
+        (:data:`CAUSTICS_JACOBIAN`). Only scenes with ``caustics = true`` show them; the others
+        run with 0.
     margin : str
         The open-water cutoff margin (:data:`MARGINS`); periodic scenes ignore it.
     ship_method : str
@@ -161,8 +167,9 @@ class Choices:
         from optics.light.attenuation import WATER_TRANSMITTANCE_METHODS
 
         WATER_TRANSMITTANCE_METHODS.check(self.absorption, "absorption")
-        object.__setattr__(self, "caustics", check_int("caustics", self.caustics, lo=0))
-        check_choice("caustics", self.caustics, CAUSTICS_REFINE)
+        if self.caustics != CAUSTICS_JACOBIAN:
+            object.__setattr__(self, "caustics", check_int("caustics", self.caustics, lo=0))
+        check_choice("caustics", self.caustics, CAUSTICS_OPTIONS)
         check_choice("texture", self.texture, TEXTURES)
         check_choice("surface", self.surface, SURFACES)
         check_choice("ship_method", self.ship_method, SHIP_METHODS)
@@ -376,7 +383,8 @@ class SceneModel:
                     f"texture {c.texture}", f"Fresnel {c.fresnel}",
                  f"absorption {c.absorption}"]
         if self.scene.caustics:
-            parts.append(f"caustics refine {c.caustics}" if c.caustics else "caustics off (flat-water light)")
+            parts.append("caustics by the Jacobian gather" if c.caustics == CAUSTICS_JACOBIAN else
+                         f"caustics refine {c.caustics}" if c.caustics else "caustics off (flat-water light)")
         return ", ".join(parts)
 
 

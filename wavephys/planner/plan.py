@@ -360,7 +360,7 @@ def _search(ctx: PlanContext, fits, fmt, colour_tolerance):
     format ``fmt`` and every combination of the colour terms' options within the colour
     tolerance; None if there is none."""
     scene, cal = ctx.scene, ctx.calibration
-    refines = TERMS["caustics"].options(scene)
+    refines = TERMS["caustics"].options(scene, cal)
     forms = TERMS["fresnel"].options(scene, cal)
     methods = TERMS["absorption"].options(scene, cal)
     best, best_key = None, None

@@ -368,8 +368,8 @@ def shade(scene: Scene, model: SceneModel, heights):
 def floor_light(scene: Scene, model: SceneModel, heights) -> np.ndarray:
     """E/E₀ on the output texels: the floor irradiance under ``heights`` relative to flat water's
     (:func:`optics.caustics.floor_irradiance_beam` at the configuration's ``caustics`` refinement,
-    the sun at the scene's elevation behind the viewer); 1 where the scene shows no caustics or
-    the term is off.
+    or :func:`optics.caustics.floor_irradiance_jacobian` where it says ``"jacobian"``; the sun at
+    the scene's elevation behind the viewer); 1 where the scene shows no caustics or the term is off.
 
     Parameters
     ----------
@@ -394,12 +394,15 @@ def floor_light(scene: Scene, model: SceneModel, heights) -> np.ndarray:
     refine = model.choices.caustics
     if not scene.caustics or not refine:
         return np.ones((scene.texels, scene.texels))
-    from optics.caustics import floor_irradiance_beam
-    from optics.caustics import flat_irradiance
+    from optics.caustics import flat_irradiance, floor_irradiance_beam, floor_irradiance_jacobian
     from optics.light.directions import sun_direction
 
-    e = floor_irradiance_beam(jnp.asarray(heights, jnp.float32), model.output_grid, scene.depth,
-                              sun_direction(scene.sun_elevation, 180.0), refine=refine)
+    sun = sun_direction(scene.sun_elevation, 180.0)
+    if refine == "jacobian":  # a frame the planner did not trace may fold: the beam answers its folded windows
+        e = floor_irradiance_jacobian(jnp.asarray(heights, jnp.float32), model.output_grid, scene.depth, sun)
+    else:
+        e = floor_irradiance_beam(jnp.asarray(heights, jnp.float32), model.output_grid, scene.depth, sun,
+                                  refine=refine)
     return np.asarray(e, np.float64) / flat_irradiance(scene.sun_elevation)
 
 

@@ -42,7 +42,7 @@ from typing import ClassVar, Optional
 from wavephys.planner.caustics import MARGIN
 from wavephys.planner.colour import incidence_range
 from wavephys.planner.cost import caustics_cost, colour_cost, texture_cost
-from wavephys.planner.model import CAUSTICS_REFINE, FULL_REFINE, SURFACES, TEXTURE_BYTES, TEXTURES, Choices, full_choices
+from wavephys.planner.model import CAUSTICS_JACOBIAN, CAUSTICS_OPTIONS, CAUSTICS_REFINE, FULL_REFINE, SURFACES, TEXTURE_BYTES, TEXTURES, Choices, full_choices
 from wavephys.planner.predict import MARGIN_TEXELS, HeightBounds, default_height_options, height_peak, texture_error
 from wavephys.planner.scene import Scene
 from wavephys.planner.spectrum import scene_spectrum
@@ -461,14 +461,21 @@ surfaces at 128² and at 512² against a step (docs/planner.md §3)."""
 
 
 class Caustics(PlanTerm):
-    """The floor's caustics by beam rasterization refined r times, or off (flat-water light)."""
+    """The floor's caustics by beam rasterization refined r times, by the Jacobian gather (where
+    the traced frames stay below their first fold and the calibration has its cost), or off
+    (flat-water light)."""
 
     name = "caustics"
     kind = "colour"
     unit = "colour"
 
-    def options(self, scene):
-        return CAUSTICS_REFINE if scene.caustics else (0,)
+    def options(self, scene, calibration=None):
+        if not scene.caustics:
+            return (0,)
+        from wavephys.planner.cost import calibration as shipped
+
+        cal = calibration if calibration is not None else shipped()
+        return CAUSTICS_OPTIONS if "caustics_jacobian" in cal else CAUSTICS_REFINE
 
     def cost(self, ctx, option) -> float:
         return caustics_cost(ctx.scene, option, ctx.calibration)
@@ -491,7 +498,14 @@ class Caustics(PlanTerm):
                  f"{', '.join(map(str, caustics.frames))}")
         if option == 0:
             return f"off: {light}; ≤ {error / q:.2g} image quanta"
-        return f"beam, refine {option}: {light}; tracing ≤ {error / q:.2g} image quanta; {CAUSTICS_METHODS_NOTE}"
+        jacobian = caustics.delta.get(CAUSTICS_JACOBIAN, math.inf)
+        if option == CAUSTICS_JACOBIAN:
+            return (f"the Jacobian gather: {light}; ≤ {error / q:.2g} image quanta against the beam refined "
+                    f"{FULL_REFINE}; {CAUSTICS_METHODS_NOTE}")
+        why = ("the Jacobian gather: the traced frames fold (past the first fold it is not offered)"
+               if not math.isfinite(jacobian) else "")
+        return (f"beam, refine {option}: {light}; tracing ≤ {error / q:.2g} image quanta; {CAUSTICS_METHODS_NOTE}"
+                + (f"; {why}" if why else ""))
 
 
 class Terms(Mapping):
