@@ -388,7 +388,7 @@ OVERRIDES = {
     "optics.rendering.scene.texture_sample": {"field": _field},
     # the reference refines until two levels agree: a loose tolerance keeps the valid call short
     "optics.caustics.reference.floor_irradiance_reference": {"tolerance": lambda: 0.05, "max_refine": lambda: 8},
-    "optics.caustics.jacobian.floor_irradiance_jacobian": {"supersample": lambda: 2},
+    "optics.caustics.jacobian.floor_irradiance_jacobian": {"supersample": lambda: 2, "refine": lambda: 1},
     "optics.caustics.reference.converged_floor_irradiance": {"tolerance": lambda: 0.05, "max_refine": lambda: 8},
     "optics.caustics.common.bilateral_filter": {"image": _field},
     "optics.caustics.common.blur_121": {"image": _field},

@@ -62,7 +62,7 @@ from wavephys.core.sampling import bspline, rasterize_triangles
 from wavephys.core.spectral import bspline_coefficients, central_gradient, spectral_derivatives
 
 __all__ = ["floor_irradiance_jacobian", "CausticsFold", "SHARPNESS_LIMIT", "MIN_AREA_RATIO", "MAX_CONTRACTION", "MAX_KINK", "MAX_GAP",
-           "JUMP_REACH", "MAX_WINDOWS", "FOLD_CHOICES"]
+           "JUMP_REACH", "MAX_WINDOWS", "MAX_FINE_CONTENT", "FOLD_CHOICES"]
 
 SHARPNESS_LIMIT = 0.4
 """``supersample="auto"`` gathers s = 1, 2, 4 or 8 points per floor texel side, the fewest with
@@ -78,16 +78,24 @@ MAX_CONTRACTION = 0.5
 fixed point (5 steps, as the beam) contracts; steeper ground is a folded window."""
 
 MAX_WINDOWS = 0.5
-"""Largest fraction of the floor ``fold="windows"`` rasterizes by the beam; past it the beam
-draws the whole map (the gather would save nothing)."""
+"""Largest fraction of the floor whose folded windows ``fold="windows"`` rasterizes by the beam
+(checked before texels where Newton did not converge join them, so a map may end a little over);
+past it the beam draws the whole map (the gather would save nothing)."""
 
 MAX_KINK = 0.02
 """Largest jump in E (relative) where the bilinear ground's slope changes between its texels,
 |Δ∇z_g|·|t_h|/(−t_z); a sharper bend (a kink in the ground) is a folded window."""
 
+MAX_FINE_CONTENT = 0.01
+"""``refine="auto"`` refines the surface twice when more of its curvature's power than this
+lies above half the Nyquist wavenumber: measured 0.0–0.04 % on the resolved families (band,
+swell, Phillips, JONSWAP, k⁻² at 128²) and on the pool, shore and ship scenes; 11–21 % on the
+calm pond's noise, the storm and k⁻² at 64², where refine 1 erred 0.9–2.4 % of the peak."""
+
 MAX_GAP = 0.1
-"""Largest step (floor texels) between two neighbouring samples' landing points beyond what their
-Jacobians predict; a larger one is a jump in the map (light either side of a steep wall's edge)."""
+"""On a ground height field, the largest step (surface samples) between two neighbouring samples'
+landing points beyond what their Jacobians predict; a larger one is a jump in the map (light
+either side of a steep wall's edge). Over a flat floor the map is smooth and this is not tested."""
 
 JUMP_REACH = 8
 """Surface samples around a jump left to the beam: the interpolating spline's ringing decays as
@@ -116,8 +124,8 @@ def _fields(eta, derivs, d, floor, n_water, fresnel, shadow, length, ground, coa
     det ∂X/∂x; how fast E changes on the floor, |J⁻ᵀ∇ log E| (1/m); and on a ground height
     field how far it is from landing smoothly (at most 1: the ray–ground fixed point contracts,
     |∇z_g·t_h|/(−t_z) ≤ :data:`MAX_CONTRACTION`, and E jumps by at most :data:`MAX_KINK` where the
-    bilinear ground's slope changes; 0 on a flat floor); the gap between a sample's landed neighbours and what its Jacobian predicts
-    (m: large where the map jumps between samples); and whether η is finite."""
+    bilinear ground's slope changes; 0 on a flat floor); on a ground, the gap between a sample's landed neighbours and what their Jacobians predict
+    (surface samples: large where the map jumps between them; 0 on a flat floor); and whether η is finite."""
     gx, gy, hxx, hxy, hyy = derivs
     grid = Grid(eta.shape[-1], length)
     xv, yv = grid.mesh()
@@ -145,14 +153,16 @@ def _fields(eta, derivs, d, floor, n_water, fresnel, shadow, length, ground, coa
         kink = Grid(coarse, length).sample(bend, X, Y) * jnp.hypot(t_x, t_y) / drop
     else:
         contraction = kink = zero
-    # where the samples do not resolve the map (a jump: rays either side of a steep wall's edge):
-    # a step between neighbours against the step the local Jacobians predict, m
-    h = grid.dx
-    step = lambda f, axis: jnp.roll(f, -1, axis) - f
-    mean = lambda f, axis: 0.5 * (jnp.roll(f, -1, axis) + f)
-    gap_x = jnp.hypot(step(X - xv, 1) - h * (mean(a, 1) - 1.0), step(Y - yv, 1) - h * mean(c, 1))
-    gap_y = jnp.hypot(step(X - xv, 0) - h * mean(b, 0), step(Y - yv, 0) - h * (mean(e, 0) - 1.0))
-    gap = jnp.maximum(jnp.maximum(gap_x, jnp.roll(gap_x, 1, 1)), jnp.maximum(gap_y, jnp.roll(gap_y, 1, 0)))
+    if ground:  # a jump (rays either side of a wall's edge; over a flat floor D is smooth): a step
+        # between neighbours against the step their Jacobians predict, in surface samples
+        h = grid.dx
+        step = lambda f, axis: jnp.roll(f, -1, axis) - f
+        mean = lambda f, axis: 0.5 * (jnp.roll(f, -1, axis) + f)
+        gap_x = jnp.hypot(step(X - xv, 1) - h * (mean(a, 1) - 1.0), step(Y - yv, 1) - h * mean(c, 1))
+        gap_y = jnp.hypot(step(X - xv, 0) - h * mean(b, 0), step(Y - yv, 0) - h * (mean(e, 0) - 1.0))
+        gap = jnp.maximum(jnp.maximum(gap_x, jnp.roll(gap_x, 1, 1)), jnp.maximum(gap_y, jnp.roll(gap_y, 1, 0))) / h
+    else:
+        gap = zero
     lit = sunlit(eta, grid, d, shadow)
     flux = trans * (1.0 - (d[0] * gx + d[1] * gy) / d[2])
     numerator = flux * lit
@@ -211,12 +221,12 @@ def _texel_average(point, length, s):
     return averaged.reshape(m, s, m, s).mean(axis=(1, 3))
 
 
-def _supersampling(sharpness: float, texel: float, supersample):
-    """The floor supersampling that resolves E (1, 2, 4 or 8), or None when even 8 does not."""
+def _supersampling(sharpness: float, texel: float, supersample, m: int):
+    """The floor supersampling that resolves E (1, 2, 4 or 8, and m·s ≤ 8192), or None when none does."""
     if supersample != "auto":
         return supersample
     for s in (1, 2, 4, 8):
-        if sharpness * texel <= SHARPNESS_LIMIT * s:
+        if m * s <= 8192 and sharpness * texel <= SHARPNESS_LIMIT * s:
             return s
     return None
 
@@ -265,6 +275,46 @@ def _point_to_texel(point):
     return point + lap / 24.0
 
 
+def _auto_refine(eta, m: int):
+    """``refine="auto"``: the fields at least as fine as the floor map (⌈m/n⌉), and twice finer
+    where more than :data:`MAX_FINE_CONTENT` of the surface's curvature lies above half its
+    Nyquist wavenumber (under 4 samples per wave the spline of D misses the map); capped at 8
+    and 8192 samples. Returns (refine, that fraction)."""
+    n = eta.shape[-1]
+    fine = float(_fine_content(jnp.asarray(eta, jnp.float32)))
+    r = max(-(-m // n), 2 if fine > MAX_FINE_CONTENT else 1)
+    return int(min(r, 8, max(1, 8192 // n))), fine
+
+
+@jax.jit
+def _fine_content(eta):
+    """Fraction of Σ k⁴|η̂|² (the curvature's power) above half the Nyquist wavenumber."""
+    n = eta.shape[-1]
+    k = jnp.fft.fftfreq(n) * n
+    kk = jnp.hypot(k[:, None], k[None, :])
+    power = kk**4 * jnp.abs(jnp.fft.fft2(eta)) ** 2
+    return jnp.sum(jnp.where(kk > n / 4, power, 0.0)) / jnp.maximum(jnp.sum(power), 1e-30)
+
+
+def _beam_refine(n: int) -> int:
+    """The beam's refinement for the windows and the hand-over: its default 3, at most 8192/n."""
+    return max(1, min(3, 8192 // n))
+
+
+@jax.jit
+def _groups_near(tri_u, tri_v, origin, near):
+    """Which triangle groups (the two of a traced cell) can reach a texel of ``windows``: a
+    narrow group (under 2 texels across) lies within 2 texels of its first vertex, so it is
+    tested there against ``near`` (the windows grown by 2); every wide group is kept.
+    On the device: only the flags come back."""
+    m = near.shape[0]
+    u, v = tri_u.reshape(3, 2, -1), tri_v.reshape(3, 2, -1)
+    first_u = origin[0].ravel() + jnp.floor(u[0, 0] + 0.5).astype(jnp.int32)
+    first_v = origin[1].ravel() + jnp.floor(v[0, 0] + 0.5).astype(jnp.int32)
+    wide = (jnp.ptp(u, axis=(0, 1)) >= 2) | (jnp.ptp(v, axis=(0, 1)) >= 2)
+    return near[first_v % m, first_u % m] | wide
+
+
 def _beam_windows(light, fresnel, windows, refine: int = 3):
     """The exact beam rasterization (refine ``refine``) of every triangle that can reach a texel
     of ``windows``: right on those texels, partial elsewhere (E/E0, (m, m))."""
@@ -272,14 +322,7 @@ def _beam_windows(light, fresnel, windows, refine: int = 3):
 
     m, length = light.resolution, float(light.grid.length)
     tri_u, tri_v, flux, origin = beam_triangles(light, refine, fresnel)
-    u = np.asarray(tri_u).reshape(3, 2, -1)
-    v = np.asarray(tri_v).reshape(3, 2, -1)
-    ou, ov = np.asarray(origin[0]).ravel(), np.asarray(origin[1]).ravel()
-    first_u = ou + np.floor(u[0, 0] + 0.5).astype(np.int64)
-    first_v = ov + np.floor(v[0, 0] + 0.5).astype(np.int64)
-    wide = (np.ptp(u, axis=(0, 1)) >= 2) | (np.ptp(v, axis=(0, 1)) >= 2)
-    near = _grow(windows, 2)[first_v % m, first_u % m]  # a narrow group lies within 2 texels of its first vertex
-    index = np.flatnonzero(near | wide)
+    index = np.flatnonzero(np.asarray(_groups_near(tri_u, tri_v, origin, jnp.asarray(_grow(windows, 2)))))
     if index.size == 0:
         return jnp.zeros((m, m), jnp.float32)
     quantum = 1 << max(int(index.size).bit_length() - 4, 0)  # padded to 1/8–1/16 of its octave: few programs
@@ -293,7 +336,7 @@ def _beam_windows(light, fresnel, windows, refine: int = 3):
 
 
 def floor_irradiance_jacobian(eta, grid: Grid, depth, sun=(0.0, 0.0, 1.0), *, resolution: int | None = None,
-                              n_water: float = N_WATER, fresnel: bool = True, refine: int = 1, supersample="auto",
+                              n_water: float = N_WATER, fresnel: bool = True, refine="auto", supersample="auto",
                               iterations: int = 4, fold: str = "windows"):
     """Floor irradiance E/E0 from the Jacobian of the landing map (module doc), shape (m, m).
 
@@ -305,21 +348,27 @@ def floor_irradiance_jacobian(eta, grid: Grid, depth, sun=(0.0, 0.0, 1.0), *, re
         Depth of a flat floor, m, > 0; or a ground height field z_g (m, below the water
         everywhere) on the surface's grid, landed on as the beam does; where it is too steep
         for the ray to settle (:data:`MAX_CONTRACTION`) the folded-window rule applies.
-    refine : int
-        Fourier-refine the surface this many times (1 to 8) before the fields are built
-        (the default 1 suffices down to 4 samples per shortest wave: the error measured is the
-        floor sampling's, which ``supersample`` controls).
+    refine : "auto" or int
+        Fourier-refine the surface this many times (1 to 8, n·refine ≤ 8192) before the fields
+        are built. ``"auto"`` makes them at least as fine as the floor map and twice finer where
+        the surface has waves of under 4 samples (:data:`MAX_FINE_CONTENT`). Must be 1 on a
+        ground height field (the ground lives on the surface's grid): where ``"auto"`` would
+        refine there, the beam answers (or, with ``fold="raise"``, :class:`CausticsFold`).
     supersample : "auto" or int
-        Gather on a floor grid this many times finer (1 to 8) and average down; ``"auto"``
-        takes the fewest of 1, 2, 4, 8 that resolve E (:data:`SHARPNESS_LIMIT`).
+        Gather on a floor grid this many times finer (1 to 8, resolution × supersample ≤ 8192)
+        and average down; ``"auto"`` takes the fewest of 1, 2, 4, 8 that resolve E
+        (:data:`SHARPNESS_LIMIT`). The folded-window path gathers at 1 (what it cannot resolve
+        is a window).
     iterations : int
         Newton steps per floor point (1 to 16); a residual above 1e-3 texel counts as a fold.
     fold : {"windows", "beam", "raise"}
         What a map that folds (or nearly folds) somewhere gets: ``"windows"`` gathers the
         floor where it is lit by one smooth sheet and rasterizes the exact beam (refine 3)
         on the texels the folded or sharp parts of the surface reach, plus one texel;
-        ``"beam"`` the exact beam rasterization everywhere, with a warning; ``"raise"``
-        :class:`CausticsFold` (a ValueError) naming the reason.
+        once the windows would cover more than :data:`MAX_WINDOWS` of the floor, the beam draws
+        all of it (no warning: it is as right as the windows); ``"beam"`` the exact beam
+        rasterization everywhere, with a warning; ``"raise"`` :class:`CausticsFold` (a
+        ValueError) naming the reason. The beam here is refined 3 times (at most 8192/n).
 
     Returns
     -------
@@ -338,11 +387,19 @@ def _jacobian(eta, grid, depth, sun, resolution, n_water, fresnel, refine, super
     iterations = check_int("iterations", iterations, lo=1, hi=16)
     check_choice("fold", fold, FOLD_CHOICES)
     length, m, d = float(grid.length), light.resolution, jnp.asarray(light.direction, jnp.float32)
-    r = check_int("refine", refine, lo=1, hi=8)
+    if refine == "auto":
+        r, fine_content = _auto_refine(light.eta, m)
+        if light.ground and r > 1:  # the fields need the ground on a finer grid than it is given on
+            reason = (f"on a ground height field the gather needs refine 1, but the surface wants {r} "
+                      f"(floor map {m}² over {grid.n}² samples; {fine_content:.1%} of its curvature above half "
+                      f"the Nyquist wavenumber, at most {MAX_FINE_CONTENT:.0%})")
+            return _not_gathered(eta, grid, depth, sun, resolution, n_water, fresnel, fold, reason)
+    else:
+        r = check_int("refine", refine, lo=1, hi=8)
+        if light.ground and r > 1:
+            raise ValueError("refine must be 1 on a ground height field (the ground lives on the surface's grid)")
     if grid.n * r > 8192:
         raise ValueError(f"refine {r} traces {grid.n * r}² samples: n·refine must be at most 8192")
-    if light.ground and r > 1:
-        raise ValueError("refine must be 1 on a ground height field (the ground lives on the surface's grid)")
     fine = Grid(grid.n * r, grid.length)
     surface = grid.refine(light.eta, r) if r > 1 else light.eta
     planes, det, sharpness, rough, gap, finite = _fields(
@@ -350,8 +407,8 @@ def _jacobian(eta, grid, depth, sun, resolution, n_water, fresnel, refine, super
         shadow_steps(surface, fine, light.direction), length, light.ground, grid.n)
     if not bool(finite):
         raise ValueError("eta must be finite everywhere; it contains NaN or inf")
-    min_det, steepest, jump = float(jnp.min(det)), float(jnp.max(rough)), float(jnp.max(gap)) / (length / m)
-    s = (_supersampling(float(jnp.max(sharpness)), length / m, supersample)
+    min_det, steepest, jump = float(jnp.min(det)), float(jnp.max(rough)), float(jnp.max(gap))
+    s = (_supersampling(float(jnp.max(sharpness)), length / m, supersample, m)
          if min_det > MIN_AREA_RATIO and steepest <= 1.0 and jump <= MAX_GAP else None)
     if s is not None and m * s > 8192:
         raise ValueError(f"resolution × supersample = {m * s} must be at most 8192")
@@ -365,32 +422,40 @@ def _jacobian(eta, grid, depth, sun, resolution, n_water, fresnel, refine, super
         reason = (f"the smallest area ratio det ∂X/∂x on the surface is {min_det:.3g} (the map folds at 0; the "
                   f"method answers down to {MIN_AREA_RATIO})")
     elif jump > MAX_GAP:
-        reason = (f"the landing map jumps between neighbouring samples (by up to {jump:.3g} texels more than "
-                  f"its Jacobian predicts; at most {MAX_GAP})")
+        reason = (f"the landing map jumps between neighbouring samples on the ground (by up to {jump:.3g} samples "
+                  f"more than their Jacobians predict; at most {MAX_GAP})")
     elif steepest > 1.0:
         reason = (f"the ground is too steep or bends too sharply between its samples for a smooth landing "
                   f"({steepest:.3g} × the most the gather lands on: MAX_CONTRACTION, MAX_KINK)")
     else:
         reason = (f"the light varies too fast on the floor (log E changes by "
-                  f"{float(jnp.max(sharpness)) * length / m:.3g} per texel; 8-fold supersampling resolves "
-                  f"{8 * SHARPNESS_LIMIT})")
-    if fold == "raise":
-        raise CausticsFold(f"depth: the landing map folds or nearly folds on this floor: {reason}; "
-                           "use fold='windows', fold='beam' or method='beam'")
-    if fold == "windows" and r == 1:
+                  f"{float(jnp.max(sharpness)) * length / m:.3g} per texel; the finest supersampling of a "
+                  f"{m}² map, at most 8 and 8192 texels, resolves {min(8, 8192 // m) * SHARPNESS_LIMIT:.3g})")
+    if fold == "windows":
         bad = np.array((det <= MIN_AREA_RATIO) | (sharpness * (length / m) > SHARPNESS_LIMIT)
                          | (rough > 1.0))
-        bad |= _grow(np.asarray(gap > MAX_GAP * length / m), JUMP_REACH)  # the spline rings around a jump
+        bad |= _grow(np.asarray(gap > MAX_GAP), JUMP_REACH)  # the spline rings around a jump
         folded = _cell_footprints(planes[:2], bad, m, length)
         if _grow(folded).mean() <= MAX_WINDOWS:
             point, residual = _gather(_coefficients(planes), length, m, iterations)
             windows = _grow(folded | np.asarray(residual > NEWTON_TOLERANCE))
-            beam = _beam_windows(light, fresnel, windows)
+            beam = _beam_windows(light, fresnel, windows, _beam_refine(grid.n))
             out = jnp.where(jnp.asarray(windows), beam, _point_to_texel(point))
             return out, dict(answer="windows", windows=float(windows.mean()), supersample=1)
+    return _not_gathered(eta, grid, depth, sun, resolution, n_water, fresnel, fold, reason)
+
+
+def _not_gathered(eta, grid, depth, sun, resolution, n_water, fresnel, fold, reason):
+    """The beam everywhere for a map the gather does not answer (a warning with ``fold="beam"``),
+    or :class:`CausticsFold` with ``fold="raise"``."""
+    if fold == "raise":
+        raise CausticsFold(f"depth: the gather cannot answer this floor (the landing map folds, nearly folds or is "
+                           f"not resolved): {reason}; "
+                           "use fold='windows', fold='beam' or method='beam'")
     from optics.caustics.beam import floor_irradiance_beam
 
     if fold == "beam":
-        warnings.warn(f"jacobian caustics: {reason}; the exact beam rasterization is used instead", stacklevel=3)
-    return (floor_irradiance_beam(eta, grid, depth, sun, resolution=resolution, n_water=n_water, fresnel=fresnel),
+        warnings.warn(f"jacobian caustics: {reason}; the exact beam rasterization is used instead", stacklevel=4)
+    return (floor_irradiance_beam(eta, grid, depth, sun, resolution=resolution, n_water=n_water, fresnel=fresnel,
+                                  refine=_beam_refine(grid.n)),
             dict(answer="beam", windows=1.0, supersample=None))

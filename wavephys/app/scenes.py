@@ -59,7 +59,8 @@ Jacobian gather (with the exact beam on its folded windows) where it is as close
 reference as the beam on the scene's own surface, else the beam; measured by
 ``python -m bench jacobian`` (docs/physics.md §2.4): the storm folds over more than half its
 floor (the gather would save nothing) and the calm pond's noise has waves of 2–3 samples, where
-the gather errs 1.4 % of the peak against the beam's 0.4 %."""
+the gather erred 1.4 % of the peak at refine 1 against the beam's 0.4 % (and would hand it to
+the beam: such a surface needs finer fields than a ground on its grid allows)."""
 
 
 def default_scene(n: int = 256, steps: int = 120, progress: Optional[Callable[[str], None]] = None):
@@ -413,7 +414,8 @@ def scene_caustics(name: str, water, method: str | None = None, **options) -> np
         A caustics method of :data:`optics.caustics.FLOOR_IRRADIANCE_METHODS` (default: the
         scene's own, :data:`CAUSTICS_METHODS`).
     options
-        The method's own options (e.g. ``refine`` for the beam).
+        The method's own options (e.g. ``method="beam", refine=4``; on these grounds the
+        jacobian takes ``refine=1`` only).
 
     Returns
     -------
@@ -423,9 +425,9 @@ def scene_caustics(name: str, water, method: str | None = None, **options) -> np
     """
     check_choice("name", name, SCENES)
     check_array("water", water, ndim=2)
-    n = check_int("n", np.shape(water)[0], lo=64, hi=MAX_N, even=True)
-    if np.shape(water) != (n, n):
-        raise ValueError(f"water must be square, got shape {np.shape(water)}")
+    n = np.shape(water)[0]
+    if np.shape(water) != (n, n) or n % 2 or not 64 <= n <= MAX_N:
+        raise ValueError(f"water must be (n, n) with n even, 64 to {MAX_N}, got shape {np.shape(water)}")
     if method is not None:
         check_instance("method", method, str, "a caustics method's name")
     return _caustics(np.asarray(water, np.float32), scene_grid(name, n), _ground(name, n)[0],

@@ -3,7 +3,7 @@ r"""The caustics term: how much each tracing refinement changes the floor's ligh
 A scene with ``caustics = true`` shows its floor lit through the waves: the shading
 (:func:`wavephys.planner.runner.shade`) multiplies the floor's colour by E/E₀, the floor
 irradiance (:func:`optics.caustics.floor_irradiance_beam`, exact beam rasterization of the
-surface refined r times) over E₀, the irradiance under flat water; with the term off
+surface refined r times, or :func:`optics.caustics.floor_irradiance_jacobian`) over E₀, the irradiance under flat water; with the term off
 (r = 0) E/E₀ = 1.
 
 This term is *evaluated*, not bounded. The full model's surface is known in closed form at

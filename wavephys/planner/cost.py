@@ -102,6 +102,9 @@ def caustics_cost(scene, refine, cal: dict | None = None) -> float:
         return 0.0
     cal = cal or calibration()
     if refine == "jacobian":
+        if "caustics_jacobian" not in cal:
+            raise ValueError("refine 'jacobian' needs the calibration's caustics_jacobian table "
+                             "(python -m bench calibrate --only caustics_jacobian)")
         return interpolate(cal["caustics_jacobian"], scene.texels) * scene.frames
     return interpolate(cal["caustics"], scene.texels * refine) * scene.frames
 

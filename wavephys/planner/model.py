@@ -147,7 +147,7 @@ class Choices:
     second_order: bool = True
     fresnel: str = "exact"
     absorption: str = "spectral"
-    caustics: int = FULL_REFINE
+    caustics: int | str = FULL_REFINE
     texture: str = "f32"
     surface: str = "spectral"
     ship_method: str = "kernels"
@@ -167,7 +167,7 @@ class Choices:
         from optics.light.attenuation import WATER_TRANSMITTANCE_METHODS
 
         WATER_TRANSMITTANCE_METHODS.check(self.absorption, "absorption")
-        if self.caustics != CAUSTICS_JACOBIAN:
+        if not isinstance(self.caustics, str):
             object.__setattr__(self, "caustics", check_int("caustics", self.caustics, lo=0))
         check_choice("caustics", self.caustics, CAUSTICS_OPTIONS)
         check_choice("texture", self.texture, TEXTURES)
