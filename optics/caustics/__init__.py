@@ -75,7 +75,7 @@ def floor_irradiance(eta, grid, depth, sun=(0.0, 0.0, 1.0), method: str = "beam"
         Refractive index of water, ≥ 1.
     options
         The method's own options (each method takes only its own): ``fresnel``;
-        ``refine``, ``blur``, ``normals`` (beam); ``refine``, ``supersample``, ``iterations``, ``fold``
+        ``refine``, ``blur``, ``normals`` (beam); ``refine``, ``supersample``, ``iterations``, ``fold``, ``explain``
         (jacobian); ``refine``, ``supersample`` (gl);
         ``photons_per_texel``, ``filter_radius``, ``seed`` (photon); ``tolerance``,
         ``max_refine`` (reference); ``exponent`` (blinn_phong).

@@ -57,7 +57,7 @@ import numpy as np
 from optics.caustics.common import land, prepare, shadow_steps, sunlit
 from optics.light.fresnel import N_WATER
 from wavephys.core.grid import Grid
-from wavephys.core.inputs import check_choice, check_int
+from wavephys.core.inputs import check_bool, check_choice, check_int
 from wavephys.core.sampling import bspline, rasterize_triangles
 from wavephys.core.spectral import bspline_coefficients, central_gradient, spectral_derivatives
 
@@ -337,7 +337,7 @@ def _beam_windows(light, fresnel, windows, refine: int = 3):
 
 def floor_irradiance_jacobian(eta, grid: Grid, depth, sun=(0.0, 0.0, 1.0), *, resolution: int | None = None,
                               n_water: float = N_WATER, fresnel: bool = True, refine="auto", supersample="auto",
-                              iterations: int = 4, fold: str = "windows"):
+                              iterations: int = 4, fold: str = "windows", explain: bool = False):
     """Floor irradiance E/E0 from the Jacobian of the landing map (module doc), shape (m, m).
 
     Parameters
@@ -370,12 +370,21 @@ def floor_irradiance_jacobian(eta, grid: Grid, depth, sun=(0.0, 0.0, 1.0), *, re
         rasterization everywhere, with a warning; ``"raise"`` :class:`CausticsFold` (a
         ValueError) naming the reason. The beam here is refined 3 times (at most 8192/n).
 
+    explain : bool
+        Also return how the map was answered (below).
+
     Returns
     -------
     jax.Array (m, m)
         Floor irradiance / E0 at the cell centres of ``Grid(m, L)``.
+    dict, with ``explain=True``
+        ``answer`` (``"gather"``, ``"windows"`` or ``"beam"``), ``windows`` (the fraction of the
+        floor the beam drew), ``supersample`` (the gather's, or None) and ``mask`` (numpy bool
+        (m, m): the texels the beam drew).
     """
-    return _jacobian(eta, grid, depth, sun, resolution, n_water, fresnel, refine, supersample, iterations, fold)[0]
+    check_bool("explain", explain)
+    out, info = _jacobian(eta, grid, depth, sun, resolution, n_water, fresnel, refine, supersample, iterations, fold)
+    return (out, info) if explain else out
 
 
 def _jacobian(eta, grid, depth, sun, resolution, n_water, fresnel, refine, supersample, iterations, fold):
@@ -416,7 +425,8 @@ def _jacobian(eta, grid, depth, sun, resolution, n_water, fresnel, refine, super
         point, residual = _gather(_coefficients(planes), length, m * s, iterations)
         worst = float(jnp.max(residual))
         if worst <= NEWTON_TOLERANCE:
-            return _texel_average(point, length, s), dict(answer="gather", windows=0.0, supersample=s)
+            return _texel_average(point, length, s), dict(answer="gather", windows=0.0, supersample=s,
+                                                          mask=np.zeros((m, m), bool))
         reason = f"Newton did not converge (residual {worst:.2g} texel)"
     elif min_det <= MIN_AREA_RATIO:
         reason = (f"the smallest area ratio det ∂X/∂x on the surface is {min_det:.3g} (the map folds at 0; the "
@@ -441,8 +451,13 @@ def _jacobian(eta, grid, depth, sun, resolution, n_water, fresnel, refine, super
             windows = _grow(folded | np.asarray(residual > NEWTON_TOLERANCE))
             beam = _beam_windows(light, fresnel, windows, _beam_refine(grid.n))
             out = jnp.where(jnp.asarray(windows), beam, _point_to_texel(point))
-            return out, dict(answer="windows", windows=float(windows.mean()), supersample=1)
+            return out, dict(answer="windows", windows=float(windows.mean()), supersample=1, mask=windows)
     return _not_gathered(eta, grid, depth, sun, resolution, n_water, fresnel, fold, reason)
+
+
+def _map_side(eta, resolution) -> int:
+    """The floor map's side: ``resolution``, or the surface's."""
+    return int(resolution) if resolution is not None else int(np.shape(eta)[-1])
 
 
 def _not_gathered(eta, grid, depth, sun, resolution, n_water, fresnel, fold, reason):
@@ -458,4 +473,5 @@ def _not_gathered(eta, grid, depth, sun, resolution, n_water, fresnel, fold, rea
         warnings.warn(f"jacobian caustics: {reason}; the exact beam rasterization is used instead", stacklevel=4)
     return (floor_irradiance_beam(eta, grid, depth, sun, resolution=resolution, n_water=n_water, fresnel=fresnel,
                                   refine=_beam_refine(grid.n)),
-            dict(answer="beam", windows=1.0, supersample=None))
+            dict(answer="beam", windows=1.0, supersample=None,
+                 mask=np.ones((_map_side(eta, resolution),) * 2, bool)))
