@@ -1,4 +1,4 @@
-"""``python -m bench {propagation,boundaries,optics,jacobian,ship,wake,harness,halffloat,render,surfaces,scale,calibrate,planner} [--json PATH] [--quick]``.
+"""``python -m bench {propagation,boundaries,walls,optics,jacobian,ship,wake,harness,halffloat,render,surfaces,scale,calibrate,planner} [--json PATH] [--quick]``.
 
 Each writes its rows as JSON and its charts as PNG next to it (default
 ``bench/results/``) and prints a table.
@@ -50,6 +50,18 @@ def run_propagation(args) -> None:
         print(f"{r['method']:<18}{r['n']:>6}{r['seconds']:>12.5f}{'':>12}{'':>8}{r['error']:>11.2e}  {r['label']}")
     fig = plot_error_vs_time(acc, "deep-water packet after 8 s: error against time")
     _write(steps + acc, {"error_vs_time": fig}, Path(args.json or "bench/results/propagation.json"))
+
+
+def run_walls(args) -> None:
+    from bench.walls import wall_rows
+
+    rows = wall_rows((256, 512) if args.quick else (256, 512, 1024), progress=_say)
+    print(f"{'boundary':<24}{'n':>6}{'grid':>6}{'ms':>9}{'x periodic':>12}{'temp MB':>9}{'drift/1000':>12}")
+    for r in rows:
+        print(f"{r['boundary']:<24}{r['n']:>6}{r['grid']:>6}{r['seconds'] * 1e3:>9.2f}{r['ratio']:>12.2f}"
+              f"{r['temp_bytes'] / 2**20:>9.1f}{r['energy_drift_1000']:>12.2e}  (quartiles {r['ratio_quartiles'][0]:.2f}–"
+              f"{r['ratio_quartiles'][1]:.2f})")
+    _write(rows, {}, Path(args.json or "bench/results/walls.json"))
 
 
 def run_boundaries(args) -> None:
@@ -299,6 +311,7 @@ def main(argv=None) -> int:
     sub = p.add_subparsers(dest="which", required=True)
     for name, fn, help_ in (("propagation", run_propagation, "step vs bare FFT; error vs time"),
                             ("boundaries", run_boundaries, "measured failure boundaries"),
+                            ("walls", run_walls, "walled step against the periodic step (ratios, memory)"),
                             ("optics", run_optics, "Fresnel, absorption and caustics: error vs cost"),
                             ("jacobian", run_jacobian, "jacobian caustics: error up to and past the first fold, cost"),
                             ("ship", run_ship, "moving hulls: kernels vs stones, FD wake, speed"),

@@ -83,6 +83,8 @@ EXAMPLES = {
     "measured": lambda: 1.0, "expected": lambda: 1.0, "limit": lambda: 2.0, "quantity": lambda: "speed",
     "name": lambda: "pool", "xlabel": lambda: "x", "ylabel": lambda: "y", "mode": lambda: 0, "refine": lambda: 4,
     "shape": lambda: (N, N), "items": lambda: [Water(), Water(depth=2.0)],
+    "walls": lambda: "all", "length_x": lambda: 2.0, "length_y": lambda: 1.5, "modes": lambda: 3,
+    "periodic_images": lambda: False, "tank": lambda: False, "mirror": lambda: (False, False),
     # arrays
     "eta": _field, "eta_prev": _field, "eta0": _field, "eta1": _field, "eta_dot": _field, "eta_dot0": _field,
     "eta_dot1": _field, "field": _field, "values": lambda: np.ones(5), "u": lambda: np.linspace(0.0, 14.0, 5),
@@ -258,6 +260,11 @@ OVERRIDES = {
     "wavephys.harness.travel.measure_travel": {"eta": _frames, "dx": lambda: 0.125, "dt": lambda: 0.05},
     "wavephys.harness.energy.measure_damping": {**_RECORD, "water": lambda: Water(sigma=0.0)},
     "wavephys.harness.energy.energy_check": {**_RECORD, "water": lambda: Water(sigma=0.0)},
+    "wavephys.simulation.model.Model.inverse_transform": {"spectra": lambda: np.zeros((N, N // 2 + 1), np.complex64)},
+    "wavephys.harness.tank.measure_seiches": {"eta": _frames, "dx": lambda: 0.125, "dt": lambda: 0.05},
+    "wavephys.harness.tank.seiche_check": {**_RECORD, "water": lambda: Water(sigma=0.0)},
+    "wavephys.harness.tank.wall_reflection_check": {**_RECORD, "water": lambda: Water(sigma=0.0)},
+    "wavephys.harness.tank.looks_like_tank": {**_RECORD, "water": lambda: Water(sigma=0.0)},
     "wavephys.harness.travel.standing_check": _RECORD,
     "wavephys.harness.travel.direction_check": {**_RECORD, "direction": lambda: 0.0},
     "wavephys.harness.packets.group_velocity_check": {**_RECORD, "water": lambda: Water(sigma=0.0)},
@@ -435,6 +442,8 @@ _GLSL_FRESNEL = """float f(float c, float n1, float n2) {
 }"""
 
 SKIP = {
+    # the harness's fitted tank modes, made by measure_seiches (its fields are what was measured)
+    "wavephys.harness.tank.Seiches",
     # the shader check's verdict, made by check_glsl (its fields are what was measured)
     "optics.shaders.check.ShaderReport",
     # the planner's answers and records, made by it (their fields are what it predicted)
@@ -468,13 +477,13 @@ for cls in ("wavephys.physics.disturbances.Stones", "wavephys.physics.wind.WindS
 NONE_OK = {"axes", "wind", "colour_tolerance", "budget", "measured", "mesh", "devices", "resolution", "ship_patch", "damping", "camera", "progress", "limit", "environment", "albedo",
            "caustics", "count", "video", "speed", "columns", "mask", "iterations"}
 CHOICES = {"method", "kind", "mode", "cutoff", "spectrum", "illuminant", "gamut", "norm", "normals", "relation",
-           "name", "ship_method", "dtype"}
+           "name", "ship_method", "dtype", "walls"}
 POSITIVE = {"dt", "dx", "spacing", "length", "n", "radius", "half", "factor", "size", "steps", "count", "frames",
             "ratio", "steepness", "wind_speed", "fetch", "amplitude", "wavenumber", "near", "far", "epsilon", "n1",
             "n2", "n_air", "n_water", "n_ratio", "width", "height", "bits", "fps", "resolution", "samples",
             "oversample", "photons_per_texel", "exponent", "tolerance", "max_depth", "repeats", "refine_steps",
             "g", "rho", "sigma_space", "sigma_range", "bandwidth", "threshold", "lo", "hi", "growth", "strength_abs",
-            "leak_tolerance", "max_distance", "ship_patch", "fov"}
+            "leak_tolerance", "max_distance", "ship_patch", "fov", "length_x", "length_y", "modes"}
 NON_NEGATIVE = {"depth_m", "margin", "s", "omega_dt", "k", "omega", "distance", "coefficient", "coefficients",
                 "absorption", "sigma", "blur", "exclude", "filter_radius", "seed", "cos_theta", "alpha_abs",
                 "refine", "mode"}
@@ -488,6 +497,7 @@ SHAPED = {"eta", "eta_prev", "eta0", "eta1", "eta_dot", "eta_dot0", "eta_dot1", 
 SHAPE_FREE = {
     ("wavephys.core.grid.Grid.sample", "field"), ("optics.light.directions.normalize", "v"),
     ("wavephys.harness.dispersion.measure_dispersion", "eta"),
+    ("wavephys.harness.tank.measure_seiches", "eta"),  # any rectangle of frames is a tank
     ("wavephys.app.pytest_plugin.Checker.dispersion", "eta"),
     ("wavephys.plot.plot_surface", "eta"), ("wavephys.plot.plot_wake", "eta"), ("wavephys.plot.plot_images", "images"),
     ("wavephys.models.finite_difference.laplacian", "eta"), ("wavephys.models.truncated_kernel.convolve_periodic", "eta"),

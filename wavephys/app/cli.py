@@ -41,6 +41,8 @@ RECORD_CHECK_HELP = (  # wavephys.harness.RECORD_CHECKS, written out so that --h
      ("normals",)),
     ("caustics_flux", "mean of a caustics map against flat water's irradiance (light conserved)", ("caustics",)),
     ("resolution", "variance per octave of |k| against the same sea exported at another resolution", ("other",)),
+    ("seiche", "frequencies of a tank's strongest cosine modes against omega(k_mn) (walls at the edges)", ("tank",)),
+    ("wall_reflection", "amplitude kept per reflection at a tank's walls, from its modes' decay", ("tank",)),
 )
 
 EFFECTS = ("refraction", "reflection", "fresnel", "absorption", "caustics")
@@ -418,7 +420,8 @@ _CLAIM_OPTIONS = (("only:", "--only:"), ("direction= (--direction DEG)", "--dire
                   ("packet=True (--packet)", "--packet"), ("wake=dict(speed=...) (--wake U)", "--wake U"),
                   ("the source's size, wake=dict(size=...) (--wake-size SIGMA)", "--wake-size M"),
                   ("normals= (--normals FILE)", "--normals FILE"), ("caustics= (--caustics FILE)", "--caustics FILE"),
-                  ("other= (--other FRAMES)", "--other FRAMES"))
+                  ("other= (--other FRAMES)", "--other FRAMES"), ("tank=True (--tank)", "--tank"),
+                  ("(tank=True)", "(--tank)"))
 
 
 def _option_words(text: str) -> str:
@@ -452,7 +455,8 @@ def cmd_check_frames(args, parser) -> int:
             parser.error(f"--only: unknown check(s) {', '.join(unknown)}; the checks are {', '.join(names)}")
     given = {"direction": args.direction is not None, "sea": args.sea, "packet": args.packet,
              "source": args.source is not None, "wake": args.wake is not None, "wake-size": args.wake_size is not None,
-             "normals": bool(args.normals), "caustics": bool(args.caustics), "other": bool(args.other)}
+             "normals": bool(args.normals), "caustics": bool(args.caustics), "other": bool(args.other),
+             "tank": args.tank}
     for name, _, needs in RECORD_CHECK_HELP:
         missing = [f"--{x}" for x in needs if not given[x]]
         if args.only and name in args.only and missing:
@@ -490,7 +494,7 @@ def cmd_check_frames(args, parser) -> int:
         report = check_record(record, Water(), only=args.only, direction=args.direction, sea=args.sea,
                               packet=args.packet, source=args.source, t0=args.t0, radius=args.radius,
                               viscosity=args.viscosity, rtol=args.rtol, wake=_wake_claim(args),
-                              convention=args.convention, **maps,
+                              convention=args.convention, tank=args.tank, **maps,
                               progress=lambda m: print(m, file=sys.stderr, flush=True))
     except (TypeError, ValueError) as exc:  # a claim a named check needs: the option's name, not Python's
         parser.error(_option_words(str(exc)))
@@ -594,6 +598,8 @@ def _add_check_parser(sub, fmt) -> None:
     ck.add_argument("--sea", action="store_true", help="the frames are a sea meant to travel (standing-wave check)")
     ck.add_argument("--direction", type=_real, metavar="DEG", help="claimed direction of travel, degrees, 0 = +x")
     ck.add_argument("--packet", action="store_true", help="the frames are one wave packet (group-velocity check)")
+    ck.add_argument("--tank", action="store_true", help="the frames are water between four reflecting walls half a "
+                                                        "sample outside the edges (seiche and wall-reflection checks)")
     ck.add_argument("--source", type=_pair, metavar="X,Y", help="where one disturbance was, m (ring-arrival check)")
     ck.add_argument("--t0", type=_real, default=0.0, help="when it happened, s from the first frame (default 0)")
     ck.add_argument("--radius", type=_float(0.0), default=0.0, help="its radius, m (default 0)")

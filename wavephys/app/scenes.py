@@ -1,8 +1,9 @@
 """Built-in scenes that need no input files: the default simulation scene, and the renderer's
 ``pool``, ``shore`` and ``ship``.
 
-``pool``  an 8 m pool (tiled floor 1.5 m deep, walls out of the water) with ring waves of
-          three stones from the spectral simulation, caustics by the Jacobian gather
+``pool``  an 8 m square holding a 6.9 m pool (tiled floor 1.5 m deep, walls out of the water)
+          with ring waves of three stones from the spectral simulation of a tank whose
+          walls reflect them (docs/physics.md §1.11), caustics by the Jacobian gather
           (:data:`CAUSTICS_METHODS`);
 ``shore`` a 16 m sandy beach rising out of the water under a three-component swell
           (deep-water dispersion), caustics on the sloping ground;
@@ -43,7 +44,7 @@ MAX_TIME = 3600.0
 """Latest time of a built-in scene, s (the pool steps its simulation up to it)."""
 MAX_N = 8192
 """Largest resolution of a built-in scene, texels per side."""
-POOL_LENGTH, POOL_DEPTH = 8.0, 1.5
+POOL_LENGTH, POOL_DEPTH, POOL_TANK = 8.0, 1.5, 6.9  # scene side, water depth, side between the walls (m)
 SHORE_LENGTH = 16.0
 SWELL = ((4, 0, 0.05, 0.0), (5, 1, 0.03, 1.3), (3, -1, 0.035, 2.1))  # (m_x, m_y, amplitude m, phase)
 SHIP_LENGTH, SHIP_SPEED, SHIP_DEPTH = 40.0, 2.0, 8.0
@@ -157,10 +158,19 @@ def _caustics(eta, grid: Grid, ground, method: str = "beam", **options):
     return (wavy / np.maximum(flat, 1e-6)).astype(np.float32)
 
 
+def _pool_tank(n):
+    """(samples per side, side, m) of the pool's water: the tank inside its walls, a whole even number of
+    the scene's texels, centred (so that its samples are texels of the scene's grid)."""
+    dx = POOL_LENGTH / n
+    inner = 2 * int(round(POOL_TANK / dx / 2))
+    return inner, inner * dx
+
+
 def _pool_ground(n):
     X, Y = _mesh("pool", n)
     r = np.maximum(np.abs(X), np.abs(Y))
-    wall = _smoothstep(3.3, 3.6, r)
+    edge = 0.5 * _pool_tank(n)[1]
+    wall = _smoothstep(edge - 0.04, edge + 0.12, r)  # the tank's walls rise where the simulation reflects
     ground = -POOL_DEPTH + (POOL_DEPTH + 0.3) * wall
     tile = 0.5  # m; soft grout lines
     grout = np.clip(np.cos(np.pi * X / tile) ** 40 + np.cos(np.pi * Y / tile) ** 40, 0, 1)
@@ -170,11 +180,20 @@ def _pool_ground(n):
 
 
 def _pool_simulation(n, dt=1.0 / 30.0):
+    """The pool's water: a tank with reflecting walls (docs/physics.md §1.11) inside the scene's square."""
     from wavephys.simulation import Simulation
 
-    sim = Simulation(scene_grid("pool", n), Water(), dt=dt, margin=max(1, n // 16))
+    inner, side = _pool_tank(n)
+    sim = Simulation(Grid(inner, side), Water(depth=POOL_DEPTH), dt=dt, walls="all")
     stones = Stones([-1.2, 1.0, 0.3], [0.8, -1.0, 1.5], [0.15, 0.13, 0.18], [0.04, 0.03, 0.05])  # R >= dx at n >= 64
     return sim, sim.drop(sim.initial_state(), stones)
+
+
+def _pool_heights(sim, state, n):
+    """The tank's heights on the scene's grid (still water on the rim outside the walls), float32."""
+    eta = np.asarray(sim.surface(state).eta, np.float32)
+    pad = (n - eta.shape[0]) // 2
+    return np.pad(eta, pad)
 
 
 def _shore_ground(n):
@@ -381,7 +400,7 @@ def scene_water(name: str, n: int = 256, time: float = 0.0, ship: bool = True) -
         steps = int(round(time / sim.dt))
         if steps:
             state, _ = sim.run(state, steps)
-        return np.asarray(sim.surface(state).eta, np.float32)
+        return _pool_heights(sim, state, n)
     if name == "shore":
         return _swell(n, time)
     if name == "storm":
@@ -554,5 +573,5 @@ def _frames(name, count, fps, n, start, caustics):
     if skip:
         state, _ = sim.run(state, skip)
     for _ in range(count):
-        yield _assemble(name, n, np.asarray(sim.surface(state).eta, np.float32), caustics)
+        yield _assemble(name, n, _pool_heights(sim, state, n), caustics)
         state, _ = sim.step(state)

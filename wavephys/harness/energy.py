@@ -8,7 +8,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from wavephys.core.inputs import check_array, check_instance, check_scalar
+from wavephys.core.inputs import check_array, check_bool, check_instance, check_scalar
 from wavephys.core.spectral import angular_wavenumbers
 from wavephys.core.water import Water
 
@@ -54,8 +54,24 @@ def _surface_operator(k, water: Water) -> np.ndarray:
         return np.asarray(surface_operator(jnp.asarray(k, jnp.float64), water), np.float64)
 
 
-def measure_energy(eta, eta_dot, dx: float, water: Water) -> Energy:
-    """Energy per unit area from height η (m) and its rate η̇ (m/s) on a periodic grid.
+def _modes(fields, dx, tank: bool):
+    """(coefficients, weights, k): fields on the modes of their domain, with ⟨f·g⟩ = Σ w·f̂·ĝ* / (n_x n_y)²
+    (Parseval), and each mode's wavenumber, rad/m: Fourier modes of a periodic grid, or the cosine modes of
+    a tank whose walls are half a sample outside the edges (docs/physics.md §1.11)."""
+    ny, nx = fields.shape[-2:]
+    if not tank:
+        ky, kx = angular_wavenumbers((ny, nx), dx, xp=np)
+        return np.fft.fft2(fields), 1.0, np.sqrt(kx**2 + ky**2)
+    from wavephys.core.spectral import cosine_transform2
+
+    wy = np.where(np.arange(ny) == 0, 1.0, 2.0)[:, None]
+    wx = np.where(np.arange(nx) == 0, 1.0, 2.0)[None, :]
+    k = np.pi * np.hypot(np.arange(nx)[None, :] / (nx * dx), np.arange(ny)[:, None] / (ny * dx))
+    return cosine_transform2(fields), wy * wx, k
+
+
+def measure_energy(eta, eta_dot, dx: float, water: Water, tank: bool = False) -> Energy:
+    """Energy per unit area from height η (m) and its rate η̇ (m/s) on a periodic grid, or in a tank.
 
     potential ½ρg⟨η²⟩; capillary ½σ⟨|∇η|²⟩ (spectral gradient); kinetic ½ρ⟨φ·Kφ⟩ with the
     surface potential recovered from the kinematic condition, φ̂ = η̇̂ / K,
@@ -71,6 +87,9 @@ def measure_energy(eta, eta_dot, dx: float, water: Water) -> Energy:
         Grid spacing, m, > 0.
     water : Water
         Density ρ, gravity g, surface tension σ and depth h of the water.
+    tank : bool
+        The fields are water between four walls half a sample outside their edges: the operators act on the
+        tank's cosine modes (k_mn = π√((m/Lx)² + (n/Ly)²)) instead of Fourier modes.
 
     Returns
     -------
@@ -101,20 +120,19 @@ def measure_energy(eta, eta_dot, dx: float, water: Water) -> Energy:
         raise ValueError(f"eta and eta_dot must have one shape, got {np.shape(eta)} and {np.shape(eta_dot)}")
     check_scalar("dx", dx, lo=0.0, lo_open=True)
     check_instance("water", water, Water, "wavephys.Water")
+    check_bool("tank", tank)
     eta = np.asarray(eta, np.float64)
     eta_dot = np.asarray(eta_dot, np.float64)
     ny, nx = eta.shape[-2:]
-    ky, kx = angular_wavenumbers((ny, nx), dx, xp=np)
-    k = np.sqrt(kx**2 + ky**2)
+    eh, w, k = _modes(eta, dx, bool(tank))
+    dh = _modes(eta_dot, dx, bool(tank))[0]
     K = _surface_operator(k, water)
     n = nx * ny
-    eh = np.fft.fft2(eta)
-    dh = np.fft.fft2(eta_dot)
-    mean_sq = lambda f: np.sum(np.abs(f) ** 2, axis=(-2, -1)) / n**2  # Parseval: ⟨|f|²⟩
+    mean_sq = lambda f: np.sum(w * np.abs(f) ** 2, axis=(-2, -1)) / n**2  # Parseval: ⟨|f|²⟩
     pot = 0.5 * float(water.rho) * float(water.g) * np.mean(eta**2, axis=(-2, -1))
     cap = 0.5 * float(water.sigma) * mean_sq(k * eh)
     invK = np.where(K > 0, 1.0 / np.where(K > 0, K, 1.0), 0.0)
-    kin = 0.5 * float(water.rho) * np.sum(np.abs(dh) ** 2 * invK, axis=(-2, -1)) / n**2
+    kin = 0.5 * float(water.rho) * np.sum(w * np.abs(dh) ** 2 * invK, axis=(-2, -1)) / n**2
     return Energy(pot, cap, kin)
 
 
@@ -149,24 +167,23 @@ class Damping:
     rate_method: str = "given"
 
 
-def _shell_energy(eta, eta_dot, dx, water):
+def _shell_energy(eta, eta_dot, dx, water, tank=False):
     """Energy per shell of |k| (n_t, shells) and the shells' k: potential + capillary + kinetic per mode."""
     nt, ny, nx = eta.shape
-    ky, kx = angular_wavenumbers((ny, nx), dx, xp=np)
-    k = np.sqrt(kx**2 + ky**2)
+    eh, w, k = _modes(eta, dx, tank)
+    dh = _modes(eta_dot, dx, tank)[0]
     K = _surface_operator(k, water)
     invK = np.where(K > 0, 1.0 / np.where(K > 0, K, 1.0), 0.0)
-    eh, dh = np.fft.fft2(eta), np.fft.fft2(eta_dot)
     rho, g, sigma = float(water.rho), float(water.g), float(water.sigma)
-    e = 0.5 * ((rho * g + sigma * k**2) * np.abs(eh) ** 2 + rho * invK * np.abs(dh) ** 2) / (nx * ny) ** 2
-    dk = 2 * np.pi / (dx * max(nx, ny))
+    e = 0.5 * w * ((rho * g + sigma * k**2) * np.abs(eh) ** 2 + rho * invK * np.abs(dh) ** 2) / (nx * ny) ** 2
+    dk = (1.0 if tank else 2.0) * np.pi / (dx * max(nx, ny))
     shell = np.rint(k / dk).astype(np.int64).ravel()
     shells = np.stack([np.bincount(shell, weights=e[t].ravel(), minlength=shell.max() + 1) for t in range(nt)])
     k_shell = np.arange(shells.shape[1]) * dk
     return k_shell[1:], shells[:, 1:]
 
 
-def measure_damping(record, water: Water, *, method: str = "auto") -> Damping:
+def measure_damping(record, water: Water, *, method: str = "auto", tank: bool = False) -> Damping:
     """Energy per shell of |k| over a record, and the decay rate of each shell.
 
     Parameters
@@ -177,6 +194,8 @@ def measure_damping(record, water: Water, *, method: str = "auto") -> Damping:
         Density, gravity, surface tension and depth for the energy (docs/physics.md §1.8).
     method : {"auto", "fd4", "spectral"}, optional, keyword-only
         How η̇ is estimated from frames when the record does not hold it (default ``"auto"``).
+    tank : bool, optional, keyword-only
+        The record is water between four walls (its cosine modes, :func:`measure_energy`).
 
     Returns
     -------
@@ -187,9 +206,10 @@ def measure_damping(record, water: Water, *, method: str = "auto") -> Damping:
 
     check_instance("record", record, Record, "wavephys.harness.Record")
     check_instance("water", water, Water, "wavephys.Water")
+    check_bool("tank", tank)
     rate = record.rate(method)
     eta = record.eta[rate.frames]
-    k, shells = _shell_energy(eta, rate.eta_dot, record.dx, water)
+    k, shells = _shell_energy(eta, rate.eta_dot, record.dx, water, bool(tank))
     t = np.arange(eta.shape[0]) * record.dt
     total = shells.sum(axis=1)
     if not np.all(total > 0):
@@ -230,7 +250,8 @@ def _damping_cause(d: Damping, dt: float, viscosity: float) -> str:
             f"{gamma[hi]:.3g} 1/s at k = {d.k[hi]:.4g} rad/m")
 
 
-def energy_check(record, water: Water, *, rtol: float = 0.01, viscosity: float = 0.0, method: str = "auto"):
+def energy_check(record, water: Water, *, rtol: float = 0.01, viscosity: float = 0.0, method: str = "auto",
+                 tank: bool = False):
     """A :class:`~wavephys.harness.Check` that a record's wave energy is conserved (or decays as claimed).
 
     The row is the total energy's relative drift over the record, e^{βT} − 1 from a fit of ln E(t) (the
@@ -251,6 +272,8 @@ def energy_check(record, water: Water, *, rtol: float = 0.01, viscosity: float =
         Kinematic viscosity ν the simulator claims to model, m²/s, >= 0 (default 0: inviscid).
     method : {"auto", "fd4", "spectral"}, optional, keyword-only
         How η̇ is estimated from frames (default ``"auto"``).
+    tank : bool, optional, keyword-only
+        The record is water between four walls (energy on its cosine modes).
 
     Returns
     -------
@@ -262,7 +285,8 @@ def energy_check(record, water: Water, *, rtol: float = 0.01, viscosity: float =
 
     check_scalar("rtol", rtol, lo=0.0, lo_open=True)
     check_scalar("viscosity", viscosity, lo=0.0)
-    d = measure_damping(record, water, method=method)
+    check_bool("tank", tank)
+    d = measure_damping(record, water, method=method, tank=tank)
     drift = d.drift
     if viscosity > 0 and d.k.size:
         expected = float(np.sum(d.share * np.exp(-4 * viscosity * d.k**2 * record.duration)))

@@ -21,11 +21,11 @@ from wavephys.core.water import Water
 
 __all__ = ["RecordCheck", "RECORD_CHECKS", "RecordReport", "check_record", "CLAIMS"]
 
-CLAIMS = ("direction", "sea", "packet", "source", "wake", "normals", "caustics", "other")
+CLAIMS = ("direction", "sea", "packet", "source", "wake", "normals", "caustics", "other", "tank")
 """Claims a check may need: a direction of travel (degrees), that the record is a travelling sea, that it is
 one wave packet, where a single disturbance was, a moving source (its speed, where it is in the first frame, its
 heading and size), the normal map or caustics map exported with the first frame, the same sea exported at
-another resolution."""
+another resolution, that the record is water between four reflecting walls (a tank)."""
 
 
 @dataclass(frozen=True)
@@ -60,7 +60,8 @@ def _dispersion(record, water, o):
 def _energy(record, water, o):
     from wavephys.harness.energy import energy_check
 
-    return energy_check(record, water, rtol=o.get("energy_rtol", 0.01), viscosity=o.get("viscosity", 0.0))
+    return energy_check(record, water, rtol=o.get("energy_rtol", 0.01), viscosity=o.get("viscosity", 0.0),
+                        tank=bool(o.get("tank")))
 
 
 def _standing(record, water, o):
@@ -121,6 +122,18 @@ def _caustics(record, water, o):
     return caustics_flux_check(o["caustics"])
 
 
+def _seiche(record, water, o):
+    from wavephys.harness.tank import seiche_check
+
+    return seiche_check(record, water, rtol=o.get("rtol", 0.02) / 2)
+
+
+def _reflection(record, water, o):
+    from wavephys.harness.tank import wall_reflection_check
+
+    return wall_reflection_check(record, water, tolerance=o.get("energy_rtol", 0.01))
+
+
 def _resolution(record, water, o):
     from wavephys.harness.maps import resolution_check
 
@@ -154,7 +167,13 @@ RECORD_CHECKS = {c.name: c for c in (
                 ("caustics",), _caustics),
     RecordCheck("resolution", "variance per octave of |k| against the same sea exported at another resolution",
                 ("other",), _resolution),
+    RecordCheck("seiche", "frequencies of a tank's strongest cosine modes against omega(k_mn) (walls at the edges)",
+                ("tank",), _seiche),
+    RecordCheck("wall_reflection", "amplitude kept per reflection at a tank's walls, from its modes' decay",
+                ("tank",), _reflection),
 )}
+PERIODIC_ONLY = {"dispersion": "seiche", "tiling": None}
+"""Checks that assume a periodic domain, skipped for a tank (and the check that takes their place)."""
 """The registry of checks on a record, by name."""
 
 
@@ -201,17 +220,25 @@ def _wanted(only, options) -> tuple[list, dict]:
     have = {"direction": options.get("direction") is not None, "sea": bool(options.get("sea")),
             "source": options.get("source") is not None, "packet": bool(options.get("packet")),
             "wake": options.get("wake") is not None, "normals": options.get("normals") is not None,
-            "caustics": options.get("caustics") is not None, "other": options.get("other") is not None}
+            "caustics": options.get("caustics") is not None, "other": options.get("other") is not None,
+            "tank": bool(options.get("tank"))}
     flags = {"direction": "direction= (--direction DEG)", "sea": "sea=True (--sea)",
              "source": "source= (--source X,Y)", "packet": "packet=True (--packet)",
              "wake": "wake=dict(speed=...) (--wake U)", "normals": "normals= (--normals FILE)",
-             "caustics": "caustics= (--caustics FILE)", "other": "other= (--other FRAMES)"}
+             "caustics": "caustics= (--caustics FILE)", "other": "other= (--other FRAMES)",
+             "tank": "tank=True (--tank)"}
     wake = options.get("wake") or {}
     if only is None:
         names = [n for n, c in RECORD_CHECKS.items() if all(have[x] for x in c.needs)
                  and (n != "wake_max" or wake.get("size") is not None)]
         skipped = {n: "needs " + ", ".join(flags[x] for x in c.needs) for n, c in RECORD_CHECKS.items()
                    if n not in names}
+        if have["tank"]:
+            for n, instead in PERIODIC_ONLY.items():
+                if n in names:
+                    names.remove(n)
+                    skipped[n] = "the record is a tank: it does not wrap" + (f" (its modes: the {instead} row)"
+                                                                            if instead else "")
         return names, skipped
     if not isinstance(only, (list, tuple)) or not all(isinstance(n, str) for n in only):
         raise TypeError(f"only must be a list of check names, got {describe(only)}")
@@ -219,6 +246,9 @@ def _wanted(only, options) -> tuple[list, dict]:
     if unknown:
         raise ValueError(f"only: unknown check(s) {', '.join(unknown)}; the checks are {', '.join(RECORD_CHECKS)}")
     for n in only:
+        if have["tank"] and n in PERIODIC_ONLY:
+            raise ValueError(f"only: the {n} check assumes a periodic domain, and the record is a tank (tank=True)"
+                             + (f": its modes are checked by {PERIODIC_ONLY[n]}" if PERIODIC_ONLY[n] else ""))
         missing = [flags[x] for x in RECORD_CHECKS[n].needs if not have[x]]
         if n == "wake_max" and have["wake"] and wake.get("size") is None:
             missing.append("the source's size, wake=dict(size=...) (--wake-size SIGMA)")
@@ -231,7 +261,7 @@ def check_record(record, water: Optional[Water] = None, *, only=None, direction:
                  sea: bool = False, packet: bool = False, source=None, t0: float = 0.0, radius: float = 0.0,
                  viscosity: float = 0.0, rtol: float = 0.02, energy_rtol: float = 0.01, k_range=(0.0, math.inf),
                  wake: Optional[dict] = None, normals=None, convention: str = "auto", caustics=None, other=None,
-                 progress: Optional[Callable[[str], None]] = None) -> RecordReport:
+                 tank: bool = False, progress: Optional[Callable[[str], None]] = None) -> RecordReport:
     """Run the checks of :data:`RECORD_CHECKS` on a record.
 
     Parameters
@@ -275,6 +305,10 @@ def check_record(record, water: Optional[Water] = None, *, only=None, direction:
         A caustics map relative to flat water's irradiance (runs ``caustics_flux``).
     other : Record, optional, keyword-only
         The same sea exported at another resolution (runs ``resolution``).
+    tank : bool, optional, keyword-only
+        The record is water between four reflecting walls half a sample outside its edges (runs ``seiche`` and
+        ``wall_reflection``, measures the energy on the tank's modes, skips the periodic-only ``dispersion`` and
+        ``tiling``). A record that fails those without the claim and looks like a tank gets a note saying so.
     progress : callable, optional, keyword-only
         Called with a line of text before each check.
 
@@ -301,6 +335,7 @@ def check_record(record, water: Optional[Water] = None, *, only=None, direction:
     water = record.water(water)
     check_bool("sea", sea)
     check_bool("packet", packet)
+    check_bool("tank", tank)
     if direction is not None:
         check_scalar("direction", direction)
     check_scalar("t0", t0)
@@ -333,7 +368,7 @@ def check_record(record, water: Optional[Water] = None, *, only=None, direction:
         check_array("normals", normals, ndim=3)
     options = dict(direction=direction, sea=sea, packet=packet, source=source, t0=t0, radius=radius,
                    viscosity=viscosity, rtol=rtol, energy_rtol=energy_rtol, k_range=k_range, wake=wake,
-                   normals=normals, convention=convention, caustics=caustics, other=other)
+                   normals=normals, convention=convention, caustics=caustics, other=other, tank=tank)
     if source is not None:
         check_array("source", source, ndim=1, shape_tail=(2,))
     names, skipped = _wanted(only, options)
@@ -344,4 +379,21 @@ def check_record(record, water: Optional[Water] = None, *, only=None, direction:
         start = time.perf_counter()
         rows[name] = RECORD_CHECKS[name].run(record, water, options)
         seconds[name] = time.perf_counter() - start
+    if not tank and any(not rows[n].ok for n in PERIODIC_ONLY.keys() | {"energy"} if n in rows):
+        _hint_tank(record, water, rows)
     return RecordReport(rows, skipped, seconds, record.source)
+
+
+def _hint_tank(record, water, rows):
+    """Failing periodic rows of a record that looks like a tank get a note saying so (verdicts unchanged)."""
+    from dataclasses import replace
+
+    from wavephys.harness.tank import looks_like_tank
+
+    why = looks_like_tank(record, water)
+    if not why:
+        return
+    for n in list(PERIODIC_ONLY) + ["energy"]:
+        if n in rows and not rows[n].ok:
+            rows[n] = replace(rows[n], note=f"{rows[n].note}; the record looks like a closed tank ({why}): if it "
+                                            f"is, check it with tank=True (--tank)")

@@ -108,7 +108,7 @@ def _check_margin(n, margin):
     return n, margin
 
 
-def cutoff_profile(n: int, margin: int, method: str = "quadratic", dtype=jnp.float32):
+def cutoff_profile(n: int, margin: int, method: str = "quadratic", dtype=jnp.float32, ends=(True, True)):
     """The 1-D cutoff weights h(p), p = 0 … n − 1 (dimensionless, in [0, 1]).
 
     Parameters
@@ -120,6 +120,9 @@ def cutoff_profile(n: int, margin: int, method: str = "quadratic", dtype=jnp.flo
     method : {"quadratic", "linear"}
         A name in :data:`CUTOFF_METHODS`.
     dtype : dtype of the result.
+    ends : (bool, bool)
+        Whether the low (p = 0) and the high (p = n − 1) end are open (get the margin); an end
+        that is a reflecting wall keeps weight 1 (docs/physics.md §1.11).
 
     Returns
     -------
@@ -136,11 +139,15 @@ def cutoff_profile(n: int, margin: int, method: str = "quadratic", dtype=jnp.flo
     if margin == 0:
         return jnp.ones(n, dtype)
     p = jnp.arange(n, dtype=dtype)
-    dist = jnp.minimum(p, n - 1 - p)  # distance to the nearer edge
+    if not isinstance(ends, (tuple, list)) or len(ends) != 2 or not all(isinstance(e, (bool, np.bool_)) for e in ends):
+        raise TypeError(f"ends must be a pair (low, high) of bools, got {ends!r}")
+    low, high = (bool(e) for e in ends)
+    big = jnp.asarray(n, dtype)
+    dist = jnp.minimum(p if low else big, n - 1 - p if high else big)  # distance to the nearer open edge
     return jnp.where(dist < margin, shape(jnp.minimum(dist / margin, 1.0)), 1.0).astype(dtype)
 
 
-def cutoff_mask(n: int, margin: int, method: str = "quadratic", dtype=jnp.float32):
+def cutoff_mask(n: int, margin: int, method: str = "quadratic", dtype=jnp.float32, walls=()):
     """The 2-D weights h(q)·h(p) of shape ``(n, n)`` (rows q = y, columns p = x).
 
     Parameters
@@ -153,6 +160,8 @@ def cutoff_mask(n: int, margin: int, method: str = "quadratic", dtype=jnp.float3
         A name in :data:`CUTOFF_METHODS`.
     dtype : dtype
         Of the result, float32 or float64.
+    walls : str or iterable of str
+        Sides that are reflecting walls (no margin there; :func:`wavephys.physics.walls.check_walls`).
 
     Returns
     -------
@@ -164,8 +173,12 @@ def cutoff_mask(n: int, margin: int, method: str = "quadratic", dtype=jnp.float3
     J. Loviscach (2003). Complex water effects at interactive frame rates. *WSCG*, §3 (docs/physics.md
     §1.4).
     """
-    h = cutoff_profile(n, margin, method, dtype)
-    return h[:, None] * h[None, :]
+    from wavephys.physics.walls import check_walls
+
+    sides = check_walls(walls, margin=1)
+    hx = cutoff_profile(n, margin, method, dtype, ("left" not in sides, "right" not in sides))
+    hy = cutoff_profile(n, margin, method, dtype, ("bottom" not in sides, "top" not in sides))
+    return hy[:, None] * hx[None, :]
 
 
 def interior(field, margin: int):

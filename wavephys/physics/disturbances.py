@@ -92,7 +92,14 @@ class Stones:
         self.check_on(model_grid(model))
 
     def impulse(self, model, ops, t):
-        """(Δφ̂, Δχ̂) half spectra the stones add at ``t``: fluid at rest, χ̂ −= (ω/K)·η̂_stone."""
+        """(Δφ̂, Δχ̂) half spectra the stones add at ``t``: fluid at rest, χ̂ −= (ω/K)·η̂_stone.
+
+        In a walled model the craters are evaluated in space (with their periodic images along
+        axes without walls) and put on the model's cosine modes, which holds their mirror
+        images in the walls (docs/physics.md §1.11)."""
+        if getattr(model, "walls", ()):
+            eta = stone_height(self, model.grid, walls=model.walls).astype(ops.inverse_height.dtype)
+            return None, -ops.inverse_height * model.transform(eta)
         complex_dtype = jnp.result_type(ops.inverse_height.dtype, jnp.complex64)
         eta_hat = stone_height_spectrum(self, model.grid).astype(complex_dtype)
         return None, -ops.inverse_height * eta_hat
@@ -137,8 +144,8 @@ def stone_height_spectrum(stones: Stones, grid: Grid, real: bool = True):
 
 
 @validate(stones=Instance(Stones, "wavephys.Stones"), grid=GRID)
-def stone_height(stones: Stones, grid: Grid):
-    """The stones' crater heights in space, m, shape ``(n, n)`` (periodic images ignored).
+def stone_height(stones: Stones, grid: Grid, walls=None):
+    """The stones' crater heights in space, m, shape ``(n, n)``.
 
     Parameters
     ----------
@@ -146,6 +153,11 @@ def stone_height(stones: Stones, grid: Grid):
         The craters (positions, radii R and depths D, m); R ≥ the grid spacing is needed for a
         band-limited spectrum.
     grid : Grid
+    walls : None or str or sequence of str
+        None: images ignored. Otherwise the walled sides of the domain
+        (:func:`wavephys.physics.walls.check_walls`): each crater's mirror images in the walls
+        of walled axes (x → ±L − x; the part of a crater beyond a wall folds back in) and its
+        periodic images (±L) along axes without walls are added.
 
     Returns
     -------
@@ -157,6 +169,18 @@ def stone_height(stones: Stones, grid: Grid):
     J. Loviscach (2003). Complex water effects at interactive frame rates. *WSCG*, §3.
     """
     x, y = grid.mesh()
-    rr = ((x[None] - stones.x[:, None, None]) ** 2 + (y[None] - stones.y[:, None, None]) ** 2)
-    q = rr / (2.0 * stones.radius[:, None, None] ** 2)
-    return jnp.sum(-stones.depth[:, None, None] * (1.0 - q) * jnp.exp(-q), axis=0)
+    copies_x, copies_y = [(1.0, 0.0)], [(1.0, 0.0)]  # (sign, offset): the copy sits at sign·x + offset
+    if walls is not None:
+        from wavephys.physics.walls import wall_axes
+
+        length = grid.length
+        for axis_walled, copies in zip(wall_axes(walls), (copies_x, copies_y)):
+            copies += [(-1.0, -length), (-1.0, length)] if axis_walled else [(1.0, -length), (1.0, length)]
+    total = 0.0
+    for ax, bx in copies_x:
+        for ay, by in copies_y:
+            px, py = ax * stones.x + bx, ay * stones.y + by
+            rr = (x[None] - px[:, None, None]) ** 2 + (y[None] - py[:, None, None]) ** 2
+            q = rr / (2.0 * stones.radius[:, None, None] ** 2)
+            total = total + jnp.sum(-stones.depth[:, None, None] * (1.0 - q) * jnp.exp(-q), axis=0)
+    return total

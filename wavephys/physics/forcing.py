@@ -83,13 +83,14 @@ class Forcing:
         _check_pressure(self.pressure, model.grid.n, float(model.grid.length))
 
     def rate(self, model, ops, t):
-        """Ŝ = −p̂/ρ at time ``t`` on the rfft2 half spectrum (m²/s² per sample, DFT convention).
+        """Ŝ = −p̂/ρ at time ``t`` on the model's modes (m²/s² per sample, DFT convention).
 
         The pressure is evaluated on ``model.mesh_fields()`` and transformed by
-        ``model.rfft2``: on a sharded model both stay split over its devices."""
+        ``model.transform``: on a sharded model both stay split over its devices; on a walled
+        one the cosine modes hold its mirror images."""
         x, y = model.mesh_fields()
         p = jnp.asarray(self.pressure(x.astype(ops.cos.dtype), y.astype(ops.cos.dtype), t), ops.cos.dtype)
-        return -model.rfft2(p) / model.water.rho
+        return -model.transform(p) / model.water.rho
 
 
 @lru_cache(maxsize=64)

@@ -454,8 +454,15 @@ class Ship:
             raise ValueError(f"dt = {float(model.dt)} s is too large for the ship patch of {2 * half} points: "
                              f"{leak:.2g} of the new waves leak past it (leak_tolerance {model.leak_tolerance}); "
                              f"lower dt or raise ship_patch")
+        walls = getattr(model, "walls", ())
+        if not walls:
+            return add_ship_waves(fields, self, model.grid, model.water, t, float(model.dt), half, model.ship_method,
+                                  interior=(model.margin, n - model.margin))
+        m = model.margin
+        rows = (None if "bottom" in walls else m, None if "top" in walls else n - m)
+        cols = (None if "left" in walls else m, None if "right" in walls else n - m)
         return add_ship_waves(fields, self, model.grid, model.water, t, float(model.dt), half, model.ship_method,
-                              interior=(model.margin, n - model.margin))
+                              interior=(rows, cols), mirror=model.wall_axes)
 
 
 def _leak_at_speed(ship: Ship, model, t: float) -> float:
@@ -652,9 +659,9 @@ def ship_patch_waves(ship: Ship, grid: Grid, water: Water, t: float, dt: float, 
 
 
 @validate(ship=_SHIP, grid=GRID, water=WATER, t=REAL, dt=_DT, half=Int(lo=2), method=Choice(("kernels", "impulses")),
-          fields=Array(shape=lambda a: (2, a["grid"].n, a["grid"].n), min_ndim=3), interior=Maybe(Array(ndim=1, shape=(2,))))
+          fields=Array(shape=lambda a: (2, a["grid"].n, a["grid"].n), min_ndim=3))
 def add_ship_waves(fields, ship: Ship, grid: Grid, water: Water, t: float, dt: float, half: int,
-                   method: str = "kernels", interior: tuple[int, int] | None = None):
+                   method: str = "kernels", interior=None, mirror=(False, False)):
     """Add the ship's new waves over [t, t + Δt] to a stacked (Re ψ, Im ψ) field in one program.
 
     ``fields`` is donated (updated in place): do not use the array passed in afterwards.
@@ -677,8 +684,13 @@ def add_ship_waves(fields, ship: Ship, grid: Grid, water: Water, t: float, dt: f
         M, the patch's half-size, points, ≥ 2 (2M ≤ n).
     method : {"kernels", "impulses"}
         A name in :data:`SHIP_METHODS`.
-    interior : (int, int), optional
-        (lo, hi): the rows and columns the patch must stay within.
+    interior : (int, int) or ((lo, hi), (lo, hi)), optional
+        (lo, hi): the rows and columns the patch must stay within; or one (lo, hi) for the
+        rows and one for the columns, where None leaves that end unchecked (a wall).
+    mirror : (bool, bool)
+        (x, y): fold the patch's part beyond the domain's ends back in, mirrored, along these
+        axes (reflecting walls at both ends: the image method, docs/physics.md §1.11) instead
+        of wrapping it (periodic).
 
     Returns
     -------
@@ -690,24 +702,50 @@ def add_ship_waves(fields, ship: Ship, grid: Grid, water: Water, t: float, dt: f
     J. Loviscach (2003). Complex water effects at interactive frame rates. *WSCG*, eq. 2 (docs/physics.md §1.3).
     """
     p0, p1, r0, c0, center = _patch_place(ship, grid, t, dt, half)
+    if not isinstance(mirror, (tuple, list)) or not all(isinstance(m, (bool, np.bool_)) for m in mirror):
+        raise TypeError(f"mirror must be a pair (x, y) of bools, got {mirror!r}")
+    if len(mirror) != 2:
+        raise ValueError(f"mirror must be a pair (x, y) of bools, got {len(mirror)} values")
+    mirror = tuple(bool(m) for m in mirror)
     if interior is not None:
-        lo, hi = interior
-        if not (lo <= r0 and r0 + 2 * half <= hi and lo <= c0 and c0 + 2 * half <= hi):
-            raise ValueError(f"the ship patch at rows {r0}…{r0 + 2 * half}, columns {c0}…{c0 + 2 * half} "
-                             f"leaves the visible interior [{lo}, {hi}): keep ships inside it")
-    add = _kernels(ship.hull, half, float(grid.dx), water, method)[1]
+        rows, cols = _interior(interior)
+        for name, start, (lo, hi) in (("rows", r0, rows), ("columns", c0, cols)):
+            if (lo is not None and start < lo) or (hi is not None and start + 2 * half > hi):
+                raise ValueError(f"the ship patch at {name} {start}…{start + 2 * half} leaves the visible interior "
+                                 f"[{lo}, {hi}): keep ships inside it")
+    add = _kernels(ship.hull, half, float(grid.dx), water, method, mirror)[1]
     return add(fields, jnp.asarray(center), jnp.asarray(p0), jnp.asarray(p1), dt, ship.strength, r0, c0)
 
 
-def _kernels(hull, half, dx, water, method):
+def _interior(interior):
+    """((row lo, row hi), (col lo, col hi)) from one (lo, hi) pair or a pair of them (None: unchecked end)."""
+    ok = lambda v: v is None or (isinstance(v, (int, np.integer)) and not isinstance(v, bool))
+    pair = lambda p: isinstance(p, (tuple, list)) and len(p) == 2 and all(ok(v) for v in p)
+    if pair(interior) and all(v is not None for v in interior):
+        return tuple(interior), tuple(interior)
+    if isinstance(interior, (tuple, list)) and len(interior) == 2 and all(pair(p) for p in interior):
+        return tuple(interior[0]), tuple(interior[1])
+    raise TypeError(f"interior must be (lo, hi) or ((row lo, row hi), (column lo, column hi)) of ints or None, "
+                    f"got {interior!r}")
+
+
+def _kernels(hull, half, dx, water, method, mirror=(False, False)):
     try:
-        return _patch_kernel(hull, half, dx, water, method)
+        return _patch_kernel(hull, half, dx, water, method, mirror)
     except TypeError:  # unhashable values (arrays in Water): compile for this call only
-        return _patch_kernel.__wrapped__(hull, half, dx, water, method)
+        return _patch_kernel.__wrapped__(hull, half, dx, water, method, mirror)
+
+
+def _fold(index, n: int, mirror: bool):
+    """Indices wrapped into [0, n) (periodic), or folded back in, mirrored (walls at both ends)."""
+    if not mirror:
+        return index % n
+    index = index % (2 * n)
+    return jnp.where(index < n, index, 2 * n - 1 - index)
 
 
 @lru_cache(maxsize=64)
-def _patch_kernel(hull: Hull, half: int, dx: float, water: Water, method: str):
+def _patch_kernel(hull: Hull, half: int, dx: float, water: Water, method: str, mirror=(False, False)):
     """The compiled patch computation for one hull and patch (shared by equal hulls)."""
     patch = Grid(2 * half, 2 * half * dx)
     make = SHIP_METHODS[method]
@@ -721,8 +759,8 @@ def _patch_kernel(hull: Hull, half: int, dx: float, water: Water, method: str):
     def add(fields, center, p0, p1, dt, strength, r0, c0):
         waves = kernel(center, p0, p1, dt, strength)
         n, m = fields.shape[-1], waves.shape[-1]
-        rows = (r0 + jnp.arange(m)) % n
-        cols = (c0 + jnp.arange(m)) % n
+        rows = _fold(r0 + jnp.arange(m), n, mirror[1])
+        cols = _fold(c0 + jnp.arange(m), n, mirror[0])
         both = jnp.stack([waves.real, waves.imag]).astype(fields.dtype)
         return fields.at[..., rows[:, None], cols[None, :]].add(both)
 

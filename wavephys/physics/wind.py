@@ -297,7 +297,10 @@ class WindSea:
             raise ValueError(f"the {self.spectrum} spectrum with {self.params} is not finite on this grid")
 
     def impulse(self, model, ops, t):
-        """(Δφ̂, Δχ̂) half spectra of the sea: ψ̂ += −i(ω/K)·ĥ, split into its two real fields."""
+        """(Δφ̂, Δχ̂) half spectra of the sea: ψ̂ += −i(ω/K)·ĥ, split into its two real fields.
+
+        In a walled model the periodic sea of the same grid is put on the tank's cosine modes:
+        the same heights and potential at t, which the walls then reflect."""
         from wavephys.physics.heights import height_multiplier
 
         grid = model.grid
@@ -309,7 +312,12 @@ class WindSea:
         psi_hat = -1j * inverse * _random_amplitudes(f, grid, self.key)
         mirror = jnp.conj(jnp.roll(jnp.flip(psi_hat, (0, 1)), 1, (0, 1)))  # ψ̂(−k)*
         half = grid.n // 2 + 1
-        return (0.5 * (psi_hat + mirror))[:, :half], (-0.5j * (psi_hat - mirror))[:, :half]
+        d_phi, d_chi = (0.5 * (psi_hat + mirror))[:, :half], (-0.5j * (psi_hat - mirror))[:, :half]
+        if getattr(model, "walls", ()):  # the sea's fields in space, put on the tank's cosine modes
+            fields = jnp.fft.irfft2(jnp.stack([d_phi, d_chi]), s=(grid.n, grid.n)).astype(dtype)
+            spectra = model.transform(fields)
+            return spectra[0], spectra[1]
+        return d_phi, d_chi
 
 
 def _random_amplitudes(spectrum, grid, key):

@@ -27,6 +27,8 @@ from wavephys.physics.boundary import CUTOFF_METHODS, cutoff_mask
 from wavephys.physics.dispersion import angular_frequency, surface_operator
 from wavephys.physics.heights import height_multiplier
 from wavephys.physics.ship_waves import SHIP_METHODS
+from wavephys.physics.walls import check_walls, wall_axes
+from wavephys.core.spectral import inverse_mode_transform, mode_transform, mode_wavenumbers
 
 __all__ = ["Model", "Operators", "operators", "DTYPES"]
 
@@ -80,6 +82,13 @@ class Model:
         size); the FFTs become slab transforms (:mod:`wavephys.parallel`). None: one device.
     mesh_axis : str
         The mesh axis the rows are split over (default ``"rows"``).
+    walls : str or sequence of str
+        Sides that are reflecting vertical walls (no flux; docs/physics.md §1.11): ``"all"`` (a
+        tank), ``"x"`` (left and right), ``"y"`` (bottom and top), side names from
+        :data:`wavephys.physics.walls.SIDES`, or ``()`` (default, none). An axis with a wall is
+        stepped on its cosine modes (exact per mode, like the periodic step); its other sides
+        are open when ``margin`` > 0 (the cutoff sits only on the sides that are not walls),
+        periodic otherwise. Not yet with a mesh (a distributed cosine transform).
 
     Examples
     --------
@@ -87,6 +96,7 @@ class Model:
     >>> from wavephys import Grid, Water
     >>> model = Model(Grid(64, 2.0), Water(), dt=0.02, margin=8)
     >>> shallow = replace(model, water=Water(depth=0.1))
+    >>> tank = Model(Grid(64, 2.0), Water(depth=0.1), dt=0.02, walls="all")
     """
 
     grid: Grid
@@ -101,6 +111,7 @@ class Model:
     ship_method: str = "kernels"
     mesh: Optional[Mesh] = None
     mesh_axis: str = AXIS
+    walls: tuple = ()
 
     def __post_init__(self):
         check_instance("grid", self.grid, Grid, "wavephys.Grid")
@@ -118,6 +129,10 @@ class Model:
         check_scalar("leak_tolerance", self.leak_tolerance, lo=0.0, hi=1.0, lo_open=True)
         set_("leak_tolerance", float(self.leak_tolerance))
         SHIP_METHODS.check(self.ship_method, "ship_method")
+        set_("walls", check_walls(self.walls, self.margin))
+        if self.walls and self.mesh is not None:
+            raise ValueError("walls with a mesh (sharded model) are not supported yet: the distributed cosine "
+                             "transform is not written; step a walled tank on one device (mesh=None)")
         if self.mesh is not None:
             check_mesh(self.mesh, self.mesh_axis, self.grid.n)
         elif not isinstance(self.mesh_axis, str):
@@ -130,6 +145,11 @@ class Model:
     def real_dtype(self):
         """The model's floating dtype as a numpy dtype."""
         return np.dtype(self.dtype)
+
+    @property
+    def wall_axes(self) -> tuple[bool, bool]:
+        """(x walled, y walled): the axes stepped on cosine modes."""
+        return wall_axes(self.walls) if self.walls else (False, False)
 
     @property
     def device_count(self) -> int:
@@ -156,21 +176,50 @@ class Model:
     def rfft2(self, field):
         """The rfft2 half spectrum of a real field ``(..., n, n)`` in the model's layout: the
         slab-decomposed transform on a sharded model (:func:`wavephys.parallel.fft.rfft2`), so
-        a source's spectrum is never gathered on one device."""
+        a source's spectrum is never gathered on one device. A walled model's modes are not
+        Fourier modes: ValueError (use :meth:`transform`)."""
         from wavephys.parallel.fft import rfft2
 
         n = self.grid.n
         check_array("field", field, min_ndim=2, shape_tail=(n, n))
+        if self.walls:
+            raise ValueError(f"model.rfft2: this model has walls ({', '.join(self.walls)}), whose modes are "
+                             f"cosines, not Fourier modes: use model.transform(field)")
         return rfft2(field, self.mesh, self.mesh_axis)
+
+    def transform(self, field):
+        """A real field ``(..., n, n)`` on the model's modes, in the layout its multipliers and
+        sources use: :meth:`rfft2` without walls; with walls the cosine transform along walled
+        axes (:func:`wavephys.core.spectral.mode_transform`)."""
+        if not self.walls:
+            return self.rfft2(field)
+        n = self.grid.n
+        check_array("field", field, min_ndim=2, shape_tail=(n, n))
+        return mode_transform(field, self.wall_axes)
+
+    def inverse_transform(self, spectra):
+        """Real fields ``(..., n, n)`` from spectra in the model's layout (the inverse of :meth:`transform`)."""
+        from wavephys.parallel.fft import irfft2
+
+        check_array("spectra", spectra, complex_ok=True, min_ndim=2)
+        if not self.walls:
+            return irfft2(spectra, self.grid.n, self.mesh, self.mesh_axis)
+        return inverse_mode_transform(spectra, self.grid.n, self.wall_axes)
+
+    def mode_wavenumbers(self):
+        """``(ky, kx)``, rad/m, on the model's spectral layout (broadcastable): Fourier
+        wavenumbers along periodic axes, mπ/L along walled ones."""
+        return mode_wavenumbers(self.grid.n, self.grid.dx, self.wall_axes, xp=jnp)
 
 
 register(Model, ("grid", "water", "dt"),
          ("margin", "cutoff", "second_order", "dtype", "ship_patch", "leak_tolerance", "ship_method", "mesh",
-          "mesh_axis"))
+          "mesh_axis", "walls"))
 
 
 class Operators(NamedTuple):
-    """Fourier multipliers of one model on the rfft2 half spectrum ``(n, n//2 + 1)``.
+    """Fourier multipliers of one model on its spectral layout: the rfft2 half spectrum
+    ``(n, n//2 + 1)``, or the cosine modes of a walled model (:meth:`Model.transform`).
 
     ``cos``, ``sin``: rotation of (φ̂, χ̂) by ωΔt; ``height`` K/ω (s/m) and
     ``inverse_height`` ω/K; ``K`` = |k| tanh(|k|h) (rad/m); ``k`` = |k| (rad/m);
@@ -200,7 +249,11 @@ class Operators(NamedTuple):
 def _build(model: Model, dtype, out_dtype=None) -> Operators:
     """The multipliers computed in ``dtype`` and returned in ``out_dtype`` (default ``dtype``),
     in the model's layout."""
-    k = model.grid.wavenumber_magnitude(real=True)
+    if model.walls:
+        ky, kx = model.mode_wavenumbers()
+        k = jnp.sqrt(ky * ky + kx * kx)
+    else:
+        k = model.grid.wavenumber_magnitude(real=True)
     omega = angular_frequency(k, model.water)
     phase = omega * model.dt
     pos = omega > 0
@@ -212,7 +265,7 @@ def _build(model: Model, dtype, out_dtype=None) -> Operators:
         K=surface_operator(k, model.water), k=k, omega=omega,
         duhamel_sin=jnp.where(pos, jnp.sin(phase) / w, model.dt),
         duhamel_cos=jnp.where(pos, (1.0 - jnp.cos(phase)) / w, 0.0),
-        mask=cutoff_mask(model.grid.n, model.margin, model.cutoff, dtype) if model.margin else None)
+        mask=cutoff_mask(model.grid.n, model.margin, model.cutoff, dtype, model.walls) if model.margin else None)
     out_dtype = dtype if out_dtype is None else out_dtype
     return _lay_out(model, Operators(*(None if a is None else jnp.asarray(jnp.asarray(a, dtype), out_dtype)
                                        for a in ops)))

@@ -29,6 +29,7 @@ import jax
 import jax.numpy as jnp
 import numpy as np
 
+from wavephys.core.spectral import inverse_mode_transform, mode_transform
 from wavephys.core.inputs import check_array, check_instance, check_int, check_scalar, is_traced
 from wavephys.physics.heights import potential_from_height, second_order_correction
 from wavephys.physics.interpolation import hermite_frame
@@ -45,11 +46,16 @@ __all__ = ["step", "run", "surface", "energy", "frame", "initial_state", "state_
 
 # -- the compiled pieces (pure) ---------------------------------------------------------
 def _rfft2(model: Model, fields):
-    """The model's forward transform: ``rfft2``, or the slab transform of a sharded model."""
+    """The model's forward transform: ``rfft2``, the slab transform of a sharded model, or the
+    cosine transform along walled axes (:meth:`Model.transform`)."""
+    if model.walls:
+        return mode_transform(fields, model.wall_axes)
     return rfft2(fields, model.mesh, model.mesh_axis)
 
 
 def _irfft2(model: Model, spectra):
+    if model.walls:
+        return inverse_mode_transform(spectra, model.grid.n, model.wall_axes)
     return irfft2(spectra, model.grid.n, model.mesh, model.mesh_axis)
 
 
@@ -433,7 +439,7 @@ def add_height(model: Model, state: State, eta) -> State:
     n = model.grid.n
     check_array("eta", eta, ndim=2, shape_tail=(n, n))
     _check_height_units(eta, model.grid)
-    if model.mesh is not None:  # fluid at rest: χ̂ −= (ω/K)·η̂, with the model's own (slab) transforms
+    if model.mesh is not None or model.walls:  # fluid at rest: χ̂ −= (ω/K)·η̂, with the model's own transforms
         state = _laid(model, state)
         eta = _lay(model, np.asarray(eta, model.dtype))
         return unchecked(State, _add_height_sharded(model, operators(model), state.fields, eta), state.time,

@@ -1,0 +1,62 @@
+"""``python -m bench walls``: the walled step (cosine transforms) against today's periodic step at the same
+N, and against what a user would write instead for a reflecting tank with FFTs alone: the periodic step
+on the mirror-doubled domain (2N × 2N holding the field and its images, docs/physics.md §1.11).
+
+Rows (JSON): boundary, n, seconds (median of interleaved rounds), ratio to the periodic step in the same
+rounds (median and quartiles), temp_bytes (the compiled step's scratch memory), state_bytes, and the
+float32 energy drift over 1000 steps.
+"""
+
+from __future__ import annotations
+
+import statistics
+
+import jax
+import numpy as np
+
+from bench.timing import interleaved, paired_ratio
+from wavephys import Grid, Stones, Water
+from wavephys.simulation import Model
+from wavephys.simulation.stepping import add_source, energy, initial_state, run, step
+
+WATER = Water(sigma=0.0, depth=1.5)
+CASES = (("periodic", {}, 1), ("walls all", dict(walls="all"), 1), ("walls x", dict(walls="x"), 1),
+         ("walls bottom + margin", dict(walls=("bottom",), margin=None), 1), ("doubled periodic", {}, 2))
+
+
+def _model(n, kw, factor):
+    kw = dict(kw)
+    if "margin" in kw:
+        kw["margin"] = n // 16
+    return Model(Grid(factor * n, factor * 8.0), WATER, dt=1 / 30, **kw)
+
+
+def _temp_bytes(model, state):
+    compiled = jax.jit(lambda s: step(model, s)).lower(state).compile()
+    analysis = compiled.memory_analysis()
+    return int(getattr(analysis, "temp_size_in_bytes", 0)) if analysis is not None else 0
+
+
+def wall_rows(sizes=(256, 512, 1024), progress=print) -> list[dict]:
+    """One row per boundary and size (module doc)."""
+    rows = []
+    for n in sizes:
+        models, states = {}, {}
+        for name, kw, factor in CASES:
+            m = _model(n, kw, factor)
+            models[name] = m
+            states[name] = add_source(m, initial_state(m), Stones(1.0, 0.5, 0.2, 0.01))
+        progress(f"walls: timing n={n}")
+        fns = {name: (lambda m=models[name], s=states[name]: step(m, s)) for name in models}
+        times = interleaved(fns, repeats=15 if n <= 512 else 7)
+        for name, kw, factor in CASES:
+            m, s = models[name], states[name]
+            ratio, q1, q3 = paired_ratio(times, name, ["periodic"])
+            drift = float("nan")
+            if n <= 512 and factor == 1 and not m.margin:
+                e0 = float(energy(m, s))
+                drift = abs(float(energy(m, run(m, s, 1000)[0])) / e0 - 1)
+            rows.append(dict(boundary=name, n=n, grid=factor * n, seconds=statistics.median(times[name]),
+                             ratio=ratio, ratio_quartiles=[q1, q3], temp_bytes=_temp_bytes(m, s),
+                             state_bytes=int(np.asarray(s.fields).nbytes), energy_drift_1000=drift))
+    return rows

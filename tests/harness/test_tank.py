@@ -1,0 +1,155 @@
+"""The harness on tanks: seiche frequencies and wall reflection, right verdicts with their causes, on
+records written independently of the library's step (mode sums, an engine's finite-difference tank) and
+on the library's own walled step."""
+
+import math
+
+import numpy as np
+import pytest
+
+from wavephys import Grid, Stones, Water
+from wavephys.harness import Record, check_record
+from wavephys.harness.tank import looks_like_tank, measure_seiches, seiche_check, wall_reflection_check
+
+
+def _omega(k, water):
+    h = water.depth
+    return np.sqrt((water.g * k + water.sigma / water.rho * k ** 3) * (np.tanh(k * h) if math.isfinite(h) else 1.0))
+
+
+def _mode_sum(nx, ny, dx, dt, nt, water, seed, *, omega=None, length_cut=0.0, gamma=0.0, modes=6):
+    """A tank record written out from Lamb's modes: random (m, q), amplitudes and phases; ``omega(k)``
+    replaces theory's frequencies (a broken simulator), ``length_cut`` shortens the tank the modes belong
+    to (walls on the first and last samples: length_cut = dx), ``gamma`` damps every mode."""
+    rng = np.random.default_rng(seed)
+    lx, ly = nx * dx - length_cut, ny * dx - length_cut
+    x = (np.arange(nx) + 0.5) * dx - 0.5 * length_cut
+    y = (np.arange(ny) + 0.5) * dx - 0.5 * length_cut
+    t = np.arange(nt)[:, None, None] * dt
+    eta = np.zeros((nt, ny, nx))
+    for _ in range(modes):
+        m, q = rng.integers(0, 7, 2)
+        if m == q == 0:
+            m = 1
+        k = math.pi * math.hypot(m / lx, q / ly)
+        w = (omega or (lambda kk: _omega(kk, water)))(k)
+        shape = np.cos(q * math.pi * y / ly)[:, None] * np.cos(m * math.pi * x / lx)[None, :]
+        eta += rng.uniform(0.2, 1.0) * 1e-3 * shape * np.cos(w * t + rng.uniform(0, 2 * math.pi)) * np.exp(-gamma * t)
+    return Record.from_array(eta, dx, dt, axes="tyx")
+
+
+WATERS = [Water(sigma=0.0, depth=0.2), Water(depth=0.05), Water(sigma=0.0), Water(sigma=0.0, depth=1.5)]
+
+
+@pytest.mark.parametrize("water", WATERS, ids=["h0.2", "h0.05-sigma", "deep", "h1.5"])
+def test_correct_tanks_pass_every_tank_check(water):
+    """Mode sums of tanks (odd and even sizes; the harness reads square frames) with theory's frequencies pass seiche,
+    wall reflection and the energy on the tank's modes; dispersion and tiling are skipped."""
+    for seed, (nx, ny) in enumerate([(48, 48), (64, 64), (33, 33)]):
+        dx = 2.0 / nx
+        w_max = _omega(math.pi * math.hypot(7 / 2.0, 7 / (ny * dx)), water)
+        dt = min(0.04, 1.0 / w_max)
+        rec = _mode_sum(nx, ny, dx, dt, 200, water, seed)
+        report = check_record(rec, water, tank=True)
+        assert report.ok, report.report()
+        assert {"seiche", "wall_reflection", "energy"} <= set(report.rows)
+        assert "dispersion" in report.skipped and "tiling" in report.skipped
+
+
+def test_the_librarys_walled_step_passes_and_is_recognised_as_a_tank_without_the_claim():
+    from wavephys.simulation import Model
+    from wavephys.simulation.stepping import add_source, initial_state, run
+
+    water = Water(sigma=0.0, depth=0.3)
+    model = Model(Grid(64, 2.0), water, dt=0.02, walls="all")
+    rng = np.random.default_rng(4)
+    xy = rng.uniform(-0.7, 0.7, (2, 2))
+    state = add_source(model, initial_state(model), Stones(xy[0], xy[1], [0.15, 0.2], [0.01, 0.01]))
+    _, surf = run(model, state, 300)
+    rec = Record.from_array(np.asarray(surf.eta), 2.0 / 64, 0.02, axes="tyx")
+    report = check_record(rec, water, tank=True)
+    assert report.ok, report.report()
+    plain = check_record(rec, water)
+    assert not plain.rows["dispersion"].ok
+    assert "looks like a closed tank" in plain.rows["dispersion"].note and "--tank" in plain.rows["dispersion"].note
+
+
+def test_an_engines_finite_difference_tank_with_mirrored_ghost_cells_passes():
+    """How engines write a pool: the shallow-water wave equation η_tt = g h ∇²η by leapfrog on a grid with
+    ghost cells mirrored at the walls (no flux half a cell outside the edges). In shallow water (kh ≤ 0.13)
+    at a fine step it is a correct tank, and gets a correct verdict."""
+    water = Water(sigma=0.0, depth=0.01)
+    n, length = 64, 2.0
+    dx = length / n
+    c = math.sqrt(water.g * water.depth)
+    dt_step = 0.2 * dx / c
+    x = (np.arange(n) + 0.5) * dx
+    eta = 1e-3 * np.exp(-((x[None, :] - 0.6) ** 2 + (x[:, None] - 1.3) ** 2) / (2 * 0.25 ** 2))
+    prev = eta.copy()
+    frames, every = [], 10
+    for i in range(4000):
+        p = np.pad(eta, 1, mode="edge")  # mirrored ghost cells: ∂η/∂n = 0 half a cell outside
+        lap = (p[1:-1, 2:] + p[1:-1, :-2] + p[2:, 1:-1] + p[:-2, 1:-1] - 4 * eta) / dx ** 2
+        eta, prev = 2 * eta - prev + (c * dt_step) ** 2 * lap, eta
+        if i % every == 0:
+            frames.append(eta.copy())
+    rec = Record.from_array(np.array(frames), dx, every * dt_step, axes="tyx")
+    rows = check_record(rec, water, tank=True, only=["seiche", "wall_reflection"]).rows
+    assert rows["seiche"].ok and rows["wall_reflection"].ok, (rows["seiche"].report(), rows["wall_reflection"].report())
+
+
+@pytest.mark.parametrize("seed", [0, 1, 2])
+def test_broken_tanks_fail_with_their_cause(seed):
+    water = Water(sigma=0.0, depth=0.3)
+    nx = ny = 48
+    dx, dt = 2.0 / nx, 0.03
+    cases = {
+        "non-dispersive": (dict(omega=lambda k: k * math.sqrt(water.g * water.depth)), "non-dispersive"),
+        "periodic": (dict(omega=lambda k: _omega(2 * k, water)), "wrap around"),
+        "vertex": (dict(length_cut=dx), "first and last samples"),
+        "factor": (dict(omega=lambda k: 1.04 * _omega(k, water)), "same factor"),
+    }
+    for name, (kw, cause) in cases.items():
+        rec = _mode_sum(nx, ny, dx, dt, 240, water, seed, **kw)
+        row = seiche_check(rec, water)
+        assert not row.ok, name
+        assert cause in row.note, (name, row.note)
+    damped = _mode_sum(nx, ny, dx, dt, 240, water, seed, gamma=0.15)
+    row = wall_reflection_check(damped, water)
+    assert not row.ok and "absorb" in row.note and row.measured < 0.99
+
+
+def test_a_periodic_simulation_is_not_a_tank():
+    from wavephys.simulation import Model
+    from wavephys.simulation.stepping import add_source, initial_state, run
+
+    water = Water(sigma=0.0, depth=0.3)
+    model = Model(Grid(64, 2.0), water, dt=0.02)
+    state = add_source(model, initial_state(model), Stones([0.3, -0.5], [0.2, 0.6], [0.15, 0.2], [0.01, 0.01]))
+    _, surf = run(model, state, 300)
+    rec = Record.from_array(np.asarray(surf.eta), 2.0 / 64, 0.02, axes="tyx")
+    row = seiche_check(rec, water)
+    assert not row.ok and "not a sum of a tank's standing modes" in row.note
+    assert looks_like_tank(rec, water) == ""
+    assert check_record(rec, water).ok  # and as what it is, it passes
+
+
+def test_the_seiche_fit_measures_frequency_and_decay():
+    water = Water(sigma=0.0, depth=0.4)
+    rec = _mode_sum(40, 40, 0.05, 0.03, 300, water, 9, gamma=0.02, modes=1)
+    s = measure_seiches(rec.eta, rec.dx, rec.dt, 1)
+    assert s.omega[0] == pytest.approx(_omega(s.k[0], water), rel=1e-6)
+    assert s.gamma[0] == pytest.approx(0.02, rel=1e-4)
+
+
+def test_tank_checks_refuse_bad_input_by_name():
+    water = Water()
+    with pytest.raises(ValueError, match="eta must be frames"):
+        measure_seiches(np.zeros((4, 8, 8)), 0.1, 0.1)
+    with pytest.raises(ValueError, match="dx"):
+        measure_seiches(np.zeros((10, 8, 8)), -1.0, 0.1)
+    rec = _mode_sum(16, 16, 0.1, 0.05, 20, Water(sigma=0.0, depth=0.2), 0)
+    with pytest.raises(ValueError, match="assumes a periodic domain"):
+        check_record(rec, water, tank=True, only=["dispersion"])
+    with pytest.raises(TypeError, match="tank"):
+        check_record(rec, water, tank="yes")
