@@ -53,15 +53,21 @@ def run_propagation(args) -> None:
 
 
 def run_walls(args) -> None:
-    from bench.walls import wall_rows
+    from bench.walls import depth_step_rows, shoaling_rows, wall_rows
 
     rows = wall_rows((256, 512) if args.quick else (256, 512, 1024), progress=_say)
+    rows += depth_step_rows((256,) if args.quick else (256, 512), progress=_say)
     print(f"{'boundary':<24}{'n':>6}{'grid':>6}{'ms':>9}{'x periodic':>12}{'temp MB':>9}{'drift/1000':>12}")
     for r in rows:
         print(f"{r['boundary']:<24}{r['n']:>6}{r['grid']:>6}{r['seconds'] * 1e3:>9.2f}{r['ratio']:>12.2f}"
               f"{r['temp_bytes'] / 2**20:>9.1f}{r['energy_drift_1000']:>12.2e}  (quartiles {r['ratio_quartiles'][0]:.2f}–"
               f"{r['ratio_quartiles'][1]:.2f})")
-    _write(rows, {}, Path(args.json or "bench/results/walls.json"))
+    shoal = shoaling_rows(progress=_say)
+    print(f"{'method':<9}{'kh0':>6}{'ramp/lam':>10}{'slope':>9}{'A/A0':>9}{'mild-slope':>12}{'R ref':>8}{'error':>9}")
+    for r in shoal:
+        print(f"{r['method']:<9}{r['kh0']:>6}{r['ramp_wavelengths']:>10}{r['slope']:>9.4f}{r['amplitude']:>9.4f}"
+              f"{r['reference']:>12.4f}{r['reference_reflection']:>8.4f}{r['error']:>+9.2%}")
+    _write(rows + shoal, {}, Path(args.json or "bench/results/walls.json"))
 
 
 def run_boundaries(args) -> None:

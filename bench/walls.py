@@ -60,3 +60,51 @@ def wall_rows(sizes=(256, 512, 1024), progress=print) -> list[dict]:
                              ratio=ratio, ratio_quartiles=[q1, q3], temp_bytes=_temp_bytes(m, s),
                              state_bytes=int(np.asarray(s.fields).nbytes), energy_drift_1000=drift))
     return rows
+
+
+def depth_step_rows(sizes=(256, 512), progress=print) -> list[dict]:
+    """The steppers over a varying floor against the periodic step at the same N (interleaved rounds)."""
+    from wavephys.simulation.depth import Floor, depth_state, step_levels, step_shallow
+
+    rows = []
+    for n in sizes:
+        progress(f"depth: timing n={n}")
+        periodic = _model(n, {}, 1)
+        state = add_source(periodic, initial_state(periodic), Stones(1.0, 0.5, 0.2, 0.01))
+        x = np.asarray(periodic.grid.mesh()[0])
+        floor = Floor(np.clip(1.5 - 0.15 * (x + 4.0), 0.1, 1.5), levels=4)
+        eta = np.asarray(periodic.grid.mesh()[1]) * 0 + 1e-3 * np.exp(-(x ** 2) / 0.5)
+        ds = depth_state(periodic, eta)
+        fns = {"periodic": lambda: step(periodic, state), "levels (4)": lambda: step_levels(periodic, floor, ds),
+               "shallow": lambda: step_shallow(periodic, floor, ds)}
+        times = interleaved(fns, repeats=9)
+        for name in fns:
+            ratio, q1, q3 = paired_ratio(times, name, ["periodic"])
+            rows.append(dict(boundary=f"floor: {name}", n=n, grid=n, seconds=statistics.median(times[name]),
+                             ratio=ratio, ratio_quartiles=[q1, q3], temp_bytes=0,
+                             state_bytes=int(np.asarray(ds.fields).nbytes), energy_drift_1000=float("nan")))
+    return rows
+
+
+def shoaling_rows(progress=print) -> list[dict]:
+    """Each stepper's amplitude up a ramp (1 m → 0.25 m) against the mild-slope reference, over kh and the ramp's
+    length: the failure boundary in kh and slope (docs/physics.md §1.12)."""
+    import jax
+
+    from wavephys.checks.depth import measure_shoaling
+    from wavephys.physics.depth import mild_slope_transmission
+
+    rows = []
+    with jax.enable_x64(True):
+        for method, per in (("shallow", 16), ("levels", 6)):
+            for kh0 in (0.1, 0.3, 1.0, 3.0):
+                for ramp in (10.0, 1.0):
+                    progress(f"shoaling: {method} kh0={kh0} ramp={ramp}")
+                    amp, omega = measure_shoaling(method, 1.0, 0.25, kh0, per, ramp)
+                    lam = 2 * np.pi / kh0
+                    true_omega = float(np.sqrt(9.81 * kh0 * np.tanh(kh0)))
+                    reference, reflection = mild_slope_transmission(true_omega, [0.0, ramp * lam], [1.0, 0.25])
+                    rows.append(dict(method=method, kh0=kh0, ramp_wavelengths=ramp, slope=0.75 / (ramp * lam),
+                                     samples_per_wavelength=per, amplitude=amp, reference=reference,
+                                     reference_reflection=reflection, error=amp / reference - 1))
+    return rows

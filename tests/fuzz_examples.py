@@ -53,6 +53,18 @@ def _surface():
     return Surface(np.stack([_field(), _field()]), np.float32(0.0))
 
 
+def _floor():
+    from wavephys.simulation.depth import Floor
+
+    return Floor(np.full((N, N), 0.5), levels=2)
+
+
+def _depth_state():
+    from wavephys.simulation.depth import depth_state
+
+    return depth_state(_model(), _field(), _field())
+
+
 def _ship():
     return Ship(Hull("gaussian", 0.3, 0.15), straight_path((0.0, 0.0), (0.4, 0.0)), 0.01)
 
@@ -83,6 +95,7 @@ EXAMPLES = {
     "measured": lambda: 1.0, "expected": lambda: 1.0, "limit": lambda: 2.0, "quantity": lambda: "speed",
     "name": lambda: "pool", "xlabel": lambda: "x", "ylabel": lambda: "y", "mode": lambda: 0, "refine": lambda: 4,
     "shape": lambda: (N, N), "items": lambda: [Water(), Water(depth=2.0)],
+    "theta0": lambda: 0.3, "depth0": lambda: 1.0, "slope": lambda: 0.1, "levels": lambda: np.array([0.5, 1.0, 2.0]),
     "walls": lambda: "all", "length_x": lambda: 2.0, "length_y": lambda: 1.5, "modes": lambda: 3,
     "periodic_images": lambda: False, "tank": lambda: False, "mirror": lambda: (False, False),
     # arrays
@@ -261,6 +274,22 @@ OVERRIDES = {
     "wavephys.harness.energy.measure_damping": {**_RECORD, "water": lambda: Water(sigma=0.0)},
     "wavephys.harness.energy.energy_check": {**_RECORD, "water": lambda: Water(sigma=0.0)},
     "wavephys.simulation.model.Model.inverse_transform": {"spectra": lambda: np.zeros((N, N // 2 + 1), np.complex64)},
+    "wavephys.physics.depth.mild_slope_transmission": {"omega": lambda: 2.0, "x": lambda: np.array([0.0, 5.0]),
+                                                        "depth": lambda: np.array([1.0, 0.5])},
+    "wavephys.physics.depth.shoaling_coefficient": {"omega": lambda: 2.0},
+    "wavephys.physics.depth.refraction_angle": {"omega": lambda: 2.0},
+    "wavephys.physics.depth.lamb_beach": {"x": lambda: np.linspace(0.0, 5.0, 6), "omega": lambda: 2.0},
+    "wavephys.physics.depth.depth_weights": {"depth": lambda: np.full((4, 4), 1.2)},
+    "wavephys.physics.depth.depth_levels": {"depth": lambda: np.full((4, 4), 1.2)},
+    "wavephys.simulation.depth.Floor": {"depth": lambda: np.full((N, N), 0.5), "levels": lambda: 2},
+    "wavephys.simulation.depth.Floor.check": {"model": _model},
+    "wavephys.simulation.depth.DepthState": {"fields": lambda: np.zeros((2, N, N), np.float32),
+                                             "time": lambda: np.float32(0.0)},
+    "wavephys.simulation.depth.depth_state": {"eta": _field, "phi": _field},
+    "wavephys.simulation.depth.step_levels": {"floor": _floor, "state": _depth_state},
+    "wavephys.simulation.depth.step_shallow": {"floor": _floor, "state": _depth_state},
+    "wavephys.simulation.depth.run_depth": {"floor": _floor, "state": _depth_state, "steps": lambda: 2},
+    "wavephys.simulation.depth.shallow_substeps": {"floor": _floor},
     "wavephys.harness.tank.measure_seiches": {"eta": _frames, "dx": lambda: 0.125, "dt": lambda: 0.05},
     "wavephys.harness.tank.seiche_check": {**_RECORD, "water": lambda: Water(sigma=0.0)},
     "wavephys.harness.tank.wall_reflection_check": {**_RECORD, "water": lambda: Water(sigma=0.0)},
@@ -442,6 +471,10 @@ _GLSL_FRESNEL = """float f(float c, float n1, float n2) {
 }"""
 
 SKIP = {
+    # the depth validation's own scenes (seconds per call), run by check_depth and tests/simulation/test_depth.py
+    "wavephys.checks.depth.travelling_packet", "wavephys.checks.depth.measure_shoaling",
+    # a method of a floor made by the caller (its argument is checked by the steppers, tested in test_depth)
+    "wavephys.simulation.depth.Floor.check",
     # the harness's fitted tank modes, made by measure_seiches (its fields are what was measured)
     "wavephys.harness.tank.Seiches",
     # the shader check's verdict, made by check_glsl (its fields are what was measured)
@@ -520,7 +553,7 @@ RANGE_FREE = {("wavephys.physics.wake.GaussianPressure", "amplitude"),  # signed
               ("wavephys.harness.checks.Check", "tolerance"),  # 0 for bound rows
               ("wavephys.harness.packets.ring_arrival_check", "radius"),  # 0: a point disturbance
               ("wavephys.harness.suite.check_record", "radius")}
-INF_OK = {"depth", "limit", "expected", "measured"}
+INF_OK = {"depth", "depth0", "limit", "expected", "measured"}
 NAN_OK = {"measured"}
 FREE_TEXT = {("wavephys.core.frames.read_map", "name"),  # the caller's argument name, for messages
              ("optics.rendering.renderer.Renderer.texture", "name"),  # any slot name is valid
