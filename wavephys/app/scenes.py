@@ -198,10 +198,13 @@ def _pool_heights(sim, state, n):
 
 def _shore_ground(n):
     X, Y = _mesh("shore", n)
-    ground = -2.0 + 2.6 * (X + SHORE_LENGTH / 2) / SHORE_LENGTH + 0.04 * np.sin(2.3 * Y + 0.7 * X) * np.cos(1.7 * X)
+    fade = _border_window("shore", n, 0.7)  # relief and ripples fade out at the border: the sand extended
+    # beyond the square (surroundings) continues plain, with no stripes drawn out of the border texels
+    ground = (-2.0 + 2.6 * (X + SHORE_LENGTH / 2) / SHORE_LENGTH
+              + 0.04 * fade * np.sin(2.3 * Y + 0.7 * X) * np.cos(1.7 * X))
     wet = _smoothstep(0.15, -0.3, ground)
     sand = np.array([0.80, 0.72, 0.52]) * (1 - 0.25 * wet[..., None])
-    ripple = 1 + 0.08 * np.sin(9.0 * X + 2.0 * np.sin(1.3 * Y))
+    ripple = 1 + 0.08 * fade * np.sin(9.0 * X + 2.0 * np.sin(1.3 * Y))
     return ground.astype(np.float32), (sand * ripple[..., None]).astype(np.float32)
 
 
