@@ -291,6 +291,8 @@ OVERRIDES = {
     "wavephys.simulation.depth.run_depth": {"floor": _floor, "state": _depth_state, "steps": lambda: 2},
     "wavephys.simulation.depth.shallow_substeps": {"floor": _floor},
     "wavephys.harness.tank.measure_seiches": {"eta": _frames, "dx": lambda: 0.125, "dt": lambda: 0.05},
+    "wavephys.harness.shoaling.shoaling_check": {**_RECORD, "water": lambda: Water(sigma=0.0),
+                                                 "depth": lambda: np.linspace(1.0, 0.5, N)},
     "wavephys.harness.tank.seiche_check": {**_RECORD, "water": lambda: Water(sigma=0.0)},
     "wavephys.harness.tank.wall_reflection_check": {**_RECORD, "water": lambda: Water(sigma=0.0)},
     "wavephys.harness.tank.looks_like_tank": {**_RECORD, "water": lambda: Water(sigma=0.0)},

@@ -42,6 +42,7 @@ RECORD_CHECK_HELP = (  # wavephys.harness.RECORD_CHECKS, written out so that --h
     ("caustics_flux", "mean of a caustics map against flat water's irradiance (light conserved)", ("caustics",)),
     ("resolution", "variance per octave of |k| against the same sea exported at another resolution", ("other",)),
     ("seiche", "frequencies of a tank's strongest cosine modes against omega(k_mn) (walls at the edges)", ("tank",)),
+    ("shoaling", "a wave train's amplitude across a floor against sqrt(c_g,ref/c_g(h)) (Green's law)", ("floor",)),
     ("wall_reflection", "amplitude kept per reflection at a tank's walls, from its modes' decay", ("tank",)),
 )
 
@@ -421,6 +422,7 @@ _CLAIM_OPTIONS = (("only:", "--only:"), ("direction= (--direction DEG)", "--dire
                   ("the source's size, wake=dict(size=...) (--wake-size SIGMA)", "--wake-size M"),
                   ("normals= (--normals FILE)", "--normals FILE"), ("caustics= (--caustics FILE)", "--caustics FILE"),
                   ("other= (--other FRAMES)", "--other FRAMES"), ("tank=True (--tank)", "--tank"),
+                  ("floor= (--floor FILE)", "--floor FILE"),
                   ("(tank=True)", "(--tank)"))
 
 
@@ -456,7 +458,7 @@ def cmd_check_frames(args, parser) -> int:
     given = {"direction": args.direction is not None, "sea": args.sea, "packet": args.packet,
              "source": args.source is not None, "wake": args.wake is not None, "wake-size": args.wake_size is not None,
              "normals": bool(args.normals), "caustics": bool(args.caustics), "other": bool(args.other),
-             "tank": args.tank}
+             "tank": args.tank, "floor": bool(args.floor)}
     for name, _, needs in RECORD_CHECK_HELP:
         missing = [f"--{x}" for x in needs if not given[x]]
         if args.only and name in args.only and missing:
@@ -482,6 +484,13 @@ def cmd_check_frames(args, parser) -> int:
             maps["normals"] = read_map(args.normals, name="--normals", channels=3)
         if args.caustics:
             maps["caustics"] = read_map(args.caustics, name="--caustics", channels=1)
+        if args.floor:
+            import numpy as np
+
+            try:
+                maps["floor"] = np.load(args.floor, allow_pickle=False)
+            except (OSError, ValueError) as exc:
+                raise ValueError(f"--floor: cannot read {args.floor} as a .npy array of depths per column: {exc}")
         if args.other:
             other = args.other[0] if len(args.other) == 1 else list(args.other)
             maps["other"] = Record.from_files(other, channel=args.channel)
@@ -598,6 +607,8 @@ def _add_check_parser(sub, fmt) -> None:
     ck.add_argument("--sea", action="store_true", help="the frames are a sea meant to travel (standing-wave check)")
     ck.add_argument("--direction", type=_real, metavar="DEG", help="claimed direction of travel, degrees, 0 = +x")
     ck.add_argument("--packet", action="store_true", help="the frames are one wave packet (group-velocity check)")
+    ck.add_argument("--floor", metavar="FILE", help="a .npy of the still-water depth under each column, m, of a "
+                                                    "wave train travelling along x (shoaling check)")
     ck.add_argument("--tank", action="store_true", help="the frames are water between four reflecting walls half a "
                                                         "sample outside the edges (seiche and wall-reflection checks)")
     ck.add_argument("--source", type=_pair, metavar="X,Y", help="where one disturbance was, m (ring-arrival check)")

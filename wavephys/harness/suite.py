@@ -21,11 +21,12 @@ from wavephys.core.water import Water
 
 __all__ = ["RecordCheck", "RECORD_CHECKS", "RecordReport", "check_record", "CLAIMS"]
 
-CLAIMS = ("direction", "sea", "packet", "source", "wake", "normals", "caustics", "other", "tank")
+CLAIMS = ("direction", "sea", "packet", "source", "wake", "normals", "caustics", "other", "tank", "floor")
 """Claims a check may need: a direction of travel (degrees), that the record is a travelling sea, that it is
 one wave packet, where a single disturbance was, a moving source (its speed, where it is in the first frame, its
 heading and size), the normal map or caustics map exported with the first frame, the same sea exported at
-another resolution, that the record is water between four reflecting walls (a tank)."""
+another resolution, that the record is water between four reflecting walls (a tank), the depth under each
+column of a wave train crossing a floor."""
 
 
 @dataclass(frozen=True)
@@ -134,6 +135,12 @@ def _reflection(record, water, o):
     return wall_reflection_check(record, water, tolerance=o.get("energy_rtol", 0.01))
 
 
+def _shoaling(record, water, o):
+    from wavephys.harness.shoaling import shoaling_check
+
+    return shoaling_check(record, water, o["floor"])
+
+
 def _resolution(record, water, o):
     from wavephys.harness.maps import resolution_check
 
@@ -169,6 +176,8 @@ RECORD_CHECKS = {c.name: c for c in (
                 ("other",), _resolution),
     RecordCheck("seiche", "frequencies of a tank's strongest cosine modes against omega(k_mn) (walls at the edges)",
                 ("tank",), _seiche),
+    RecordCheck("shoaling", "a wave train's amplitude across a floor against sqrt(c_g,ref/c_g(h)) (Green's law)",
+                ("floor",), _shoaling),
     RecordCheck("wall_reflection", "amplitude kept per reflection at a tank's walls, from its modes' decay",
                 ("tank",), _reflection),
 )}
@@ -221,12 +230,12 @@ def _wanted(only, options) -> tuple[list, dict]:
             "source": options.get("source") is not None, "packet": bool(options.get("packet")),
             "wake": options.get("wake") is not None, "normals": options.get("normals") is not None,
             "caustics": options.get("caustics") is not None, "other": options.get("other") is not None,
-            "tank": bool(options.get("tank"))}
+            "tank": bool(options.get("tank")), "floor": options.get("floor") is not None}
     flags = {"direction": "direction= (--direction DEG)", "sea": "sea=True (--sea)",
              "source": "source= (--source X,Y)", "packet": "packet=True (--packet)",
              "wake": "wake=dict(speed=...) (--wake U)", "normals": "normals= (--normals FILE)",
              "caustics": "caustics= (--caustics FILE)", "other": "other= (--other FRAMES)",
-             "tank": "tank=True (--tank)"}
+             "tank": "tank=True (--tank)", "floor": "floor= (--floor FILE)"}
     wake = options.get("wake") or {}
     if only is None:
         names = [n for n, c in RECORD_CHECKS.items() if all(have[x] for x in c.needs)
@@ -261,7 +270,7 @@ def check_record(record, water: Optional[Water] = None, *, only=None, direction:
                  sea: bool = False, packet: bool = False, source=None, t0: float = 0.0, radius: float = 0.0,
                  viscosity: float = 0.0, rtol: float = 0.02, energy_rtol: float = 0.01, k_range=(0.0, math.inf),
                  wake: Optional[dict] = None, normals=None, convention: str = "auto", caustics=None, other=None,
-                 tank: bool = False, progress: Optional[Callable[[str], None]] = None) -> RecordReport:
+                 tank: bool = False, floor=None, progress: Optional[Callable[[str], None]] = None) -> RecordReport:
     """Run the checks of :data:`RECORD_CHECKS` on a record.
 
     Parameters
@@ -309,6 +318,8 @@ def check_record(record, water: Optional[Water] = None, *, only=None, direction:
         The record is water between four reflecting walls half a sample outside its edges (runs ``seiche`` and
         ``wall_reflection``, measures the energy on the tank's modes, skips the periodic-only ``dispersion`` and
         ``tiling``). A record that fails those without the claim and looks like a tank gets a note saying so.
+    floor : array_like (n_x,), optional, keyword-only
+        The still-water depth under each column, m, of a wave train travelling along x (runs ``shoaling``).
     progress : callable, optional, keyword-only
         Called with a line of text before each check.
 
@@ -368,7 +379,9 @@ def check_record(record, water: Optional[Water] = None, *, only=None, direction:
         check_array("normals", normals, ndim=3)
     options = dict(direction=direction, sea=sea, packet=packet, source=source, t0=t0, radius=radius,
                    viscosity=viscosity, rtol=rtol, energy_rtol=energy_rtol, k_range=k_range, wake=wake,
-                   normals=normals, convention=convention, caustics=caustics, other=other, tank=tank)
+                   normals=normals, convention=convention, caustics=caustics, other=other, tank=tank, floor=floor)
+    if floor is not None:
+        check_array("floor", floor, ndim=1, shape_tail=(record.shape[2],), lo=0.0)
     if source is not None:
         check_array("source", source, ndim=1, shape_tail=(2,))
     names, skipped = _wanted(only, options)

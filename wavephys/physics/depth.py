@@ -61,7 +61,7 @@ def _k_cg_traced(omega, water, depth):
     return k, group_speed(k, w)
 
 
-def shoaling_coefficient(omega, depth0, depth, water: Water = Water(sigma=0.0)) -> float:
+def shoaling_coefficient(omega, depth0, depth, water: Water = Water(sigma=0.0)):
     """K_s = A/A₀ = √(c_g(h₀)/c_g(h)) at frequency ω: a wave's amplitude over depth h relative to
     depth h₀ when its energy flux is conserved (no reflection, normal incidence).
 
@@ -69,15 +69,17 @@ def shoaling_coefficient(omega, depth0, depth, water: Water = Water(sigma=0.0)) 
     ----------
     omega : float
         Angular frequency, rad/s, > 0.
-    depth0, depth : float
-        Still-water depths h₀ and h, m, > 0 (inf: deep water).
+    depth0 : float
+        Still-water depth h₀, m, > 0 (inf: deep water).
+    depth : float or array_like
+        Still-water depth(s) h, m, > 0 (inf: deep water); an array gives an array, in one vectorized call.
     water : Water
         g, ρ, σ (its depth is ignored).
 
     Returns
     -------
-    float
-        K_s, dimensionless.
+    float or numpy.ndarray
+        K_s, dimensionless (the shape of ``depth``).
 
     Examples
     --------
@@ -86,9 +88,19 @@ def shoaling_coefficient(omega, depth0, depth, water: Water = Water(sigma=0.0)) 
     """
     omega = check_scalar("omega", omega, lo=0.0, lo_open=True)
     check_scalar("depth0", depth0, lo=0.0, lo_open=True, allow_inf=True)
-    check_scalar("depth", depth, lo=0.0, lo_open=True, allow_inf=True)
     check_instance("water", water, Water, "wavephys.Water")
-    return math.sqrt(_k_and_cg(omega, water, depth0)[1] / _k_and_cg(omega, water, depth)[1])
+    if np.ndim(depth) == 0:
+        check_scalar("depth", depth, lo=0.0, lo_open=True, allow_inf=True)
+    else:
+        check_array("depth", depth, allow_inf=True)
+        if not np.all(np.asarray(depth) > 0):
+            raise ValueError("depth must be > 0 everywhere")
+    hs = np.atleast_1d(np.asarray(depth, np.float64))
+    with jax.enable_x64(True):
+        cg0 = float(_k_cg_traced(omega, water, jnp.asarray(float(depth0)))[1])
+        cg = np.asarray(jax.vmap(lambda h: _k_cg_traced(omega, water, h)[1])(jnp.asarray(hs)))
+    ks = np.sqrt(cg0 / cg)
+    return float(ks[0]) if np.ndim(depth) == 0 else ks.reshape(np.shape(depth))
 
 
 def refraction_angle(theta0, omega, depth0, depth, water: Water = Water(sigma=0.0)) -> float:
