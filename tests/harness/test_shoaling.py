@@ -27,7 +27,7 @@ def _train(depth, omega, dx, dt, nt, water, amplitude_law):
     return eta
 
 
-@pytest.mark.parametrize("seed", [0, 1, 2])
+@pytest.mark.parametrize("seed", [0, pytest.param(1, marks=pytest.mark.slow), pytest.param(2, marks=pytest.mark.slow)])
 def test_trains_that_shoal_pass_and_broken_ones_fail_with_their_cause(seed):
     rng = np.random.default_rng(seed)
     water = Water(sigma=0.0)

@@ -38,7 +38,9 @@ def _mode_sum(nx, ny, dx, dt, nt, water, seed, *, omega=None, length_cut=0.0, ga
     return Record.from_array(eta, dx, dt, axes="tyx")
 
 
-WATERS = [Water(sigma=0.0, depth=0.2), Water(depth=0.05), Water(sigma=0.0), Water(sigma=0.0, depth=1.5)]
+WATERS = [Water(sigma=0.0, depth=0.2), pytest.param(Water(depth=0.05), marks=pytest.mark.slow),
+          pytest.param(Water(sigma=0.0), marks=pytest.mark.slow), pytest.param(Water(sigma=0.0, depth=1.5),
+                                                                                marks=pytest.mark.slow)]
 
 
 @pytest.mark.parametrize("water", WATERS, ids=["h0.2", "h0.05-sigma", "deep", "h1.5"])
@@ -98,7 +100,7 @@ def test_an_engines_finite_difference_tank_with_mirrored_ghost_cells_passes():
     assert rows["seiche"].ok and rows["wall_reflection"].ok, (rows["seiche"].report(), rows["wall_reflection"].report())
 
 
-@pytest.mark.parametrize("seed", [0, 1, 2])
+@pytest.mark.parametrize("seed", [0, pytest.param(1, marks=pytest.mark.slow), pytest.param(2, marks=pytest.mark.slow)])
 def test_broken_tanks_fail_with_their_cause(seed):
     water = Water(sigma=0.0, depth=0.3)
     nx = ny = 48

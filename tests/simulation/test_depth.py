@@ -87,7 +87,7 @@ def test_shallow_water_holds_lambs_standing_wave_on_a_plane_beach():
     assert errors[1] < errors[0] / 3
 
 
-@pytest.mark.parametrize("method", ["levels", "shallow"])
+@pytest.mark.parametrize("method", [pytest.param("levels", marks=pytest.mark.slow), "shallow"])
 def test_refraction_over_straight_contours_follows_snells_law(method):
     """An oblique packet from 2 m onto a 0.5 m plateau (contours along y): ky is kept, and |k| on the plateau is
     the one the local dispersion gives at the wave's frequency (each method's own: full for levels, √(gh) for

@@ -31,7 +31,8 @@ def _tank(n=64, length=2.0, depth=0.25, walls="all", **kw):
     return Model(Grid(n, length), Water(sigma=0.0, depth=depth), dt=0.01, walls=walls, dtype="float64", **kw)
 
 
-@pytest.mark.parametrize("walls", ["all", "x", "y"])
+@pytest.mark.parametrize("walls", ["all", pytest.param("x", marks=pytest.mark.slow),
+                                   pytest.param("y", marks=pytest.mark.slow)])
 def test_energy_is_conserved_to_rounding_without_a_margin(walls):
     model = _tank(walls=walls, depth=0.4)
     rng = np.random.default_rng(7)
@@ -81,7 +82,7 @@ def _inner(big_field, n, factor=4):
     return np.asarray(big_field)[..., lo:lo + n, lo:lo + n]
 
 
-@pytest.mark.parametrize("second_order", [False, True])
+@pytest.mark.parametrize("second_order", [False, pytest.param(True, marks=pytest.mark.slow)])
 def test_a_stone_near_a_wall_and_in_a_corner_is_open_water_plus_its_images(second_order):
     """Image method: inside the tank, the walled field equals the open-water field of the stone and its
     mirror images in the walls (one reflection each, corners' double images; a 4L periodic domain as open
@@ -228,6 +229,7 @@ def test_the_walled_step_under_jit_vmap_and_grad():
     assert float(batch[1]) == pytest.approx(float(height(0.2)), rel=1e-12)
 
 
+@pytest.mark.slow
 def test_float32_walled_step_drifts_no_more_than_the_periodic_step():
     """float32 rounding moves the energy a little every step; the cosine transform must not add to it.
     Mean drift over four stone fields after 1000 steps (measured 1.4–5.7e-4 periodic, 1.8e-4 walled)."""
