@@ -475,6 +475,7 @@ _GLSL_FRESNEL = """float f(float c, float n1, float n2) {
 SKIP = {
     # the depth validation's own scenes (seconds per call), run by check_depth and tests/simulation/test_depth.py
     "wavephys.checks.depth.travelling_packet", "wavephys.checks.depth.measure_shoaling",
+    "wavephys.checks.depth.lamb_beach_error",
     # a method of a floor made by the caller (its argument is checked by the steppers, tested in test_depth)
     "wavephys.simulation.depth.Floor.check",
     # the harness's fitted tank modes, made by measure_seiches (its fields are what was measured)

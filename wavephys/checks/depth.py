@@ -11,7 +11,7 @@ from wavephys.core.grid import Grid
 from wavephys.core.water import Water
 from wavephys.harness.checks import Check, bound
 
-__all__ = ["travelling_packet", "measure_shoaling", "check_depth"]
+__all__ = ["travelling_packet", "measure_shoaling", "lamb_beach_error", "check_depth"]
 
 G = 9.81
 
@@ -101,6 +101,41 @@ def measure_shoaling(method: str, depth0: float, depth1: float, k0: float, per: 
     return float(np.abs(hilbert(row))[x[0] > x1 + lam].max() / 1e-3), omega
 
 
+def lamb_beach_error(n: int = 128, periods: int = 3) -> float:
+    """Max error / amplitude of the shallow-water stepper on Lamb's standing wave (a 10 m beach of slope 0.1,
+    third mode, a wall where dη/dx = 0) after ``periods`` periods on ``n`` samples.
+
+    Parameters
+    ----------
+    n : int
+        Samples per side, even, ≥ 16.
+    periods : int
+        ≥ 1.
+
+    Returns
+    -------
+    float
+        Dimensionless.
+    """
+    from scipy.special import jn_zeros
+
+    from wavephys.core.inputs import check_int
+    from wavephys.physics.depth import lamb_beach
+    from wavephys.simulation import Model
+    from wavephys.simulation.depth import Floor, depth_state, run_depth
+
+    n = check_int("n", n, lo=16, even=True)
+    periods = check_int("periods", periods, lo=1)
+    length, slope = 10.0, 0.1
+    grid = Grid(n, length)
+    x = np.asarray(grid.mesh()[0]) + length / 2
+    omega = jn_zeros(1, 3)[2] / (2 * math.sqrt(length / (G * slope)))
+    model = Model(grid, Water(sigma=0.0), dt=2 * math.pi / omega / 40, walls="x", dtype=np.dtype(float).name)
+    eta0 = lamb_beach(x, omega, slope, 1e-3)
+    state, _ = run_depth(model, Floor(slope * x), depth_state(model, eta0), 40 * periods, "shallow")
+    return float(np.abs(np.asarray(state.eta) - eta0 * math.cos(omega * 40 * periods * model.dt)).max() / 1e-3)
+
+
 def check_depth() -> list[Check]:
     """The shallow-water stepper shoals by Green's law and keeps Lamb's beach mode; the depth levels do not
     shoal (their measured failure).
@@ -114,25 +149,15 @@ def check_depth() -> list[Check]:
         at kh₀ = 0.3 over the shoaling coefficient (≤ 0.7: their failure, so beaches go to shallow water).
     """
     import jax
-    from scipy.special import jn_zeros
 
-    from wavephys.physics.depth import lamb_beach, shoaling_coefficient
-    from wavephys.simulation import Model
-    from wavephys.simulation.depth import Floor, depth_state, run_depth
+    from wavephys.physics.depth import shoaling_coefficient
 
     with jax.enable_x64(True):
         a12, _ = measure_shoaling("shallow", 1.0, 0.25, 0.1, 12)
         a16, _ = measure_shoaling("shallow", 1.0, 0.25, 0.1, 16)
         green = 4.0 ** 0.25
         extrapolated = a16 + (a16 - a12) * 12 ** 2 / (16 ** 2 - 12 ** 2)
-        length, slope, n = 10.0, 0.1, 128
-        grid = Grid(n, length)
-        x = np.asarray(grid.mesh()[0]) + length / 2
-        omega = jn_zeros(1, 3)[2] / (2 * math.sqrt(length / (G * slope)))
-        model = Model(grid, Water(sigma=0.0), dt=2 * math.pi / omega / 40, walls="x", dtype="float64")
-        eta0 = lamb_beach(x, omega, slope, 1e-3)
-        state, _ = run_depth(model, Floor(slope * x), depth_state(model, eta0), 120, "shallow")
-        lamb = float(np.abs(np.asarray(state.eta) - eta0 * math.cos(omega * 120 * model.dt)).max() / 1e-3)
+        lamb = lamb_beach_error(128)
         levels, w = measure_shoaling("levels", 1.0, 0.25, 0.3, 6)
         ks = shoaling_coefficient(w, 1.0, 0.25)
     return [bound("shallow water up a 10-wavelength ramp, kh <= 0.1: |A/A0 / Green's law - 1| (dx^2-extrapolated)",
