@@ -1,4 +1,4 @@
-"""``python -m bench {propagation,boundaries,walls,optics,jacobian,ship,wake,harness,halffloat,render,surfaces,scale,calibrate,planner} [--json PATH] [--quick]``.
+"""``python -m bench {propagation,boundaries,walls,shallow,optics,jacobian,ship,wake,harness,halffloat,render,surfaces,scale,calibrate,planner} [--json PATH] [--quick]``.
 
 Each writes its rows as JSON and its charts as PNG next to it (default
 ``bench/results/``) and prints a table.
@@ -68,6 +68,21 @@ def run_walls(args) -> None:
         print(f"{r['method']:<9}{r['kh0']:>6}{r['ramp_wavelengths']:>10}{r['slope']:>9.4f}{r['amplitude']:>9.4f}"
               f"{r['reference']:>12.4f}{r['reference_reflection']:>8.4f}{r['error']:>+9.2%}")
     _write(rows + shoal, {}, Path(args.json or "bench/results/walls.json"))
+
+
+def run_shallow(args) -> None:
+    from bench.shallow import dam_break_rows, figures, step_rows
+
+    rows = dam_break_rows((100, 200, 400) if args.quick else (100, 200, 400, 800, 1600), progress=_say)
+    print(f"{'case':<22}{'method':<26}{'n':>6}{'seconds':>10}{'L1 m':>11}{'max m':>9}")
+    for r in rows:
+        print(f"{r['case']:<22}{r['method']:<26}{r['n']:>6}{r['seconds']:>10.4f}{r['error']:>11.2e}{r['max_error']:>9.3f}")
+    steps = step_rows((256,) if args.quick else (256, 512), progress=_say)
+    print(f"{'model':<38}{'n':>6}{'ms/step':>10}{'x spectral':>12}")
+    for r in steps:
+        print(f"{r['method']:<38}{r['n']:>6}{r['seconds'] * 1e3:>10.3f}{r['ratio']:>12.2f}  (quartiles "
+              f"{r['ratio_quartiles'][0]:.2f}–{r['ratio_quartiles'][1]:.2f})")
+    _write(rows + steps, figures(rows), Path(args.json or "bench/results/shallow.json"))
 
 
 def run_boundaries(args) -> None:
@@ -318,6 +333,7 @@ def main(argv=None) -> int:
     for name, fn, help_ in (("propagation", run_propagation, "step vs bare FFT; error vs time"),
                             ("boundaries", run_boundaries, "measured failure boundaries"),
                             ("walls", run_walls, "walled step against the periodic step (ratios, memory)"),
+                            ("shallow", run_shallow, "nonlinear shallow water and virtual pipes: dam-break error vs time, step cost"),
                             ("optics", run_optics, "Fresnel, absorption and caustics: error vs cost"),
                             ("jacobian", run_jacobian, "jacobian caustics: error up to and past the first fold, cost"),
                             ("ship", run_ship, "moving hulls: kernels vs stones, FD wake, speed"),

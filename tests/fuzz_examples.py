@@ -264,6 +264,30 @@ def _validation_json():
     return path
 
 
+def _bed():
+    return np.linspace(-0.5, 0.6, N * N).reshape(N, N)  # a slope whose top rises out of the water
+
+
+def _sw_state():
+    from wavephys.simulation.shallow_water import sw_state
+
+    return sw_state(_bed(), 0.5)
+
+
+def _pipes_state():
+    from wavephys.models.pipes import pipes_state
+
+    return pipes_state(_bed(), 0.5)
+
+
+_CG = {"x": lambda: np.array([0.0, 1e4]), "t": lambda: 0.0, "h0": lambda: 500.0, "length": lambda: 5e4,
+       "amplitude": lambda: 1.0, "period": lambda: 900.0}
+_SOLITARY = {"h": lambda: 0.01, "d": lambda: 1.0, "cot_beta": lambda: 19.85}
+_SW = {"solver": lambda: __import__("wavephys.simulation.shallow_water", fromlist=["x"]).ShallowWater(0.1),
+       "bed": _bed, "state": _sw_state}
+_PIPES = {"pipes": lambda: __import__("wavephys.models.pipes", fromlist=["x"]).Pipes(0.1), "bed": _bed,
+          "state": _pipes_state}
+
 OVERRIDES = {
     "wavephys.app.report.read_validation": {"path": _validation_json},
     "wavephys.core.frames.resolve_axes": {"shape": lambda: (24, 16, 16), "axes": lambda: "tyx"},
@@ -290,6 +314,41 @@ OVERRIDES = {
     "wavephys.simulation.depth.step_shallow": {"floor": _floor, "state": _depth_state},
     "wavephys.simulation.depth.run_depth": {"floor": _floor, "state": _depth_state, "steps": lambda: 2},
     "wavephys.simulation.depth.shallow_substeps": {"floor": _floor},
+    "wavephys.physics.shallow_water.ritter": {"x": lambda: np.linspace(-2.0, 2.0, 5), "t": lambda: 0.5,
+                                              "h0": lambda: 1.0},
+    "wavephys.physics.shallow_water.stoker": {"x": lambda: np.linspace(-2.0, 2.0, 5), "t": lambda: 0.5,
+                                              "hl": lambda: 1.0, "hr": lambda: 0.1},
+    "wavephys.physics.shallow_water.stoker_middle": {"hl": lambda: 1.0, "hr": lambda: 0.1},
+    "wavephys.physics.shallow_water.thacker_period": {"h0": lambda: 0.1, "a": lambda: 1.0},
+    "wavephys.physics.shallow_water.thacker": {"x": lambda: np.linspace(-1.0, 1.0, 5),
+                                               "y": lambda: np.linspace(-1.0, 1.0, 5), "t": lambda: 0.3},
+    "wavephys.physics.shallow_water.carrier_greenspan": _CG,
+    "wavephys.physics.shallow_water.carrier_greenspan_runup": {k: v for k, v in _CG.items() if k not in ("x", "t")},
+    "wavephys.physics.shallow_water.solitary_wave": {"x": lambda: np.linspace(0.0, 20.0, 5), "h": lambda: 0.01,
+                                                     "d": lambda: 1.0, "x0": lambda: 10.0},
+    "wavephys.physics.shallow_water.solitary_breaking_limit": {"cot_beta": lambda: 19.85},
+    "wavephys.physics.shallow_water.solitary_runup": _SOLITARY,
+    "wavephys.physics.shallow_water.solitary_runup_linear": {**_SOLITARY, "samples": lambda: 2048},
+    "wavephys.simulation.shallow_water.ShallowWater": {"dx": lambda: 0.1, "sides": lambda: "wall"},
+    "wavephys.simulation.shallow_water.Inflow": {"times": lambda: np.array([0.0, 1.0]),
+                                                 "eta": lambda: np.array([0.0, 0.1]), "u": lambda: np.zeros(2)},
+    "wavephys.simulation.shallow_water.SWState": {"fields": lambda: np.ones((3, N, N)), "time": lambda: 0.0},
+    "wavephys.simulation.shallow_water.sw_state": {"bed": _bed, "eta": lambda: 0.5, "u": lambda: np.zeros((N, N)),
+                                                   "v": lambda: np.zeros((N, N)), "time": lambda: 0.0},
+    "wavephys.simulation.shallow_water.stable_dt": {"solver": _SW["solver"], "state": _sw_state},
+    "wavephys.simulation.shallow_water.sw_step": {**_SW, "dt": lambda: 0.01},
+    "wavephys.simulation.shallow_water.sw_run": {**_SW, "until": lambda: 0.05, "max_steps": lambda: 1000},
+    "wavephys.simulation.shallow_water.sw_frames": {**_SW, "times": lambda: np.array([0.01, 0.02])},
+    "wavephys.simulation.shallow_water.sw_mass": {"state": _sw_state, "dx": lambda: 0.1},
+    "wavephys.simulation.shallow_water.sw_surface": {"state": _sw_state, "bed": _bed},
+    "wavephys.models.pipes.Pipes": {"dx": lambda: 0.1, "area": lambda: 0.01, "sides": lambda: "wall"},
+    "wavephys.models.pipes.PipesState": {"depth": lambda: np.full((N, N), 0.5), "flows": lambda: np.zeros((4, N, N)),
+                                         "time": lambda: 0.0},
+    "wavephys.models.pipes.pipes_state": {"bed": _bed, "eta": lambda: 0.5},
+    "wavephys.models.pipes.pipes_step": {**_PIPES, "dt": lambda: 0.01},
+    "wavephys.models.pipes.pipes_run": {**_PIPES, "dt": lambda: 0.01, "steps": lambda: 2},
+    "wavephys.models.pipes.pipes_courant": {"pipes": lambda: __import__("wavephys.models.pipes", fromlist=["x"]).Pipes(
+        0.1), "depth_max": lambda: 0.5, "dt": lambda: 0.01},
     "wavephys.harness.tank.measure_seiches": {"eta": _frames, "dx": lambda: 0.125, "dt": lambda: 0.05},
     "wavephys.harness.shoaling.shoaling_check": {**_RECORD, "water": lambda: Water(sigma=0.0),
                                                  "depth": lambda: np.linspace(1.0, 0.5, N)},
@@ -473,6 +532,11 @@ _GLSL_FRESNEL = """float f(float c, float n1, float n2) {
 }"""
 
 SKIP = {
+    # the shallow-water validation's own scenes (seconds per call), run by check_shallow_water and the tests
+    "wavephys.checks.shallow_water.dam_break_errors", "wavephys.checks.shallow_water.thacker_errors",
+    "wavephys.checks.shallow_water.lake_at_rest", "wavephys.checks.shallow_water.carrier_greenspan_errors",
+    "wavephys.checks.shallow_water.solitary_runup_run", "wavephys.checks.shallow_water.pipes_seiche",
+    "wavephys.checks.shallow_water.pipes_dam_break", "wavephys.checks.shallow_water.convergence_order",
     # the depth validation's own scenes (seconds per call), run by check_depth and tests/simulation/test_depth.py
     "wavephys.checks.depth.travelling_packet", "wavephys.checks.depth.measure_shoaling",
     "wavephys.checks.depth.lamb_beach_error",
@@ -531,6 +595,7 @@ SHAPED = {"eta", "eta_prev", "eta0", "eta1", "eta_dot", "eta_dot0", "eta_dot1", 
 # parameters whose shape variants are valid input: rectangular grids, RGBA images, single
 # channels, batches of points, elementwise functions
 SHAPE_FREE = {
+    ("wavephys.simulation.shallow_water.SWState", "fields"),  # shallow water runs on any rectangle of cells
     ("wavephys.core.grid.Grid.sample", "field"), ("optics.light.directions.normalize", "v"),
     ("wavephys.harness.dispersion.measure_dispersion", "eta"),
     ("wavephys.harness.tank.measure_seiches", "eta"),  # any rectangle of frames is a tank
@@ -550,6 +615,8 @@ SHAPE_FREE = {
     ("wavephys.harness.maps.quantization_check", "eta"),
 }
 RANGE_FREE = {("wavephys.physics.wake.GaussianPressure", "amplitude"),  # signed by nature
+              ("wavephys.physics.shallow_water.carrier_greenspan", "amplitude"),  # a phase: either sign
+              ("wavephys.physics.shallow_water.carrier_greenspan_runup", "amplitude"),
               ("wavephys.surfaces.choppy.foam", "threshold"),  # a Jacobian level: 0 (folds only) is valid
               ("wavephys.surfaces.choppy.foam_fraction_estimate", "threshold"),
               ("wavephys.surfaces.gerstner.GerstnerWaves", "steepness"),  # Q = 0: a plain sum of cosines

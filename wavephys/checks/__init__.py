@@ -14,6 +14,7 @@ from wavephys.checks.dispersion import (check_dispersion_limits, check_dispersio
 from wavephys.checks.moving_sources import check_capillary_wake, check_ship_kernels, check_steady_wakes
 from wavephys.checks.surfaces import check_choppy, check_gerstner, check_noise_surfaces
 from wavephys.checks.depth import check_depth
+from wavephys.checks.shallow_water import check_shallow_water
 from wavephys.checks.walls import check_walls
 from wavephys.checks.propagation import (check_energy_conservation, check_energy_measure, check_hermite,
                                          check_step_composition)
@@ -33,6 +34,7 @@ CHECKS = {
     "open-ocean-cutoff": check_cutoff,
     "reflecting-walls": check_walls,
     "varying-depth": check_depth,
+    "shallow-water": check_shallow_water,
     "second-order-heights": check_second_order,
     "hermite-frames": check_hermite,
     "fd-stability": check_fd_stability,

@@ -1,0 +1,117 @@
+"""``python -m bench shallow``: nonlinear shallow water (finite volumes, order 1 and 2) and the virtual pipes —
+speed against accuracy on the exact dam breaks, and the cost of a step against the spectral step.
+
+Rows (JSON):
+
+* ``family="dam break"``: method, case (Ritter: dry bed; Stoker: hr/hl = 0.1), n, seconds (median time to
+  solution after compiling, t = 1 s), error (L1, m), max_error (m), front (position error, m);
+* ``family="step"``: method, n (n × n cells), seconds per step (median of interleaved rounds), ratio to the
+  spectral step of the same grid in the same rounds (median, quartiles).
+"""
+
+from __future__ import annotations
+
+import math
+import statistics
+
+import jax
+import jax.numpy as jnp
+import numpy as np
+
+from bench.timing import interleaved, median_seconds, paired_ratio
+
+G = 9.81
+
+
+def _dam(n, hr):
+    c0 = math.sqrt(G)
+    half = 2.4 * c0
+    dx = 2 * half / n
+    x = (np.arange(n) + 0.5) * dx - half
+    return x, dx, np.zeros((1, n)), np.where(x < 0, 1.0, hr)
+
+
+def dam_break_rows(sizes=(100, 200, 400, 800, 1600), progress=print) -> list[dict]:
+    """Time to solution and error of each method on Ritter's and Stoker's dam breaks (module doc)."""
+    from wavephys.models.pipes import Pipes, pipes_run, pipes_state
+    from wavephys.physics.shallow_water import ritter, stoker
+    from wavephys.simulation.shallow_water import ShallowWater, sw_run, sw_state
+
+    rows = []
+    with jax.enable_x64(True):
+        for case, hr in (("Ritter (dry bed)", 0.0), ("Stoker (hr/hl = 0.1)", 0.1)):
+            for n in sizes:
+                progress(f"shallow: {case}, n = {n}")
+                x, dx, bed, depth = _dam(n, hr)
+                want = ritter(x, 1.0, 1.0)[0] if hr == 0 else stoker(x, 1.0, 1.0, hr)[0]
+                runs = {}
+                for order in (1, 2):
+                    solver = ShallowWater(dx, sides="open", order=order)
+                    state = sw_state(bed, depth=depth[None], dtype=jnp.float64)
+                    runs[f"finite volumes, order {order}"] = (
+                        lambda s=solver, st=state: sw_run(s, bed, st, until=1.0)[0].h[0])
+                steps = int(math.ceil(1.0 / (0.25 * dx / math.sqrt(G))))
+                pstate = pipes_state(bed, depth=depth[None], dtype=jnp.float64)
+                runs["virtual pipes"] = lambda st=pstate, dx=dx, k=steps: pipes_run(Pipes(dx), bed, st, k, 1.0 / k).depth[0]
+                for method, fn in runs.items():
+                    h = np.asarray(fn(), np.float64)
+                    seconds = median_seconds(fn, repeats=3)
+                    rows.append(dict(family="dam break", case=case, method=method, n=n, seconds=seconds,
+                                     error=float(np.abs(h - want).mean()), max_error=float(np.abs(h - want).max())))
+    return rows
+
+
+def step_rows(sizes=(256, 512), progress=print) -> list[dict]:
+    """Seconds per step of each model at n × n against the spectral step (module doc)."""
+    from wavephys import Grid, Stones, Water
+    from wavephys.models.pipes import Pipes, pipes_run, pipes_state
+    from wavephys.simulation import Model
+    from wavephys.simulation.depth import Floor, depth_state, run_depth
+    from wavephys.simulation.shallow_water import ShallowWater, sw_run, sw_state
+    from wavephys.simulation.stepping import add_source, initial_state, run
+
+    rows = []
+    for n in sizes:
+        progress(f"shallow: step cost at {n}^2")
+        length = 8.0
+        dx = length / n
+        c = (np.arange(n) + 0.5) * dx - length / 2
+        xx, yy = np.meshgrid(c, c)
+        bed = -1.5 + 0.1 * xx
+        eta = 0.02 * np.exp(-(xx * xx + yy * yy))
+        dt = 0.45 * dx / math.sqrt(G * 2.0)
+        model = Model(Grid(n, length), Water(sigma=0.0, depth=1.5), dt=dt, walls="all")
+        spectral = add_source(model, initial_state(model), Stones(0.5, 0.5, 0.2, 0.01))
+        floor = Floor(-bed)
+        linear = depth_state(model, eta)
+        fv2, fv1 = ShallowWater(dx, order=2), ShallowWater(dx, order=1)
+        sw = sw_state(bed, eta)
+        pipes = Pipes(dx)
+        ps = pipes_state(bed, eta + 0 * bed)
+        k = 10
+        fns = {
+            "spectral step (walls)": lambda: run(model, spectral, k)[0].psi,
+            "linear shallow water (varying depth)": lambda: run_depth(model, floor, linear, k, "shallow")[0].fields,
+            "finite volumes, order 2": lambda: sw_run(fv2, bed, sw, steps=k, dt=dt)[0].fields,
+            "finite volumes, order 1": lambda: sw_run(fv1, bed, sw, steps=k, dt=dt)[0].fields,
+            "virtual pipes": lambda: pipes_run(pipes, bed, ps, k, dt).depth,
+        }
+        times = interleaved(fns, repeats=7, block=3)
+        for name in fns:
+            ratio, q1, q3 = paired_ratio(times, name, ["spectral step (walls)"])
+            rows.append(dict(family="step", method=name, n=n, seconds=statistics.median(times[name]) / k,
+                             ratio=ratio, ratio_quartiles=[q1, q3]))
+    return rows
+
+
+def figures(rows) -> dict:
+    from wavephys.plot import plot_error_vs_time
+
+    out = {}
+    for case, key in (("Ritter (dry bed)", "ritter"), ("Stoker (hr/hl = 0.1)", "stoker")):
+        sel = [dict(method=r["method"], seconds=r["seconds"], error=r["error"], label=str(r["n"]))
+               for r in rows if r.get("family") == "dam break" and r["case"] == case]
+        if sel:
+            out[key] = plot_error_vs_time(sel, f"dam break, {case}, t = 1 s: error against time to solution",
+                                          ylabel="L1 error of the depth, m")
+    return out
