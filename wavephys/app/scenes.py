@@ -16,6 +16,11 @@
           gradient-noise texture;
 ``calm``  a 16 m pond in the style of Schneider & Westermann: a B-spline base surface from
           an 8 × 8 control grid plus two octaves of animated gradient-noise fBm.
+``beach`` a 16 m sandy beach with a bar and cusps, where a 0.15 m solitary wave from the open
+          sea steepens into a bore and runs up the sand and back (nonlinear shallow water with
+          wetting and drying, docs/physics.md §1.13; a new wave every 8 s);
+``dambreak`` a 16 m walled yard: a reservoir 1 m deep bursts through a 3 m breach in its wall and
+          floods the dry ground around four blocks (the same solver; the dam breaks again every 12 s).
 
 Every field is made on a :class:`wavephys.Grid` of the scene's side and resolution, so the
 simulated water, the ground, the caustics and the textures share one convention and
@@ -25,6 +30,7 @@ and continues beyond its square to the horizon (:data:`SURROUNDINGS`).
 
 from __future__ import annotations
 
+import functools
 from typing import Callable, Iterator, Optional
 
 import numpy as np
@@ -51,13 +57,20 @@ SHIP_LENGTH, SHIP_SPEED, SHIP_DEPTH = 40.0, 2.0, 8.0
 STORM_LENGTH, STORM_WIND, STORM_CHOPPINESS, STORM_DEPTH = 64.0, 9.0, 1.0, 20.0
 STORM_FOAM = dict(threshold=0.35, softness=0.12, decay_time=1.0, history=1.5, fps=15.0)
 CALM_LENGTH = 16.0
+BEACH_LENGTH, BEACH_DEPTH, BEACH_WAVE, BEACH_CYCLE = 16.0, 1.2, 0.15, 8.0  # side, offshore depth, wave height (m), s
+DAM_LENGTH, DAM_RESERVOIR, DAM_CYCLE = 16.0, 1.0, 12.0  # side, reservoir depth (m), s
 LENGTHS = {"pool": POOL_LENGTH, "shore": SHORE_LENGTH, "ship": SHIP_LENGTH, "storm": STORM_LENGTH,
-           "calm": CALM_LENGTH}
+           "calm": CALM_LENGTH, "beach": BEACH_LENGTH, "dambreak": DAM_LENGTH}
+SHALLOW_WATER_CYCLES = {"beach": BEACH_CYCLE, "dambreak": DAM_CYCLE}
+"""The scenes run by nonlinear shallow water, and the period (s) after which each starts again
+from rest (time is taken modulo it, so a frame at any time costs at most one cycle of steps)."""
 
-CAUSTICS_METHODS = {"pool": "jacobian", "shore": "jacobian", "ship": "jacobian", "storm": "beam", "calm": "beam"}
+CAUSTICS_METHODS = {"pool": "jacobian", "shore": "jacobian", "ship": "jacobian", "storm": "beam", "calm": "beam",
+                    "beach": "beam", "dambreak": "beam"}
 """Each built-in scene's caustics method (:data:`optics.caustics.FLOOR_IRRADIANCE_METHODS`): the
 Jacobian gather (with the exact beam on its folded windows) where it is as close to the converged
-reference as the beam on the scene's own surface, else the beam; measured by
+reference as the beam on the scene's own surface, else the beam (the bores of the shallow-water
+scenes are steep fronts that fold: the beam); measured by
 ``python -m bench jacobian`` (docs/physics.md §2.4): the storm folds over more than half its
 floor (the gather would save nothing) and the calm pond's noise has waves of 2–3 samples, where
 the gather erred 1.4 % of the peak at refine 1 against the beam's 0.4 % (and would hand it to
@@ -366,12 +379,91 @@ def _calm_ground(n):
     return ground.astype(np.float32), albedo.astype(np.float32)
 
 
+def _beach_bed(n):
+    X, Y = _mesh("beach", n)
+    bed = -BEACH_DEPTH + 1.6 * (X + BEACH_LENGTH / 2) / BEACH_LENGTH  # the still shoreline at x = 4 m
+    bed += 0.18 * np.exp(-((X + 1.0) / 1.3) ** 2) * (1 + 0.6 * np.cos(2 * np.pi * Y / 8.0))  # a bar, rip gaps
+    bed += 0.05 * _smoothstep(2.0, 4.0, X) * np.cos(2 * np.pi * Y / 4.0)  # beach cusps
+    bed += 0.25 * _smoothstep(4.0, 8.0, X)  # the dry beach steepens: the run-up stays on the sand
+    return bed
+
+
+def _dam_bed(n):
+    X, Y = _mesh("dambreak", n)
+    wall = _smoothstep(0.35, 0.2, np.abs(X + 4.0)) * _smoothstep(1.3, 1.6, np.abs(Y))  # breach |y| < 1.5 m
+    bed = 1.5 * wall + 0.1 * _smoothstep(-4.0, 8.0, X) * np.sin(0.5 * Y)
+    for cx, cy in ((0.5, 2.0), (1.0, -1.5), (4.0, 0.3), (5.5, 3.5)):  # blocks 1.2 m square, 0.8 m high
+        bed += 0.8 * _smoothstep(0.7, 0.55, np.abs(X - cx)) * _smoothstep(0.7, 0.55, np.abs(Y - cy))
+    rim = _smoothstep(0.93, 0.97, np.maximum(np.abs(X), np.abs(Y)) / (DAM_LENGTH / 2))
+    return np.maximum(bed, 1.6 * rim)  # the yard's own walls, above the reservoir: nothing spills past the square
+
+
+@functools.lru_cache(maxsize=4)
+def _shallow_water_setup(name, n):
+    """(solver, bed, state at rest at t = 0) of a shallow-water scene on its grid (float32)."""
+    from wavephys.physics.shallow_water import solitary_wave
+    from wavephys.simulation.shallow_water import ShallowWater, sw_state
+
+    dx = LENGTHS[name] / n
+    if name == "beach":
+        bed = _beach_bed(n)
+        X = _mesh("beach", n)[0]
+        eta, u = solitary_wave(X, BEACH_WAVE, BEACH_DEPTH, -3.5)  # travelling towards −x: turn it round
+        taper = _smoothstep(-7.5, -5.5, X)  # its tail ends inside the square (an open side would feed it)
+        state = sw_state(bed, eta * taper, u=-u * taper)
+        solver = ShallowWater(dx, sides={"left": "open", "right": "wall", "bottom": "periodic", "top": "periodic"})
+    else:
+        bed = _dam_bed(n)
+        X = _mesh("dambreak", n)[0]
+        state = sw_state(bed, depth=np.where(X < -4.3, np.maximum(DAM_RESERVOIR - bed, 0.0), 0.0))
+        solver = ShallowWater(dx)
+    return solver, bed.astype(np.float32), state
+
+
+def _shallow_water_heights(name, n, times):
+    """Water heights at each of ``times`` (s, taken modulo the scene's cycle), float32 (len(times), n, n):
+    the surface where wet, 2 cm below the ground where dry (so the renderer shows the ground there)."""
+    from wavephys.simulation.shallow_water import sw_frames
+
+    solver, bed, state = _shallow_water_setup(name, n)
+    phases = np.mod(np.asarray(times, np.float64), SHALLOW_WATER_CYCLES[name])
+    order = np.argsort(phases, kind="stable")
+    out = sw_frames(solver, bed, state, phases[order])
+    h = np.asarray(out.h, np.float32)
+    water = np.where(h > 1e-3, bed + h, bed - 0.02).astype(np.float32)
+    result = np.empty_like(water)
+    result[order] = water
+    return result
+
+
+def _beach_ground(n):
+    bed = _beach_bed(n)
+    wet = _smoothstep(0.3, -0.2, bed)
+    X, Y = _mesh("beach", n)
+    sand = np.array([0.82, 0.74, 0.55]) * (1 - 0.3 * wet[..., None])
+    ripple = 1 + 0.05 * (1 - wet) * np.sin(8.0 * X + 2.0 * np.sin(1.1 * Y))  # wind ripples on the dry sand
+    return bed.astype(np.float32), (sand * ripple[..., None]).astype(np.float32)
+
+
+def _dam_ground(n):
+    bed = _dam_bed(n)
+    X, Y = _mesh("dambreak", n)
+    built = np.clip(bed / 0.8, 0.0, 1.0)  # the walls and the blocks
+    grass = np.array([0.36, 0.5, 0.25]) * (1 + 0.1 * np.sin(3.1 * X) * np.cos(2.3 * Y))[..., None]
+    basin = np.array([0.5, 0.45, 0.36])  # the reservoir's muddy floor
+    ground = np.where((X < -4.3)[..., None], basin, grass)
+    albedo = ground * (1 - built[..., None]) + np.array([0.7, 0.68, 0.64]) * built[..., None]
+    return bed.astype(np.float32), albedo.astype(np.float32)
+
+
 def _cameras():
     return dict(pool=look_at((0.0, -6.5, 3.5), (0.0, 0.0, -1.0), 55.0),
                 shore=look_at((-9.0, -7.0, 2.5), (1.0, 0.0, -0.5), 55.0),
                 ship=look_at((8.0, -12.0, 9.0), (-6.0, 0.0, 0.0), 60.0),
                 storm=look_at((-4.0, -30.0, 11.0), (4.0, 4.0, -2.0), 60.0),
-                calm=look_at((0.0, -9.5, 2.6), (0.0, 0.5, -0.8), 55.0))
+                calm=look_at((0.0, -9.5, 2.6), (0.0, 0.5, -0.8), 55.0),
+                beach=look_at((-3.0, -7.5, 2.2), (3.5, 2.0, -0.2), 60.0),
+                dambreak=look_at((8.0, -9.5, 6.5), (-1.0, 0.5, 0.0), 55.0))
 
 
 def scene_water(name: str, n: int = 256, time: float = 0.0, ship: bool = True) -> np.ndarray:
@@ -410,6 +502,8 @@ def scene_water(name: str, n: int = 256, time: float = 0.0, ship: bool = True) -
         return _storm_frames(n, [float(time)])[0][0]
     if name == "calm":
         return np.asarray(_calm_sea(n).heights(scene_grid("calm", n), float(time)), np.float32)
+    if name in SHALLOW_WATER_CYCLES:
+        return _shallow_water_heights(name, n, [float(time)])[0]
     return _ship_wake(n, time) if ship else np.zeros((n, n), np.float32)
 
 
@@ -420,7 +514,7 @@ scattering and particles (Jerlov type II-like, 1/m), so the 20 m floor fades out
 
 def _ground(name, n):
     return {"pool": _pool_ground, "shore": _shore_ground, "ship": _ship_ground, "storm": _storm_ground,
-            "calm": _calm_ground}[name](n)
+            "calm": _calm_ground, "beach": _beach_ground, "dambreak": _dam_ground}[name](n)
 
 
 def scene_caustics(name: str, water, method: str | None = None, **options) -> np.ndarray:
@@ -452,21 +546,49 @@ def scene_caustics(name: str, water, method: str | None = None, **options) -> np
         raise ValueError(f"water must be (n, n) with n even, 64 to {MAX_N}, got shape {np.shape(water)}")
     if method is not None:
         check_instance("method", method, str, "a caustics method's name")
+    if name in SHALLOW_WATER_CYCLES and method is None and not options:
+        return _shallow_water_caustics(name, n, np.asarray(water, np.float32), _ground(name, n)[0])
     return _caustics(np.asarray(water, np.float32), scene_grid(name, n), _ground(name, n)[0],
                      CAUSTICS_METHODS[name] if method is None else method, **options)
 
 
+def _shallow_water_caustics(name, n, water, ground):
+    """Caustics of a shallow-water scene: the water as it is where wet and a 1 mm film on the ground where
+    dry (so the floor is the real ground everywhere and dry land gets the flat light), traced by the beam
+    on the samples themselves with central-difference slopes (the scene is not periodic and its shorelines
+    are kinks: Fourier slopes and refinement would ring there), over the light under flat water. The fields
+    are extended by 8 texels of their own border first and cropped after, so no slope wraps round."""
+    from optics.caustics import floor_irradiance
+
+    pad = 8
+    film = np.pad(np.maximum(water, ground + 1e-3), pad, mode="edge").astype(np.float32)
+    floor = np.pad(ground, pad, mode="edge").astype(np.float32)
+    grid = Grid(n + 2 * pad, LENGTHS[name] * (n + 2 * pad) / n)
+    wavy = np.asarray(floor_irradiance(film, grid, floor, SUN, method="beam", refine=1, normals="central"))
+    flat = np.asarray(floor_irradiance(np.zeros_like(film), grid, np.full_like(film, -1.0), SUN, method="beam",
+                                       refine=1, normals="central"))
+    light = (wavy / float(np.median(flat)))[pad:-pad, pad:-pad]
+    return np.where(water < ground, 1.0, light).astype(np.float32)  # dry land: no water, no caustics
+
+
 def _assemble(name, n, water, caustics=True, camera=None, foam=None):
     ground, albedo = _ground(name, n)
-    c = _caustics(water, scene_grid(name, n), ground, CAUSTICS_METHODS[name]) if caustics else None
-    extra = SEA_WATER if name == "storm" else {}
+    if not caustics:
+        c = None
+    elif name in SHALLOW_WATER_CYCLES:
+        c = _shallow_water_caustics(name, n, water, ground)
+    else:
+        c = _caustics(water, scene_grid(name, n), ground, CAUSTICS_METHODS[name])
+    extra = SEA_WATER if name in ("storm", "beach") else {}
     return Scene(ground, water, LENGTHS[name], camera or _cameras()[name], sun=SUN, albedo=albedo, caustics=c,
                  foam=foam, sky="preetham", surroundings=SURROUNDINGS[name], **extra)
 
 
-SURROUNDINGS = {"pool": "extend", "shore": "tile", "ship": "extend", "storm": "tile", "calm": "extend"}
-"""What each built-in scene shows beyond its square: the pool's deck, the lake's meadow and the
-ship's calm sea extended from their borders; the swell and the storm tiled to the horizon."""
+SURROUNDINGS = {"pool": "extend", "shore": "tile", "ship": "extend", "storm": "tile", "calm": "extend",
+                "beach": "tile", "dambreak": "extend"}
+"""What each built-in scene shows beyond its square: the pool's deck, the lake's meadow, the
+ship's calm sea and the yard extended from their borders; the swell, the storm and the beach
+(periodic along its shore) tiled to the horizon."""
 
 
 def builtin_scene(name: str, *, n: int = 256, time: float = 1.0, ship: bool = True, caustics: bool = True,
@@ -566,6 +688,10 @@ def _frames(name, count, fps, n, start, caustics):
     if name == "storm":
         for water, foam in _storm_frames(n, [start + i / fps for i in range(count)]):
             yield _assemble(name, n, water, caustics, foam=foam)
+        return
+    if name in SHALLOW_WATER_CYCLES:  # one run of the solver for all the frames
+        for water in _shallow_water_heights(name, n, [start + i / fps for i in range(count)]):
+            yield _assemble(name, n, water, caustics)
         return
     if name != "pool":
         for i in range(count):
