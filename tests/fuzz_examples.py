@@ -332,6 +332,7 @@ OVERRIDES = {
     "wavephys.simulation.shallow_water.ShallowWater": {"dx": lambda: 0.1, "sides": lambda: "wall"},
     "wavephys.simulation.shallow_water.Inflow": {"times": lambda: np.array([0.0, 1.0]),
                                                  "eta": lambda: np.array([0.0, 0.1]), "u": lambda: np.zeros(2)},
+    "wavephys.simulation.shallow_water.Inflow.at": {"t": lambda: 0.5},
     "wavephys.simulation.shallow_water.SWState": {"fields": lambda: np.ones((3, N, N)), "time": lambda: 0.0},
     "wavephys.simulation.shallow_water.sw_state": {"bed": _bed, "eta": lambda: 0.5, "u": lambda: np.zeros((N, N)),
                                                    "v": lambda: np.zeros((N, N)), "time": lambda: 0.0},
@@ -657,7 +658,9 @@ def instance(cls):
                   DispersionSamples: EXAMPLES["samples"], Check: EXAMPLES["check"], Record: _record,
                   GerstnerWaves: lambda: GerstnerWaves(EXAMPLES["wavevectors"](), EXAMPLES["amplitudes"]())}
         from wavephys import planner as pl
+        from wavephys.simulation.shallow_water import Inflow
 
+        makers[Inflow] = lambda: Inflow(np.array([0.0, 1.0]), np.array([0.0, 0.1]))
         makers.update({pl.Scene: _plan_scene, pl.SceneModel: _scene_model, pl.Plan: _plan, pl.Choices: pl.Choices,
                        pl.ShipSpec: lambda: pl.ShipSpec(0.0, 0.0, 1.0), pl.StoneSpec: lambda: pl.StoneSpec(0, 0, 0.1, 0.01),
                        pl.WindSpec: lambda: pl.WindSpec(5.0)})

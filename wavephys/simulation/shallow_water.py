@@ -99,7 +99,19 @@ class Inflow:
         object.__setattr__(self, "u", np.asarray(u, np.float64))
 
     def at(self, t):
-        """(η, u) at time t (linear interpolation; held outside the table)."""
+        """(η, u) at time t (linear interpolation; held outside the table).
+
+        Parameters
+        ----------
+        t : float
+            s (a tracer inside the solver's step).
+
+        Returns
+        -------
+        (jax.Array, jax.Array)
+            m and m/s.
+        """
+        check_scalar("t", t)
         return jnp.interp(t, self.times, self.eta), jnp.interp(t, self.times, self.u)
 
 
