@@ -268,6 +268,13 @@ def _bed():
     return np.linspace(-0.5, 0.6, N * N).reshape(N, N)  # a slope whose top rises out of the water
 
 
+def _ritter_frames():
+    from wavephys.physics.shallow_water import ritter
+
+    x = (np.arange(128) + 0.5) * 0.1 - 3.2
+    return np.stack([ritter(x, t, 1.0)[0] if t > 0 else np.where(x < 0, 1.0, 0.0) for t in np.arange(8) * 0.05])
+
+
 def _sw_state():
     from wavephys.simulation.shallow_water import sw_state
 
@@ -333,6 +340,11 @@ OVERRIDES = {
     "wavephys.simulation.shallow_water.Inflow": {"times": lambda: np.array([0.0, 1.0]),
                                                  "eta": lambda: np.array([0.0, 0.1]), "u": lambda: np.zeros(2)},
     "wavephys.simulation.shallow_water.Inflow.at": {"t": lambda: 0.5},
+    "wavephys.harness.shallow_water.mass_check": {"depth": lambda: np.ones((3, N, N)), "dx": lambda: 0.1},
+    "wavephys.harness.shallow_water.lake_at_rest_check": {"depth": lambda: np.stack([0.5 - _bed().clip(max=0.5)] * 3),
+                                                          "bed": _bed, "dx": lambda: 0.1, "atol": lambda: 1e-3},
+    "wavephys.harness.shallow_water.dam_break_check": {"depth": _ritter_frames, "dx": lambda: 0.1,
+                                                       "dt": lambda: 0.05, "h0": lambda: 1.0, "dam": lambda: 3.2},
     "wavephys.simulation.shallow_water.SWState": {"fields": lambda: np.ones((3, N, N)), "time": lambda: 0.0},
     "wavephys.simulation.shallow_water.sw_state": {"bed": _bed, "eta": lambda: 0.5, "u": lambda: np.zeros((N, N)),
                                                    "v": lambda: np.zeros((N, N)), "time": lambda: 0.0},

@@ -16,6 +16,8 @@ they want to check (ours, a shader, a finite-difference toy):
   textures: :func:`tiling_check`, :func:`normals_check`, :func:`resolution_check`,
   :func:`caustics_flux_check`, :func:`quantization_check`; all of a record's at once:
   :func:`check_record` over the registry :data:`RECORD_CHECKS`;
+* a shallow-water simulator's depth frames: :func:`mass_check`, :func:`lake_at_rest_check`,
+  :func:`dam_break_check` (Ritter's front, Stoker's bore), each naming the likely cause;
 * :class:`Check`, :func:`compare`, :func:`bound`, :func:`assert_check` — result rows that
   report expected against measured against tolerance, and fail with that line.
 
@@ -44,6 +46,7 @@ _EXPORTS = {
     "tiling_check": "maps", "normals_check": "maps", "resolution_check": "maps", "caustics_flux_check": "maps",
     "quantization_check": "maps",
     "RECORD_CHECKS": "suite", "RecordReport": "suite", "check_record": "suite",
+    "mass_check": "shallow_water", "lake_at_rest_check": "shallow_water", "dam_break_check": "shallow_water",
 }
 __all__ = list(_EXPORTS)
 
