@@ -44,6 +44,10 @@ RECORD_CHECK_HELP = (  # wavephys.harness.RECORD_CHECKS, written out so that --h
     ("seiche", "frequencies of a tank's strongest cosine modes against omega(k_mn) (walls at the edges)", ("tank",)),
     ("shoaling", "a wave train's amplitude across a floor against sqrt(c_g,ref/c_g(h)) (Green's law)", ("floor",)),
     ("wall_reflection", "amplitude kept per reflection at a tank's walls, from its modes' decay", ("tank",)),
+    ("mass", "the water's volume over a shallow-water record's frames (heights over a bed, closed domain)",
+     ("bed",)),
+    ("lake_at_rest", "largest movement of a lake at rest's surface over an uneven bed, m", ("bed", "at-rest")),
+    ("dam_break", "speed of a dam break's front (Ritter) or bore (Stoker) against the exact one, m/s", ("bed", "dam")),
 )
 
 EFFECTS = ("refraction", "reflection", "fresnel", "absorption", "caustics")
@@ -444,6 +448,42 @@ def _wake_claim(args):
     return claim
 
 
+def _claim_maps(args) -> dict:
+    """The maps and arrays the record's claims name (--normals, --caustics, --floor, --bed, --other), read."""
+    import numpy as np
+
+    from wavephys.core.frames import read_map
+    from wavephys.harness import Record
+
+    maps = {}
+    if args.normals:
+        maps["normals"] = read_map(args.normals, name="--normals", channels=3)
+    if args.caustics:
+        maps["caustics"] = read_map(args.caustics, name="--caustics", channels=1)
+    if args.floor:
+        try:
+            maps["floor"] = np.load(args.floor, allow_pickle=False)
+        except (OSError, ValueError) as exc:
+            raise ValueError(f"--floor: cannot read {args.floor} as a .npy array of depths per column: {exc}")
+    if args.bed:
+        try:
+            maps["bed"] = np.load(args.bed, allow_pickle=False)
+        except (OSError, ValueError) as exc:
+            raise ValueError(f"--bed: cannot read {args.bed} as a .npy array of bed elevations, m: {exc}")
+    if args.other:
+        other = args.other[0] if len(args.other) == 1 else list(args.other)
+        maps["other"] = Record.from_files(other, channel=args.channel)
+    return maps
+
+
+def _dam_claim(parser, args):
+    if args.dam is None:
+        return None
+    if len(args.dam) not in (2, 3):
+        parser.error(f"--dam takes X H0 [HR] (m), got {len(args.dam)} values")
+    return dict(zip(("x", "h0", "hr"), args.dam))
+
+
 def cmd_check_frames(args, parser) -> int:
     """``wavephys check FRAMES...``: the record's checks, their verdicts and causes."""
     from wavephys.core.files import atomic_path, output_file
@@ -458,7 +498,8 @@ def cmd_check_frames(args, parser) -> int:
     given = {"direction": args.direction is not None, "sea": args.sea, "packet": args.packet,
              "source": args.source is not None, "wake": args.wake is not None, "wake-size": args.wake_size is not None,
              "normals": bool(args.normals), "caustics": bool(args.caustics), "other": bool(args.other),
-             "tank": args.tank, "floor": bool(args.floor)}
+             "tank": args.tank, "floor": bool(args.floor), "bed": bool(args.bed), "at-rest": args.at_rest,
+             "dam": args.dam is not None}
     for name, _, needs in RECORD_CHECK_HELP:
         missing = [f"--{x}" for x in needs if not given[x]]
         if args.only and name in args.only and missing:
@@ -476,24 +517,8 @@ def cmd_check_frames(args, parser) -> int:
     except (TypeError, ValueError) as exc:
         print(f"wavephys check: {exc}", file=sys.stderr)
         return 2
-    maps = {}
     try:
-        from wavephys.core.frames import read_map
-
-        if args.normals:
-            maps["normals"] = read_map(args.normals, name="--normals", channels=3)
-        if args.caustics:
-            maps["caustics"] = read_map(args.caustics, name="--caustics", channels=1)
-        if args.floor:
-            import numpy as np
-
-            try:
-                maps["floor"] = np.load(args.floor, allow_pickle=False)
-            except (OSError, ValueError) as exc:
-                raise ValueError(f"--floor: cannot read {args.floor} as a .npy array of depths per column: {exc}")
-        if args.other:
-            other = args.other[0] if len(args.other) == 1 else list(args.other)
-            maps["other"] = Record.from_files(other, channel=args.channel)
+        maps = _claim_maps(args)
     except (TypeError, ValueError) as exc:
         print(f"wavephys check: {exc}", file=sys.stderr)
         return 2
@@ -503,7 +528,8 @@ def cmd_check_frames(args, parser) -> int:
         report = check_record(record, Water(), only=args.only, direction=args.direction, sea=args.sea,
                               packet=args.packet, source=args.source, t0=args.t0, radius=args.radius,
                               viscosity=args.viscosity, rtol=args.rtol, wake=_wake_claim(args),
-                              convention=args.convention, tank=args.tank, **maps,
+                              convention=args.convention, tank=args.tank, at_rest=args.at_rest,
+                              dam=_dam_claim(parser, args), **maps,
                               progress=lambda m: print(m, file=sys.stderr, flush=True))
     except (TypeError, ValueError) as exc:  # a claim a named check needs: the option's name, not Python's
         parser.error(_option_words(str(exc)))
@@ -609,6 +635,12 @@ def _add_check_parser(sub, fmt) -> None:
     ck.add_argument("--packet", action="store_true", help="the frames are one wave packet (group-velocity check)")
     ck.add_argument("--floor", metavar="FILE", help="a .npy of the still-water depth under each column, m, of a "
                                                     "wave train travelling along x (shoaling check)")
+    ck.add_argument("--bed", metavar="FILE", help="a .npy of the bed elevation under each cell, m: the frames are "
+                                                  "shallow water over it (mass check; linear-wave checks skipped)")
+    ck.add_argument("--at-rest", action="store_true", help="with --bed: the water was started flat and at rest "
+                                                           "(lake-at-rest check)")
+    ck.add_argument("--dam", nargs="+", type=_real, metavar="X H0 [HR]", help="with --bed: a dam at X m from the "
+                    "left edge, H0 m deep behind it (HR ahead, default dry), released at the first frame")
     ck.add_argument("--tank", action="store_true", help="the frames are water between four reflecting walls half a "
                                                         "sample outside the edges (seiche and wall-reflection checks)")
     ck.add_argument("--source", type=_pair, metavar="X,Y", help="where one disturbance was, m (ring-arrival check)")

@@ -141,6 +141,31 @@ def _shoaling(record, water, o):
     return shoaling_check(record, water, o["floor"])
 
 
+def _depth(record, o):
+    """Depth frames of a shallow-water record: its heights over the claimed bed, 0 where below it (dry)."""
+    return np.maximum(np.asarray(record.eta, np.float64) - np.asarray(o["bed"], np.float64)[None], 0.0)
+
+
+def _mass(record, water, o):
+    from wavephys.harness.shallow_water import mass_check
+
+    return mass_check(_depth(record, o), record.dx)
+
+
+def _lake(record, water, o):
+    from wavephys.harness.shallow_water import lake_at_rest_check
+
+    return lake_at_rest_check(_depth(record, o), o["bed"], record.dx)
+
+
+def _dam(record, water, o):
+    from wavephys.harness.shallow_water import dam_break_check
+
+    d = o["dam"]
+    return dam_break_check(_depth(record, o), record.dx, record.dt, d["h0"], dam=d["x"], hr=d.get("hr", 0.0),
+                           t0=d.get("t0", 0.0), g=float(water.g), rtol=max(o.get("rtol", 0.02), 0.05))
+
+
 def _resolution(record, water, o):
     from wavephys.harness.maps import resolution_check
 
@@ -180,7 +205,15 @@ RECORD_CHECKS = {c.name: c for c in (
                 ("floor",), _shoaling),
     RecordCheck("wall_reflection", "amplitude kept per reflection at a tank's walls, from its modes' decay",
                 ("tank",), _reflection),
+    RecordCheck("mass", "the water's volume over a shallow-water record's frames (heights over a bed, closed domain)",
+                ("bed",), _mass),
+    RecordCheck("lake_at_rest", "largest movement of a lake at rest's surface over an uneven bed, m",
+                ("bed", "at_rest"), _lake),
+    RecordCheck("dam_break", "speed of a dam break's front (Ritter) or bore (Stoker) against the exact one, m/s",
+                ("bed", "dam"), _dam),
 )}
+LINEAR_ONLY = ("dispersion", "energy", "tiling")
+"""Checks of linear waves on a periodic sea, skipped for a shallow-water record (a bed claimed)."""
 PERIODIC_ONLY = {"dispersion": "seiche", "tiling": None}
 """Checks that assume a periodic domain, skipped for a tank (and the check that takes their place)."""
 """The registry of checks on a record, by name."""
@@ -230,12 +263,15 @@ def _wanted(only, options) -> tuple[list, dict]:
             "source": options.get("source") is not None, "packet": bool(options.get("packet")),
             "wake": options.get("wake") is not None, "normals": options.get("normals") is not None,
             "caustics": options.get("caustics") is not None, "other": options.get("other") is not None,
-            "tank": bool(options.get("tank")), "floor": options.get("floor") is not None}
+            "tank": bool(options.get("tank")), "floor": options.get("floor") is not None,
+            "bed": options.get("bed") is not None, "at_rest": bool(options.get("at_rest")),
+            "dam": options.get("dam") is not None}
     flags = {"direction": "direction= (--direction DEG)", "sea": "sea=True (--sea)",
              "source": "source= (--source X,Y)", "packet": "packet=True (--packet)",
              "wake": "wake=dict(speed=...) (--wake U)", "normals": "normals= (--normals FILE)",
              "caustics": "caustics= (--caustics FILE)", "other": "other= (--other FRAMES)",
-             "tank": "tank=True (--tank)", "floor": "floor= (--floor FILE)"}
+             "tank": "tank=True (--tank)", "floor": "floor= (--floor FILE)", "bed": "bed= (--bed FILE)",
+             "at_rest": "at_rest=True (--at-rest)", "dam": "dam=dict(x=, h0=) (--dam X H0)"}
     wake = options.get("wake") or {}
     if only is None:
         names = [n for n, c in RECORD_CHECKS.items() if all(have[x] for x in c.needs)
@@ -248,6 +284,11 @@ def _wanted(only, options) -> tuple[list, dict]:
                     names.remove(n)
                     skipped[n] = "the record is a tank: it does not wrap" + (f" (its modes: the {instead} row)"
                                                                             if instead else "")
+        if have["bed"]:
+            for n in LINEAR_ONLY:
+                if n in names:
+                    names.remove(n)
+                    skipped[n] = "the record is shallow water over a bed: a check of linear waves on a periodic sea"
         return names, skipped
     if not isinstance(only, (list, tuple)) or not all(isinstance(n, str) for n in only):
         raise TypeError(f"only must be a list of check names, got {describe(only)}")
@@ -270,7 +311,8 @@ def check_record(record, water: Optional[Water] = None, *, only=None, direction:
                  sea: bool = False, packet: bool = False, source=None, t0: float = 0.0, radius: float = 0.0,
                  viscosity: float = 0.0, rtol: float = 0.02, energy_rtol: float = 0.01, k_range=(0.0, math.inf),
                  wake: Optional[dict] = None, normals=None, convention: str = "auto", caustics=None, other=None,
-                 tank: bool = False, floor=None, progress: Optional[Callable[[str], None]] = None) -> RecordReport:
+                 tank: bool = False, floor=None, bed=None, at_rest: bool = False, dam: Optional[dict] = None,
+                 progress: Optional[Callable[[str], None]] = None) -> RecordReport:
     """Run the checks of :data:`RECORD_CHECKS` on a record.
 
     Parameters
@@ -320,6 +362,16 @@ def check_record(record, water: Optional[Water] = None, *, only=None, direction:
         ``tiling``). A record that fails those without the claim and looks like a tank gets a note saying so.
     floor : array_like (n_x,), optional, keyword-only
         The still-water depth under each column, m, of a wave train travelling along x (runs ``shoaling``).
+    bed : array_like (n_y, n_x), optional, keyword-only
+        The record is shallow water: its frames are the surface over this bed elevation, m (dry where below it).
+        Runs ``mass`` (a closed domain's volume) and skips the linear-wave checks ``dispersion``, ``energy``
+        and ``tiling``.
+    at_rest : bool, optional, keyword-only
+        With ``bed``: the water was started at rest with a flat surface (runs ``lake_at_rest``).
+    dam : dict, optional, keyword-only
+        With ``bed``: a dam break on a flat bed, released at rest — ``x`` (the dam's position, m from the frames'
+        left edge), ``h0`` (depth behind it, m), optionally ``hr`` (ahead, default 0: dry) and ``t0`` (the first
+        frame's time after release, s). Runs ``dam_break``.
     progress : callable, optional, keyword-only
         Called with a line of text before each check.
 
@@ -382,6 +434,21 @@ def check_record(record, water: Optional[Water] = None, *, only=None, direction:
                    normals=normals, convention=convention, caustics=caustics, other=other, tank=tank, floor=floor)
     if floor is not None:
         check_array("floor", floor, ndim=1, shape_tail=(record.shape[2],), lo=0.0)
+    check_bool("at_rest", at_rest)
+    if bed is not None:
+        check_array("bed", bed, ndim=2, shape_tail=tuple(record.shape[1:]))
+    elif at_rest or dam is not None:
+        raise ValueError("at_rest and dam describe shallow water: give its bed elevation too, bed= (--bed FILE)")
+    if dam is not None:
+        if not isinstance(dam, dict):
+            raise TypeError(f"dam must be a dict (x=, h0=, hr=, t0=), got {describe(dam)}")
+        if set(dam) - {"x", "h0", "hr", "t0"} or not {"x", "h0"} <= set(dam):
+            raise ValueError(f"dam must hold x (m) and h0 (m), and optionally hr and t0; got keys {sorted(dam)}")
+        check_scalar("dam['x']", dam["x"])
+        check_scalar("dam['h0']", dam["h0"], lo=0.0, lo_open=True)
+        check_scalar("dam['hr']", dam.get("hr", 0.0), lo=0.0)
+        check_scalar("dam['t0']", dam.get("t0", 0.0), lo=0.0)
+    options.update(bed=bed, at_rest=at_rest, dam=dam)
     if source is not None:
         check_array("source", source, ndim=1, shape_tail=(2,))
     names, skipped = _wanted(only, options)
