@@ -155,7 +155,7 @@ def test_bad_records_are_refused_by_name():
 
 def test_check_record_and_the_command_run_the_shallow_water_rows(tmp_path, capsys):
     """Surface frames over a claimed bed: mass and the dam break run, the linear-wave checks are skipped; the
-    command reads --bed and --dam; the pipes' frames fail with their cause."""
+    command reads --bed and --dam and refuses a dam_break without them."""
     from wavephys.app.cli import main
     from wavephys.harness import Record, check_record
 

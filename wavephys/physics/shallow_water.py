@@ -192,7 +192,8 @@ def thacker(x, y, t: float, h0: float = 0.1, a: float = 1.0, shift: float = 0.5,
     a : float
         Radius where the bowl reaches the still level, m, > 0.
     shift : float
-        η₀, the orbit's radius over a, dimensionless, 0 < shift < 1.
+        η₀, m, > 0: the surface's tilt and the wet disc's orbit grow with it (SWASHES uses 0.5 m with
+        a = 1 m; the disc stays inside the bowl while η₀ < a).
     g : float
         m/s².
 
@@ -210,7 +211,7 @@ def thacker(x, y, t: float, h0: float = 0.1, a: float = 1.0, shift: float = 0.5,
     x = np.asarray(check_array("x", x), np.float64)
     y = np.asarray(check_array("y", y), np.float64)
     check_scalar("t", t)
-    check_scalar("shift", shift, lo=0.0, hi=1.0, lo_open=True, hi_open=True)
+    check_scalar("shift", shift, lo=0.0, lo_open=True)
     w = 2 * math.pi / thacker_period(h0, a, g)
     bed = h0 * ((x * x + y * y) / (a * a) - 1.0)
     zeta = shift * h0 / (a * a) * (2 * x * math.cos(w * t) + 2 * y * math.sin(w * t) - shift)
