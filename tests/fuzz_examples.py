@@ -321,6 +321,7 @@ OVERRIDES = {
     "wavephys.simulation.depth.step_shallow": {"floor": _floor, "state": _depth_state},
     "wavephys.simulation.depth.run_depth": {"floor": _floor, "state": _depth_state, "steps": lambda: 2},
     "wavephys.simulation.depth.shallow_substeps": {"floor": _floor},
+    "wavephys.physics.shallow_water.water_depth": {"bed": _bed, "eta": lambda: 0.5},
     "wavephys.physics.shallow_water.ritter": {"x": lambda: np.linspace(-2.0, 2.0, 5), "t": lambda: 0.5,
                                               "h0": lambda: 1.0},
     "wavephys.physics.shallow_water.stoker": {"x": lambda: np.linspace(-2.0, 2.0, 5), "t": lambda: 0.5,

@@ -179,3 +179,23 @@ def test_check_record_and_the_command_run_the_shallow_water_rows(tmp_path, capsy
     with pytest.raises(SystemExit):
         main(["check", str(tmp_path / "frames.npy"), "--axes", "tyx", "--dx", str(dx), "--dt", str(dt),
               "--only", "dam_break"])  # the check needs --bed and --dam
+
+
+def test_the_pytest_fixture_gives_the_verdict_and_the_cause(wavephys_check, tmp_path):
+    """A user's suite: ``wavephys_check.record`` on frames saved to a file, with the bed and the dam claimed —
+    our solver passes, the virtual pipes' frames fail naming missing momentum."""
+    depth, dx, dt, dam = _dam_frames(n=400, frames=9)
+    square = np.repeat(depth[:, None, :], 400, axis=1)
+    bed = np.zeros(square.shape[1:])
+    np.save(tmp_path / "solver.npy", square.astype(np.float32))
+    wavephys_check.record(tmp_path / "solver.npy", dx=dx, dt=dt, axes="tyx", only=["dam_break", "mass"], bed=bed,
+                          dam=dict(x=dam, h0=1.0))
+    state = pipes_state(bed[:1], depth=depth[:1], dtype=jnp.float64)
+    frames = [np.asarray(state.depth[0])]
+    for _ in range(8):
+        state = pipes_run(Pipes(dx), bed[:1], state, 40, dt / 40)
+        frames.append(np.asarray(state.depth[0]))
+    np.save(tmp_path / "pipes.npy", np.repeat(np.array(frames)[:, None, :], 400, axis=1).astype(np.float32))
+    with pytest.raises(AssertionError, match="no momentum"):
+        wavephys_check.record(tmp_path / "pipes.npy", dx=dx, dt=dt, axes="tyx", only=["dam_break"], bed=bed,
+                              dam=dict(x=dam, h0=1.0))

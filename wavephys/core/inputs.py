@@ -186,6 +186,19 @@ def check_bool(name: str, value: Any) -> bool:
     return bool(value)
 
 
+def check_float_dtype(name: str, dtype: Any):
+    """A float32 or float64 dtype (TypeError for what is not a dtype, ValueError for another one); returns it."""
+    if dtype is None:
+        raise TypeError(f"{name} must be float32 or float64, got None")
+    try:
+        kind = np.dtype(dtype)
+    except TypeError:
+        raise TypeError(f"{name} must be float32 or float64, got {describe(dtype)}") from None
+    if kind not in (np.dtype(np.float32), np.dtype(np.float64)):
+        raise ValueError(f"{name} must be float32 or float64, got {dtype}")
+    return kind
+
+
 def check_choice(name: str, value: Any, choices) -> Any:
     """Check that ``value`` is one of ``choices`` (TypeError for another kind of object)."""
     kinds = {type(c) for c in choices}

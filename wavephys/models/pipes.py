@@ -37,7 +37,9 @@ import jax
 import jax.numpy as jnp
 import numpy as np
 
-from wavephys.core.inputs import check_array, check_choice, check_instance, check_int, check_scalar, describe
+from wavephys.core.inputs import (check_array, check_choice, check_float_dtype, check_instance, check_int, check_scalar,
+                                  describe)
+from wavephys.physics.shallow_water import water_depth
 from wavephys.core.pytree import register
 
 __all__ = ["Pipes", "PipesState", "pipes_state", "pipes_step", "pipes_run", "pipes_courant"]
@@ -152,25 +154,9 @@ def pipes_state(bed, eta=None, *, depth=None, dtype=jnp.float32) -> PipesState:
     -------
     PipesState
     """
-    check_array("bed", bed, ndim=2)
-    shape = np.shape(bed)
-    if (eta is None) == (depth is None):
-        raise ValueError("give exactly one of eta (surface elevation) and depth")
-    if eta is not None:
-        check_array("eta", eta)
-        if np.ndim(eta) not in (0, 2) or (np.ndim(eta) == 2 and np.shape(eta) != shape):
-            raise ValueError(f"eta must be a number or have the bed's shape {shape}, got shape {np.shape(eta)}")
-        d = np.maximum(np.asarray(eta, np.float64) - np.asarray(bed, np.float64), 0.0)
-    else:
-        d = np.asarray(check_array("depth", depth, ndim=2, shape_tail=shape, lo=0.0), np.float64)
-    if dtype is None:
-        raise TypeError("dtype must be float32 or float64, got None")
-    try:
-        kind = jnp.dtype(dtype)
-    except TypeError:
-        raise TypeError(f"dtype must be float32 or float64, got {describe(dtype)}") from None
-    if kind not in (jnp.dtype(jnp.float32), jnp.dtype(jnp.float64)):
-        raise ValueError(f"dtype must be float32 or float64, got {dtype}")
+    d = water_depth(bed, eta, depth)
+    shape = d.shape
+    dtype = check_float_dtype("dtype", dtype)
     return PipesState(jnp.asarray(d, dtype), jnp.zeros((4,) + shape, dtype), jnp.asarray(0.0, dtype))
 
 

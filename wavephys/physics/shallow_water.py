@@ -39,8 +39,42 @@ from scipy.special import j0, j1
 
 from wavephys.core.inputs import check_array, check_int, check_scalar
 
-__all__ = ["ritter", "stoker", "stoker_middle", "thacker", "thacker_period", "carrier_greenspan",
+__all__ = ["water_depth", "ritter", "stoker", "stoker_middle", "thacker", "thacker_period", "carrier_greenspan",
            "carrier_greenspan_runup", "solitary_wave", "solitary_runup", "solitary_runup_linear", "solitary_breaking_limit"]
+
+
+def water_depth(bed, eta=None, depth=None):
+    """The depth of water over a bed, from its surface (h = max(η − b, 0): land above η is dry) or given directly.
+
+    Parameters
+    ----------
+    bed : array_like (ny, nx)
+        Bed elevation b, m.
+    eta : float or array_like (ny, nx), optional
+        Surface elevation, m.
+    depth : array_like (ny, nx), optional
+        Depth, m, ≥ 0, instead of ``eta``.
+
+    Returns
+    -------
+    numpy.ndarray (ny, nx)
+        m, float64.
+
+    Examples
+    --------
+    >>> water_depth([[0.0, 1.0]], 0.5).tolist()
+    [[0.5, 0.0]]
+    """
+    check_array("bed", bed, ndim=2)
+    shape = np.shape(bed)
+    if (eta is None) == (depth is None):
+        raise ValueError("give exactly one of eta (surface elevation) and depth")
+    if depth is not None:
+        return np.asarray(check_array("depth", depth, ndim=2, shape_tail=shape, lo=0.0), np.float64)
+    check_array("eta", eta)
+    if np.ndim(eta) not in (0, 2) or (np.ndim(eta) == 2 and np.shape(eta) != shape):
+        raise ValueError(f"eta must be a number or have the bed's shape {shape}, got shape {np.shape(eta)}")
+    return np.maximum(np.asarray(eta, np.float64) - np.asarray(bed, np.float64), 0.0)
 
 
 def ritter(x, t: float, h0: float, g: float = 9.81):

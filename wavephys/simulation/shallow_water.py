@@ -44,8 +44,10 @@ import jax
 import jax.numpy as jnp
 import numpy as np
 
-from wavephys.core.inputs import check_array, check_instance, check_int, check_scalar, describe, is_traced
+from wavephys.core.inputs import (check_array, check_float_dtype, check_instance, check_int, check_scalar, describe,
+                                  is_traced)
 from wavephys.core.pytree import register
+from wavephys.physics.shallow_water import water_depth
 from wavephys.physics.walls import SIDES
 
 __all__ = ["ShallowWater", "Inflow", "SWState", "sw_state", "stable_dt", "sw_step", "sw_run", "sw_frames",
@@ -286,36 +288,16 @@ def sw_state(bed, eta=None, *, depth=None, u=None, v=None, time: float = 0.0, dt
     >>> float(state.h.max()) > 0 and float(state.h.min()) == 0
     True
     """
-    check_array("bed", bed, ndim=2)
-    shape = np.shape(bed)
-    if (eta is None) == (depth is None):
-        raise ValueError("give exactly one of eta (surface elevation) and depth")
-    if eta is not None:
-        eta_a = np.broadcast_to(np.asarray(check_array("eta", eta), np.float64), shape) if np.ndim(eta) == 0 \
-            else np.asarray(check_array("eta", eta, ndim=2, shape_tail=shape), np.float64)
-        h = np.maximum(eta_a - np.asarray(bed, np.float64), 0.0)
-    else:
-        h = np.asarray(check_array("depth", depth, ndim=2, shape_tail=shape, lo=0.0), np.float64)
+    h = water_depth(bed, eta, depth)
+    shape = h.shape
     fields = [h]
     for name, vel in (("u", u), ("v", v)):
         vel = np.zeros(shape) if vel is None else np.asarray(check_array(name, vel, ndim=2, shape_tail=shape),
                                                              np.float64)
         fields.append(h * vel)
     check_scalar("time", time)
-    dtype = _check_dtype(dtype)
+    dtype = check_float_dtype("dtype", dtype)
     return SWState(jnp.asarray(np.stack(fields), dtype), jnp.asarray(time, dtype))
-
-
-def _check_dtype(dtype):
-    if dtype is None:
-        raise TypeError("dtype must be float32 or float64, got None")
-    try:
-        kind = jnp.dtype(dtype)
-    except TypeError:
-        raise TypeError(f"dtype must be float32 or float64, got {describe(dtype)}") from None
-    if kind not in (jnp.dtype(jnp.float32), jnp.dtype(jnp.float64)):
-        raise ValueError(f"dtype must be float32 or float64, got {dtype}")
-    return kind
 
 
 def sw_mass(state: SWState, dx: float):
