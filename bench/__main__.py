@@ -71,7 +71,7 @@ def run_walls(args) -> None:
 
 
 def run_shallow(args) -> None:
-    from bench.shallow import dam_break_rows, figures, step_rows
+    from bench.shallow import dam_break_rows, figures, split_dispersion_rows, step_rows
 
     rows = dam_break_rows((100, 200, 400) if args.quick else (100, 200, 400, 800, 1600), progress=_say)
     print(f"{'case':<22}{'method':<26}{'n':>6}{'seconds':>10}{'L1 m':>11}{'max m':>9}")
@@ -82,7 +82,11 @@ def run_shallow(args) -> None:
     for r in steps:
         print(f"{r['method']:<38}{r['n']:>6}{r['seconds'] * 1e3:>10.3f}{r['ratio']:>12.2f}  (quartiles "
               f"{r['ratio_quartiles'][0]:.2f}–{r['ratio_quartiles'][1]:.2f})")
-    _write(rows + steps, figures(rows), Path(args.json or "bench/results/shallow.json"))
+    split = split_dispersion_rows(progress=_say)
+    print(f"{'model':<26}{'kh band':>14}{'max |w/w_exact - 1|':>22}")
+    for r in split:
+        print(f"{r['model']:<26}{r['kh'][0]:>7.2g}..{r['kh'][1]:<5.3g}{r['error']:>22.2e}")
+    _write(rows + steps + split, figures(rows), Path(args.json or "bench/results/shallow.json"))
 
 
 def run_boundaries(args) -> None:

@@ -6,7 +6,9 @@ Rows (JSON):
 * ``family="dam break"``: method, case (Ritter: dry bed; Stoker: hr/hl = 0.1), n, seconds (median time to
   solution after compiling, t = 1 s), error (L1, m), max_error (m), front (position error, m);
 * ``family="step"``: method, n (n × n cells), seconds per step (median of interleaved rounds), ratio to the
-  spectral step of the same grid in the same rounds (median, quartiles).
+  spectral step of the same grid in the same rounds (median, quartiles);
+* ``family="split dispersion"``: model (split, finite volumes order 2), kh band (kh0 … 4 kh0), worst
+  |ω/ω_exact − 1| by the harness's dispersion check over four waves on 128 periodic cells.
 """
 
 from __future__ import annotations
@@ -88,6 +90,11 @@ def step_rows(sizes=(256, 512), progress=print) -> list[dict]:
         sw = sw_state(bed, eta)
         pipes = Pipes(dx)
         ps = pipes_state(bed, eta + 0 * bed)
+        from wavephys.simulation.split import Split, split_run
+
+        wet_floor = Floor(np.maximum(-bed, 0.05))
+        split2 = Split(fv2, levels=(0.5, 2.0))
+        split4 = Split(fv2, levels=(0.5, 0.8, 1.3, 2.0))
         k = 10
         fns = {
             "spectral step (walls)": lambda: run(model, spectral, k)[0].psi,
@@ -95,12 +102,47 @@ def step_rows(sizes=(256, 512), progress=print) -> list[dict]:
             "finite volumes, order 2": lambda: sw_run(fv2, bed, sw, steps=k, dt=dt)[0].fields,
             "finite volumes, order 1": lambda: sw_run(fv1, bed, sw, steps=k, dt=dt)[0].fields,
             "virtual pipes": lambda: pipes_run(pipes, bed, ps, k, dt).depth,
+            "levels (4 depths, linear, dispersive)": lambda: run_depth(model, wet_floor, linear, k, "levels")[0].fields,
+            "split, 2 levels": lambda: split_run(split2, bed, sw, steps=k, dt=dt)[0].fields,
+            "split, 4 levels": lambda: split_run(split4, bed, sw, steps=k, dt=dt)[0].fields,
         }
         times = interleaved(fns, repeats=7, block=3)
         for name in fns:
             ratio, q1, q3 = paired_ratio(times, name, ["spectral step (walls)"])
             rows.append(dict(family="step", method=name, n=n, seconds=statistics.median(times[name]) / k,
                              ratio=ratio, ratio_quartiles=[q1, q3]))
+    return rows
+
+
+def split_dispersion_rows(bands=(0.1, 0.4, 1.6, 6.4), progress=print) -> list[dict]:
+    """The split's and shallow water's worst dispersion error per kh band by the harness (module doc)."""
+    from wavephys.core.water import Water
+    from wavephys.harness.dispersion import dispersion_check, measure_dispersion
+    from wavephys.physics.dispersion import angular_frequency
+    from wavephys.simulation.shallow_water import ShallowWater, sw_frames, sw_state
+    from wavephys.simulation.split import Split, split_frames
+
+    water = Water(sigma=0.0, depth=1.0)
+    rows = []
+    for kh0 in bands:
+        progress(f"shallow: split dispersion, kh {kh0}..{4 * kh0}")
+        k0, n = kh0, 128
+        dx = 2 * np.pi / k0 / n
+        x = (np.arange(n) + 0.5) * dx
+        rng = np.random.default_rng(1)
+        eta = sum(1e-3 * min(1.0, 1.0 / (m * kh0)) * np.cos(m * k0 * x + rng.uniform(0, 2 * np.pi)) for m in (1, 2, 3, 4))
+        bed = np.full((1, n), -1.0)
+        w0 = float(angular_frequency(jnp.asarray(k0), water))
+        dt = np.pi / float(angular_frequency(jnp.asarray(4 * k0), water)) / 3
+        times = np.arange(1, int(8 * 2 * np.pi / w0 / dt) + 1) * dt
+        solver = ShallowWater(dx, sides="periodic")
+        for model, run in (("split", lambda st: split_frames(Split(solver, levels=(1.0,)), bed, st, times)),
+                           ("finite volumes, order 2", lambda st: sw_frames(solver, bed, st, times))):
+            frames = run(sw_state(bed, eta[None]))
+            record = np.asarray(frames.fields[:, 0] + bed, np.float64)
+            row = dispersion_check(measure_dispersion(record, dx, dt), water, dt, k_range=(0.9 * k0, 4.1 * k0))
+            rows.append(dict(family="split dispersion", model=model, kh=[kh0, 4 * kh0], error=float(row.measured),
+                             cells_per_wavelength=[n / 4, n]))
     return rows
 
 

@@ -292,6 +292,17 @@ _CG = {"x": lambda: np.array([0.0, 1e4]), "t": lambda: 0.0, "h0": lambda: 500.0,
 _SOLITARY = {"h": lambda: 0.01, "d": lambda: 1.0, "cot_beta": lambda: 19.85}
 _SW = {"solver": lambda: __import__("wavephys.simulation.shallow_water", fromlist=["x"]).ShallowWater(0.1),
        "bed": _bed, "state": _sw_state}
+_SPLIT = {"split": lambda: __import__("wavephys.simulation.split", fromlist=["x"]).Split(
+    __import__("wavephys.simulation.shallow_water", fromlist=["x"]).ShallowWater(0.1), levels=(0.5,)),
+    "bed": _bed, "state": _sw_state}
+
+
+def _coastal():
+    from wavephys.planner.regime import CoastalScene
+
+    return CoastalScene(depth=(0.0, 2.0), wave_height=0.1, wavelength=(4.0, 20.0), extent=64.0)
+
+
 _PIPES = {"pipes": lambda: __import__("wavephys.models.pipes", fromlist=["x"]).Pipes(0.1), "bed": _bed,
           "state": _pipes_state}
 
@@ -355,6 +366,30 @@ OVERRIDES = {
     "wavephys.simulation.shallow_water.sw_frames": {**_SW, "times": lambda: np.array([0.01, 0.02])},
     "wavephys.simulation.shallow_water.sw_mass": {"state": _sw_state, "dx": lambda: 0.1},
     "wavephys.simulation.shallow_water.sw_surface": {"state": _sw_state, "bed": _bed},
+    "wavephys.simulation.shallow_water.advance_fields": {"solver": _SW["solver"], "bed": _bed,
+                                                         "fields": lambda: np.asarray(_sw_state().fields),
+                                                         "t": lambda: 0.0, "dt": lambda: 0.01},
+    "wavephys.simulation.shallow_water.stable_dt_fields": {"solver": _SW["solver"],
+                                                           "fields": lambda: np.asarray(_sw_state().fields)},
+    "wavephys.simulation.shallow_water.check_run": {"solver": _SW["solver"],
+                                                    "fields": lambda: np.asarray(_sw_state().fields), "t": lambda: 0.0},
+    "wavephys.simulation.split.MovingPressure": {"start": lambda: (0.5, 0.5), "velocity": lambda: (1.0, 0.0),
+                                                 "head": lambda: 0.05, "length": lambda: 0.3, "beam": lambda: 0.2},
+    "wavephys.simulation.split.MovingPressure.head_at": {"x": lambda: np.linspace(0.0, 1.0, 4),
+                                                         "y": lambda: np.linspace(0.0, 1.0, 4), "t": lambda: 0.1,
+                                                         "period": lambda: (None, 2.0)},
+    "wavephys.simulation.split.Split": {"solver": _SW["solver"], "levels": lambda: (0.5,), "bulk_length": lambda: 0.5,
+                                        "taper": lambda: (0.1, 0.5)},
+    "wavephys.simulation.split.split_step": {**_SPLIT, "dt": lambda: 0.01},
+    "wavephys.simulation.split.split_run": {**_SPLIT, "until": lambda: 0.02, "max_steps": lambda: 1000},
+    "wavephys.simulation.split.split_frames": {**_SPLIT, "times": lambda: np.array([0.01, 0.02])},
+    "wavephys.simulation.split.split_parts": _SPLIT,
+    "wavephys.planner.regime.CoastalScene": {"depth": lambda: (0.0, 2.0), "wave_height": lambda: 0.1,
+                                             "wavelength": lambda: (4.0, 20.0), "extent": lambda: 64.0},
+    "wavephys.planner.regime.choose_regime": {"scene": _coastal, "tolerance": lambda: 0.02},
+    "wavephys.planner.regime.linear_error": {"scene": _coastal},
+    "wavephys.planner.regime.shallow_water_dispersion": {"scene": _coastal},
+    "wavephys.planner.regime.measure_speed_error": {"regime": lambda: "split", "kh": lambda: 1.0, "cells": lambda: 8},
     "wavephys.models.pipes.Pipes": {"dx": lambda: 0.1, "area": lambda: 0.01, "sides": lambda: "wall"},
     "wavephys.models.pipes.PipesState": {"depth": lambda: np.full((N, N), 0.5), "flows": lambda: np.zeros((4, N, N)),
                                          "time": lambda: 0.0},
@@ -563,7 +598,7 @@ SKIP = {
     # the planner's answers and records, made by it (their fields are what it predicted)
     "wavephys.planner.plan.Term", "wavephys.planner.plan.Candidate", "wavephys.planner.plan.Infeasible",
     "wavephys.planner.terms.Term", "wavephys.planner.terms.Candidate",
-    "wavephys.planner.plan.Plan",
+    "wavephys.planner.plan.Plan", "wavephys.planner.regime.RegimeChoice",
     # the report runs every section (minutes); its options are checked by tests/app/test_report.py
     "wavephys.app.report.build_report",
     "wavephys.planner.runner.Output",
@@ -609,6 +644,8 @@ SHAPED = {"eta", "eta_prev", "eta0", "eta1", "eta_dot", "eta_dot0", "eta_dot1", 
 # parameters whose shape variants are valid input: rectangular grids, RGBA images, single
 # channels, batches of points, elementwise functions
 SHAPE_FREE = {
+    ("wavephys.simulation.shallow_water.stable_dt_fields", "fields"),  # any rectangle of cells, as SWState
+    ("wavephys.simulation.shallow_water.check_run", "fields"),
     ("wavephys.simulation.shallow_water.SWState", "fields"),  # shallow water runs on any rectangle of cells
     ("wavephys.core.grid.Grid.sample", "field"), ("optics.light.directions.normalize", "v"),
     ("wavephys.harness.dispersion.measure_dispersion", "eta"),
@@ -674,6 +711,9 @@ def instance(cls):
         from wavephys.simulation.shallow_water import Inflow
 
         makers[Inflow] = lambda: Inflow(np.array([0.0, 1.0]), np.array([0.0, 0.1]))
+        from wavephys.simulation.split import MovingPressure
+
+        makers[MovingPressure] = lambda: MovingPressure((0.5, 0.5), (1.0, 0.0), 0.05, 0.3, 0.2)
         makers.update({pl.Scene: _plan_scene, pl.SceneModel: _scene_model, pl.Plan: _plan, pl.Choices: pl.Choices,
                        pl.ShipSpec: lambda: pl.ShipSpec(0.0, 0.0, 1.0), pl.StoneSpec: lambda: pl.StoneSpec(0, 0, 0.1, 0.01),
                        pl.WindSpec: lambda: pl.WindSpec(5.0)})

@@ -21,6 +21,10 @@
           wetting and drying, docs/physics.md §1.13; a new wave every 8 s);
 ``dambreak`` a 16 m walled yard: a reservoir 1 m deep bursts through a 3 m breach in its wall and
           floods the dry ground around four blocks (the same solver; the dam breaks again every 12 s).
+``wakebeach`` a 32 m strip of coast: a boat at 2.5 m/s runs along the shore over 2 m of water, and
+          its Kelvin wake (4 m waves, kh ≈ 3) crosses to a sandy beach and runs up it (the split
+          model, docs/physics.md §1.15: shallow water alone would give no wake at all at this
+          depth Froude number of 0.56; the boat passes again every 12.8 s).
 
 Every field is made on a :class:`wavephys.Grid` of the scene's side and resolution, so the
 simulated water, the ground, the caustics and the textures share one convention and
@@ -59,14 +63,16 @@ STORM_FOAM = dict(threshold=0.35, softness=0.12, decay_time=1.0, history=1.5, fp
 CALM_LENGTH = 16.0
 BEACH_LENGTH, BEACH_DEPTH, BEACH_WAVE, BEACH_CYCLE = 16.0, 1.2, 0.15, 8.0  # side, offshore depth, wave height (m), s
 DAM_LENGTH, DAM_RESERVOIR, DAM_CYCLE = 16.0, 1.0, 12.0  # side, reservoir depth (m), s
+WAKE_LENGTH, WAKE_DEPTH, WAKE_SPEED, WAKE_TRACK = 32.0, 2.0, 2.5, -5.0  # side, offshore depth (m), boat m/s, x (m)
+WAKE_CYCLE, WAKE_WARMUP = WAKE_LENGTH / WAKE_SPEED, 10.0  # s: a boat passage; the scene's t = 0 is 10 s into one
 LENGTHS = {"pool": POOL_LENGTH, "shore": SHORE_LENGTH, "ship": SHIP_LENGTH, "storm": STORM_LENGTH,
-           "calm": CALM_LENGTH, "beach": BEACH_LENGTH, "dambreak": DAM_LENGTH}
-SHALLOW_WATER_CYCLES = {"beach": BEACH_CYCLE, "dambreak": DAM_CYCLE}
+           "calm": CALM_LENGTH, "beach": BEACH_LENGTH, "dambreak": DAM_LENGTH, "wakebeach": WAKE_LENGTH}
+SHALLOW_WATER_CYCLES = {"beach": BEACH_CYCLE, "dambreak": DAM_CYCLE, "wakebeach": WAKE_CYCLE}
 """The scenes run by nonlinear shallow water, and the period (s) after which each starts again
 from rest (time is taken modulo it, so a frame at any time costs at most one cycle of steps)."""
 
 CAUSTICS_METHODS = {"pool": "jacobian", "shore": "jacobian", "ship": "jacobian", "storm": "beam", "calm": "beam",
-                    "beach": "beam", "dambreak": "beam"}
+                    "beach": "beam", "dambreak": "beam", "wakebeach": "beam"}
 """Each built-in scene's caustics method (:data:`optics.caustics.FLOOR_IRRADIANCE_METHODS`): the
 Jacobian gather (with the exact beam on its folded windows) where it is as close to the converged
 reference as the beam on the scene's own surface, else the beam (the bores of the shallow-water
@@ -398,13 +404,30 @@ def _dam_bed(n):
     return np.maximum(bed, 1.6 * rim)  # the yard's own walls, above the reservoir: nothing spills past the square
 
 
+def _wake_bed(n):
+    X, Y = _mesh("wakebeach", n)
+    bed = -WAKE_DEPTH + (WAKE_DEPTH + 0.6) * _smoothstep(0.0, 15.0, X)  # the still shoreline near x = 8.6 m
+    bed += 0.06 * _smoothstep(6.0, 10.0, X) * np.cos(2 * np.pi * Y / 8.0)  # beach cusps
+    return bed
+
+
 @functools.lru_cache(maxsize=4)
 def _shallow_water_setup(name, n):
-    """(solver, bed, state at rest at t = 0) of a shallow-water scene on its grid (float32)."""
+    """(model, bed, state at rest at t = 0) of a shallow-water scene on its grid (float32); the model is a
+    ShallowWater solver, or a Split for ``wakebeach``."""
     from wavephys.physics.shallow_water import solitary_wave
     from wavephys.simulation.shallow_water import ShallowWater, sw_state
 
     dx = LENGTHS[name] / n
+    if name == "wakebeach":
+        from wavephys.simulation.split import MovingPressure, Split
+
+        bed = _wake_bed(n)
+        solver = ShallowWater(dx, sides={"left": "wall", "right": "wall", "bottom": "periodic", "top": "periodic"})
+        boat = MovingPressure(start=(WAKE_TRACK + WAKE_LENGTH / 2, 0.0), velocity=(0.0, WAKE_SPEED), head=0.08,
+                              length=1.6, beam=0.6)
+        model = Split(solver, levels=(0.5, WAKE_DEPTH), pressure=boat)
+        return model, bed.astype(np.float32), sw_state(bed, np.zeros_like(bed))
     if name == "beach":
         bed = _beach_bed(n)
         X = _mesh("beach", n)[0]
@@ -424,11 +447,15 @@ def _shallow_water_heights(name, n, times):
     """Water heights at each of ``times`` (s, taken modulo the scene's cycle), float32 (len(times), n, n):
     the surface where wet, 2 cm below the ground where dry (so the renderer shows the ground there)."""
     from wavephys.simulation.shallow_water import sw_frames
+    from wavephys.simulation.split import Split, split_frames
 
-    solver, bed, state = _shallow_water_setup(name, n)
+    model, bed, state = _shallow_water_setup(name, n)
     phases = np.mod(np.asarray(times, np.float64), SHALLOW_WATER_CYCLES[name])
+    if name == "wakebeach":
+        phases = phases + WAKE_WARMUP
     order = np.argsort(phases, kind="stable")
-    out = sw_frames(solver, bed, state, phases[order])
+    run = split_frames if isinstance(model, Split) else sw_frames
+    out = run(model, bed, state, phases[order])
     h = np.asarray(out.h, np.float32)
     water = np.where(h > 1e-3, bed + h, bed - 0.02).astype(np.float32)
     result = np.empty_like(water)
@@ -443,6 +470,17 @@ def _beach_ground(n):
     sand = np.array([0.82, 0.74, 0.55]) * (1 - 0.3 * wet[..., None])
     ripple = 1 + 0.05 * (1 - wet) * np.sin(8.0 * X + 2.0 * np.sin(1.1 * Y))  # wind ripples on the dry sand
     return bed.astype(np.float32), (sand * ripple[..., None]).astype(np.float32)
+
+
+def _wake_ground(n):
+    bed = _wake_bed(n)
+    wet = _smoothstep(0.3, -0.2, bed)
+    X, Y = _mesh("wakebeach", n)
+    sand = np.array([0.8, 0.73, 0.55]) * (1 - 0.3 * wet[..., None])
+    ripple = 1 + 0.05 * (1 - wet) * np.sin(6.0 * X + 2.0 * np.sin(0.9 * Y))
+    deep = _smoothstep(-0.6, -1.8, bed)[..., None]  # sea grass offshore
+    albedo = sand * ripple[..., None] * (1 - deep) + np.array([0.3, 0.38, 0.22]) * deep
+    return bed.astype(np.float32), albedo.astype(np.float32)
 
 
 def _dam_ground(n):
@@ -463,7 +501,8 @@ def _cameras():
                 storm=look_at((-4.0, -30.0, 11.0), (4.0, 4.0, -2.0), 60.0),
                 calm=look_at((0.0, -9.5, 2.6), (0.0, 0.5, -0.8), 55.0),
                 beach=look_at((-3.0, -7.5, 2.2), (3.5, 2.0, -0.2), 60.0),
-                dambreak=look_at((8.0, -9.5, 6.5), (-1.0, 0.5, 0.0), 55.0))
+                dambreak=look_at((8.0, -9.5, 6.5), (-1.0, 0.5, 0.0), 55.0),
+                wakebeach=look_at((13.0, -12.0, 4.0), (-6.0, 2.0, -0.5), 60.0))
 
 
 def scene_water(name: str, n: int = 256, time: float = 0.0, ship: bool = True) -> np.ndarray:
@@ -514,7 +553,8 @@ scattering and particles (Jerlov type II-like, 1/m), so the 20 m floor fades out
 
 def _ground(name, n):
     return {"pool": _pool_ground, "shore": _shore_ground, "ship": _ship_ground, "storm": _storm_ground,
-            "calm": _calm_ground, "beach": _beach_ground, "dambreak": _dam_ground}[name](n)
+            "calm": _calm_ground, "beach": _beach_ground, "dambreak": _dam_ground,
+            "wakebeach": _wake_ground}[name](n)
 
 
 def scene_caustics(name: str, water, method: str | None = None, **options) -> np.ndarray:
@@ -579,16 +619,16 @@ def _assemble(name, n, water, caustics=True, camera=None, foam=None):
         c = _shallow_water_caustics(name, n, water, ground)
     else:
         c = _caustics(water, scene_grid(name, n), ground, CAUSTICS_METHODS[name])
-    extra = SEA_WATER if name in ("storm", "beach") else {}
+    extra = SEA_WATER if name in ("storm", "beach", "wakebeach") else {}
     return Scene(ground, water, LENGTHS[name], camera or _cameras()[name], sun=SUN, albedo=albedo, caustics=c,
                  foam=foam, sky="preetham", surroundings=SURROUNDINGS[name], **extra)
 
 
 SURROUNDINGS = {"pool": "extend", "shore": "tile", "ship": "extend", "storm": "tile", "calm": "extend",
-                "beach": "tile", "dambreak": "extend"}
+                "beach": "tile", "dambreak": "extend", "wakebeach": "tile"}
 """What each built-in scene shows beyond its square: the pool's deck, the lake's meadow, the
-ship's calm sea and the yard extended from their borders; the swell, the storm and the beach
-(periodic along its shore) tiled to the horizon."""
+ship's calm sea and the yard extended from their borders; the swell, the storm and the two beaches
+(periodic along their shores) tiled to the horizon."""
 
 
 def builtin_scene(name: str, *, n: int = 256, time: float = 1.0, ship: bool = True, caustics: bool = True,

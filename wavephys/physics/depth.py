@@ -31,7 +31,7 @@ import jax
 import jax.numpy as jnp
 import numpy as np
 
-from wavephys.core.inputs import check_array, check_instance, check_int, check_scalar
+from wavephys.core.inputs import check_array, check_instance, check_int, check_scalar, is_traced
 from wavephys.core.water import Water
 
 __all__ = ["shoaling_coefficient", "refraction_angle", "lamb_beach", "depth_levels", "depth_weights",
@@ -217,7 +217,7 @@ def depth_weights(depth, levels):
     h = jnp.clip(jnp.asarray(depth), lev[0], lev[-1])
     if lev.shape[0] == 1:
         return jnp.ones((1,) + h.shape, h.dtype)
-    if bool(jnp.any(jnp.diff(lev) <= 0)):
+    if not is_traced(levels) and bool(np.any(np.diff(np.asarray(levels, np.float64)) <= 0)):
         raise ValueError(f"levels must increase, got {np.asarray(levels)}")
     j = jnp.clip(jnp.searchsorted(lev, h, side="right") - 1, 0, lev.shape[0] - 2)
     t = (h - lev[j]) / (lev[j + 1] - lev[j])

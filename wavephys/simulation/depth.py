@@ -352,20 +352,22 @@ def run_depth(model: Model, floor: Floor, state: DepthState, steps: int, method:
         if not float(floor.depth.min()) > 0:
             raise ValueError("floor: the levels method needs depth > 0 everywhere (dry land: method='shallow')")
         tables, weights, _ = _level_tables(model, floor)
-        fields, surfaces = _scan(_levels_program, model, (tables, weights, mask), state.fields, steps)
+        fields, surfaces = _scan(model, "levels", (tables, weights, mask), state.fields, steps, 0)
     else:
         wx, wy = model.wall_axes
         hx = _faces(floor.depth, -1, wx).astype(model.dtype)
         hy = _faces(floor.depth, -2, wy).astype(model.dtype)
-        sub = shallow_substeps(model, floor)
-        fields, surfaces = _scan(lambda m, hx, hy, mask, f: _shallow_program.__wrapped__(m, hx, hy, mask, f, sub),
-                                 model, (hx, hy, mask), state.fields, steps)
+        fields, surfaces = _scan(model, "shallow", (hx, hy, mask), state.fields, steps, shallow_substeps(model, floor))
     return DepthState(fields.astype(model.dtype), state.time + steps * model.dt), surfaces
 
 
-def _scan(program, model, args, fields, steps):
-    @jax.jit
-    def loop(args, fields):
-        return jax.lax.scan(lambda f, _: program(model, *args, f), fields, None, length=steps)
-
-    return loop(args, fields)
+@functools.partial(jax.jit, static_argnums=(0, 1, 4, 5))
+def _scan(model, kind, args, fields, steps, substeps):
+    """``steps`` steps of one method, compiled once per (model, method, steps, sub-steps)."""
+    if kind == "levels":
+        def body(f, _):
+            return _levels_program(model, *args, f)
+    else:
+        def body(f, _):
+            return _shallow_program.__wrapped__(model, *args, f, substeps)
+    return jax.lax.scan(body, fields, None, length=steps)

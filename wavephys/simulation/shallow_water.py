@@ -51,7 +51,7 @@ from wavephys.physics.shallow_water import water_depth
 from wavephys.physics.walls import SIDES
 
 __all__ = ["ShallowWater", "Inflow", "SWState", "sw_state", "stable_dt", "sw_step", "sw_run", "sw_frames",
-           "sw_mass", "sw_surface", "SIDE_KINDS"]
+           "sw_mass", "sw_surface", "SIDE_KINDS", "advance_fields", "stable_dt_fields", "check_run"]
 
 SIDE_KINDS = ("wall", "open", "periodic", "inflow")
 """What a side of the domain can be: a reflecting wall, an open side (zero-gradient: waves leave,
@@ -537,6 +537,64 @@ def _stable_dt(solver, fields, bed=None, t=None):
     return jnp.where(top > 0, solver.cfl * solver.dx / jnp.where(top > 0, top, 1.0), jnp.inf)
 
 
+def advance_fields(solver: ShallowWater, bed, fields, t, dt):
+    """One step of Δt on raw fields (3, ny, nx): the traced kernel under :func:`sw_step`, without its checks
+    (for models built on the solver, such as :mod:`wavephys.simulation.split`).
+
+    Parameters
+    ----------
+    solver : ShallowWater
+    bed : jax.Array (ny, nx)
+        Bed elevation, m, in the fields' dtype.
+    fields : jax.Array (3, ny, nx)
+        (h, hu, hv).
+    t, dt : float or jax.Array
+        Time and step (0 … 10⁶; past the stable step the result is not finite: :func:`stable_dt_fields`), s.
+        Under a trace only shapes are checked.
+
+    Returns
+    -------
+    jax.Array (3, ny, nx)
+    """
+    check_instance("solver", solver, ShallowWater, "wavephys.simulation.shallow_water.ShallowWater")
+    check_array("bed", bed, ndim=2)
+    check_array("fields", fields, ndim=3, shape_tail=(3,) + tuple(np.shape(bed)))
+    check_scalar("t", t)
+    check_scalar("dt", dt, lo=0.0, hi=1e6, lo_open=True)
+    return _advance(solver, jnp.asarray(bed), jnp.asarray(fields), t, dt)
+
+
+def stable_dt_fields(solver: ShallowWater, fields, bed=None, t=None):
+    """:func:`stable_dt` on raw fields (3, ny, nx) (jit-able: under a trace only shapes are checked), s.
+
+    Parameters
+    ----------
+    solver : ShallowWater
+    fields : array_like (3, ny, nx)
+        (h, hu, hv).
+    bed : array_like (ny, nx), optional
+        With it (and ``t``), the inflow sides count, as in :func:`stable_dt`.
+    t : float, optional
+        s.
+
+    Returns
+    -------
+    jax.Array
+    """
+    check_instance("solver", solver, ShallowWater, "wavephys.simulation.shallow_water.ShallowWater")
+    check_array("fields", fields, ndim=3)
+    if np.shape(fields)[0] != 3:
+        raise ValueError(f"fields must stack (h, hu, hv), shape (3, ny, nx), got {np.shape(fields)}")
+    if bed is not None:
+        check_array("bed", bed, ndim=2, shape_tail=np.shape(fields)[1:])
+        bed = jnp.asarray(bed)
+    if not is_traced(fields) and float(np.min(np.asarray(fields)[0])) < 0:
+        raise ValueError("fields: the depth h (fields[0]) must be >= 0 everywhere")
+    if t is not None:
+        check_scalar("t", t)
+    return _stable_dt(solver, jnp.asarray(fields), bed, t)
+
+
 def _checked(solver, bed, state):
     check_instance("solver", solver, ShallowWater, "wavephys.simulation.shallow_water.ShallowWater")
     check_instance("state", state, SWState, "wavephys.simulation.shallow_water.SWState")
@@ -733,12 +791,41 @@ def sw_frames(solver: ShallowWater, bed, state: SWState, times, max_steps: int =
     return SWState(fields, t)
 
 
+def check_run(solver: ShallowWater, fields, t, dt=None) -> None:
+    """ValueError naming ``cfl`` (or ``dt`` when given) for fields (..., 3, ny, nx) that went non-finite or
+    negative in depth beyond rounding by time(s) ``t``.
+
+    Parameters
+    ----------
+    solver : ShallowWater
+    fields : array_like (..., 3, ny, nx)
+    t : float or array_like
+        s.
+    dt : float, optional
+        The fixed step of the run, s.
+    """
+    check_instance("solver", solver, ShallowWater, "wavephys.simulation.shallow_water.ShallowWater")
+    if isinstance(fields, (str, bytes)) or fields is None or not np.issubdtype(np.asarray(fields).dtype, np.number):
+        raise TypeError(f"fields must be an array of numbers, got {describe(fields)}")
+    if np.ndim(fields) < 3 or np.shape(fields)[-3] != 3 or np.size(fields) == 0 or np.iscomplexobj(fields):
+        raise ValueError(f"fields must stack (h, hu, hv), shape (..., 3, ny, nx), got {np.shape(fields)}")
+    check_array("t", t)
+    if dt is not None:
+        check_scalar("dt", dt, lo=0.0, lo_open=True)
+    try:
+        _check_result(solver, fields, t, dt)
+    except ValueError as error:
+        raise ValueError(f"fields: {error}") from None
+
+
 def _check_result(solver, fields, t, dt=None):
     """ValueError for a run that failed: non-finite values, or depths below −(rounding) (h ≥ 0 is
     guaranteed for cfl ≤ 0.5; beyond, a negative depth means the step was unstable)."""
     fields = np.asarray(fields)
     when = float(np.max(np.asarray(t)))
-    rounding = -1e3 * np.finfo(fields.dtype).eps * max(float(np.nanmax(np.abs(fields[..., 0, :, :]))), 1e-30)
+    depth = np.abs(fields[..., 0, :, :])
+    scale = float(np.max(depth, where=np.isfinite(depth), initial=0.0))
+    rounding = -1e3 * np.finfo(fields.dtype).eps * max(scale, 1e-30)
     if dt is not None and not (np.all(np.isfinite(fields)) and fields[..., 0, :, :].min() >= rounding):
         raise ValueError(f"dt = {float(dt):.4g} s is past the stable step (the depth went negative or non-finite "
                          f"by t = {when:.6g} s); stable_dt gives a safe one")

@@ -1,0 +1,566 @@
+r"""Shallow water with dispersive surface waves: the split model (docs/physics.md §1.15).
+
+Nonlinear shallow water (:mod:`wavephys.simulation.shallow_water`) runs every wave at √(gh): right
+for kh ≲ 0.3, too fast for anything shorter than the depth. The spectral step has the exact ω(k)
+but no run-up and no dry land. After Jeschke & Wojtan (2023), each step of :func:`split_step`
+separates the water into a smooth *bulk*, advanced by the finite-volume shallow-water solver (run-up,
+wetting and drying, bores), and *surface waves*, advanced exactly in Fourier space with the linear
+dispersion of the local depth, then adds the two back together. The state is the shallow-water
+solver's own :class:`~wavephys.simulation.shallow_water.SWState` (h, hu, hv): everything that reads
+one (``sw_mass``, ``sw_surface``, the harness) reads the split's output.
+
+One step of Δt, with x = (η − η_ref, q_x, q_y) (surface and discharge) and w(h) ∈ [0, 1] a taper that
+is 1 in water deeper than ``taper[1]`` and 0 below ``taper[0]`` (surface waves live only where w > 0):
+
+1. **Separate.** x̄ = G∗(w x) / G∗w, a normalized Gaussian smoothing over the water (σ = ``bulk_length``;
+   a constant over the wet region is kept exactly, so a lake at rest has no surface waves); the surface
+   waves are x̃ = w (x − x̄) and the bulk is x − x̃.
+2. **Advance.** The bulk by one shallow-water step, SW(x − x̃); the surface waves by the exact linear
+   operator A = exp(−iMΔt) of each depth level (η̂_t = −i|k| q̂_l, q̂_l,t = −i (ω²/|k|) η̂, q_l the
+   discharge along k; the discharge across k is left alone), blended per place by the local bulk depth.
+3. **Recombine**, with a correction that makes the sum exact: new = SW(x − x̃) + A x̃ + (A − S)(w x̄), where
+   S is the same operator with the shallow-water frequency k√(gh). For small waves over a constant
+   depth SW ≈ S, so new ≈ S(x − x̃) + A x̃ + (A − S) w x̄ = A x: the recombined model has the exact ω(k)
+   at every kh, whatever the split (Jeschke & Wojtan derive a correction factor to the same end). What
+   is left is the shallow-water solver's own error on the bulk, which the bulk length keeps well
+   resolved (σ ≥ 8 cells by default; below 2 cells the split is unstable).
+
+Water is conserved exactly: the shallow-water step conserves it, and the surface increment is made to
+hold the surface waves' water: A and S keep each field's mean at each level, but the blend of levels
+(weights varying in space) and the part that lands where the taper is 0 (on dry or very shallow cells)
+do not, and their difference is put back evenly over the surface-wave region. A surface wave running into shallow water is handed to
+the bulk by the taper, where it shoals, breaks as a bore and runs up the beach as shallow water.
+
+Sides are walls (mirror images: the surface waves see a cosine series) or periodic (Fourier series);
+open and inflow sides are not supported. Neglected: the bulk current's transport and refraction of the
+surface waves (Jeschke & Wojtan advect them), the surface waves' own nonlinearity (Stokes drift,
+steepening; they are linear), and their effect on the bulk beyond adding to it.
+
+References
+----------
+S. Jeschke & C. Wojtan (2023). Generalizing shallow water simulations with dispersive surface waves.
+*ACM Transactions on Graphics* 42(4), 83. H. Lamb (1932). *Hydrodynamics*, §§169, 228.
+"""
+
+from __future__ import annotations
+
+import functools
+import math
+from dataclasses import dataclass
+from typing import Optional
+
+import jax
+import jax.numpy as jnp
+import numpy as np
+
+from wavephys.core.inputs import check_array, check_instance, check_int, check_scalar, is_traced
+from wavephys.core.water import Water
+from wavephys.physics.depth import depth_weights
+from wavephys.physics.dispersion import angular_frequency
+from wavephys.simulation.shallow_water import (ShallowWater, SWState, advance_fields, check_run, stable_dt_fields)
+
+__all__ = ["Split", "MovingPressure", "split_step", "split_run", "split_frames", "split_parts"]
+
+
+@dataclass(frozen=True)
+class MovingPressure:
+    """A pressure patch moving in a straight line: a boat's hull, as a Gaussian head of water.
+
+    The pressure p = ρ g ``head`` exp(−(ξ/``length``)² − (ζ/``beam``)²) in the hull's frame (ξ along its
+    course, ζ across) pushes the water by −h ∇p/ρ.
+
+    Parameters
+    ----------
+    start : (float, float)
+        Centre (x, y) at t = 0, m, measured from the outer corner of cell (0, 0) (cell (i, j) is centred at
+        ((j + ½)·dx, (i + ½)·dx)).
+    velocity : (float, float)
+        (u, v), m/s; the hull points along it (a patch at rest points along x).
+    head : float
+        Peak pressure over ρg, m, ≥ 0 (a hull drawing 0.2 m: about 0.2).
+    length, beam : float
+        Gaussian half-widths along and across the course, m, > 0.
+    """
+
+    start: tuple
+    velocity: tuple
+    head: float
+    length: float
+    beam: float
+
+    def __post_init__(self):
+        for name in ("start", "velocity"):
+            check_array(name, getattr(self, name), ndim=1, shape_tail=(2,))
+            object.__setattr__(self, name, tuple(float(v) for v in getattr(self, name)))
+        check_scalar("head", self.head, lo=0.0)
+        check_scalar("length", self.length, lo=0.0, lo_open=True)
+        check_scalar("beam", self.beam, lo=0.0, lo_open=True)
+        for name in ("head", "length", "beam"):
+            object.__setattr__(self, name, float(getattr(self, name)))
+
+    def head_at(self, x, y, t, period=(None, None)):
+        """The pressure head p/(ρg), m, at (x, y) (arrays, m) and time t (s); ``period`` (m, or None per axis):
+        the patch wraps round a periodic axis of that length."""
+        check_array("x", x)
+        check_array("y", y)
+        check_scalar("t", t)
+        if not isinstance(period, (tuple, list)) or len(period) != 2:
+            raise TypeError(f"period must be a pair (x, y) of lengths or None, got {period!r}")
+        for p in period:
+            if p is not None:
+                check_scalar("period", p, lo=0.0, lo_open=True)
+        u, v = self.velocity
+        speed = math.hypot(u, v)
+        cx, cy = (u / speed, v / speed) if speed > 0 else (1.0, 0.0)
+        dx = x - (self.start[0] + u * t)
+        dy = y - (self.start[1] + v * t)
+        if period[0] is not None:
+            dx = jnp.mod(dx + 0.5 * period[0], period[0]) - 0.5 * period[0]
+        if period[1] is not None:
+            dy = jnp.mod(dy + 0.5 * period[1], period[1]) - 0.5 * period[1]
+        along = dx * cx + dy * cy
+        across = -dx * cy + dy * cx
+        return self.head * jnp.exp(-(along / self.length) ** 2 - (across / self.beam) ** 2)
+
+
+@dataclass(frozen=True)
+class Split:
+    """The split model's settings (static under ``jit``).
+
+    Parameters
+    ----------
+    solver : ShallowWater
+        The bulk's solver: its cell size, g and sides (each ``"wall"`` or ``"periodic"``), Courant number
+        and order.
+    levels : sequence of float
+        Depths at which the surface waves' exact operator is made, m, increasing, > 0; each place blends
+        the two around its bulk depth (one level: a constant-depth floor, exact).
+    bulk_length : float, optional
+        σ of the Gaussian that separates the bulk, m, ≥ 2 cells (default: the deepest level, at least 8
+        cells). The bulk holds waves with kσ ≲ 1, and the shallow-water solver's error on them is what is
+        left in ω(k): measured 0.05 % / 0.15 % / 0.4 % / 1 % at 16 / 8 / 4 / 2 cells for 32–128 cells per
+        wavelength, and below 2 cells the run blows up (docs/physics.md §1.15).
+    taper : (float, float), optional
+        Depths (m) between which surface waves fade into the bulk: none below ``taper[0]``, all above
+        ``taper[1]``, which must be at least the shallowest level (default: a quarter of the shallowest level
+        and the shallowest level). Shallower, waves are the bulk's: shallow water's speed, √(gh).
+    sigma : float
+        Surface tension, N/m (≥ 0; default 0: the bulk has none, so only the surface waves would feel it).
+    rho : float
+        Density, kg/m³, > 0.
+    pressure : MovingPressure, optional
+        A moving pressure patch (a boat) pushing the water.
+    """
+
+    solver: ShallowWater
+    levels: tuple
+    bulk_length: Optional[float] = None
+    taper: Optional[tuple] = None
+    sigma: float = 0.0
+    rho: float = 1000.0
+    pressure: Optional[MovingPressure] = None
+
+    def __post_init__(self):
+        check_instance("solver", self.solver, ShallowWater, "wavephys.simulation.shallow_water.ShallowWater")
+        bad = [k for k in self.solver.sides if k not in ("wall", "periodic")]
+        if bad:
+            raise ValueError(f"solver.sides: the split model takes 'wall' or 'periodic' sides, got {bad[0]!r} "
+                             f"(open and inflow sides would reflect its surface waves)")
+        check_array("levels", self.levels, ndim=1, lo=0.0, lo_open=True)
+        levels = tuple(float(v) for v in np.atleast_1d(np.asarray(self.levels, np.float64)))
+        if len(levels) < 1 or len(levels) > 16:
+            raise ValueError(f"levels must hold 1 to 16 depths, got {len(levels)}")
+        if any(b <= a for a, b in zip(levels, levels[1:])):
+            raise ValueError(f"levels must increase, got {levels}")
+        object.__setattr__(self, "levels", levels)
+        dx = self.solver.dx
+        if self.bulk_length is None:
+            object.__setattr__(self, "bulk_length", max(levels[-1], 8 * dx))
+        check_scalar("bulk_length", self.bulk_length, lo=0.0, lo_open=True)
+        if self.bulk_length < 2 * dx:
+            raise ValueError(f"bulk_length must be at least 2 cells ({2 * dx:g} m; below, the split is unstable: "
+                             f"docs/physics.md §1.15), got {self.bulk_length:g} m")
+        object.__setattr__(self, "bulk_length", float(self.bulk_length))
+        if self.taper is None:
+            object.__setattr__(self, "taper", (0.25 * levels[0], levels[0]))
+        check_array("taper", self.taper, ndim=1, shape_tail=(2,), lo=0.0)
+        lo, hi = (float(v) for v in self.taper)
+        if not hi > lo:
+            raise ValueError(f"taper must be (shallow, deep) with deep > shallow, got {self.taper}")
+        if hi < levels[0] * (1 - 1e-9):
+            raise ValueError(f"taper[1] ({hi:g} m) must be at least the shallowest level ({levels[0]:g} m): surface "
+                             f"waves shallower than every level would run at a deeper level's speed (and blow up)")
+        object.__setattr__(self, "taper", (lo, hi))
+        check_scalar("sigma", self.sigma, lo=0.0)
+        check_scalar("rho", self.rho, lo=0.0, lo_open=True)
+        object.__setattr__(self, "sigma", float(self.sigma))
+        object.__setattr__(self, "rho", float(self.rho))
+        if self.pressure is not None:
+            check_instance("pressure", self.pressure, MovingPressure, "wavephys.simulation.split.MovingPressure")
+
+    @property
+    def water(self) -> Water:
+        """The water of the surface waves (depth: the deepest level)."""
+        return Water(g=self.solver.g, rho=self.rho, sigma=self.sigma, depth=self.levels[-1])
+
+
+# -- the spectral side: mirror images for walls, Fourier series for periodic axes --------------
+def _extend(f, axis, odd):
+    """f and its mirror image across the wall after the last cell (odd: with the sign flipped)."""
+    mirror = jnp.flip(f, axis)
+    return jnp.concatenate([f, -mirror if odd else mirror], axis=axis)
+
+
+def _to_spectrum(split, f, odd_x=False, odd_y=False):
+    wall_x = split.solver.sides[0] == "wall"
+    wall_y = split.solver.sides[2] == "wall"
+    if wall_x:
+        f = _extend(f, -1, odd_x)
+    if wall_y:
+        f = _extend(f, -2, odd_y)
+    return jnp.fft.rfft2(f)
+
+
+def _from_spectrum(split, spec, shape):
+    ny, nx = shape
+    wall_x = split.solver.sides[0] == "wall"
+    wall_y = split.solver.sides[2] == "wall"
+    full = (2 * ny if wall_y else ny, 2 * nx if wall_x else nx)
+    return jnp.fft.irfft2(spec, s=full)[..., :ny, :nx]
+
+
+@functools.lru_cache(maxsize=16)
+def _tables(split: Split, shape):
+    """On the (extended) grid's half spectrum: |k|, the unit vector k/|k|, the bulk's Gaussian, and ω of A and S
+    at each level, (J, 2, my, mx//2 + 1), all as numpy float64."""
+    ny, nx = shape
+    dx = split.solver.dx
+    my = 2 * ny if split.solver.sides[2] == "wall" else ny
+    mx = 2 * nx if split.solver.sides[0] == "wall" else nx
+    ky = 2 * np.pi * np.fft.fftfreq(my, dx)[:, None]
+    kx = 2 * np.pi * np.fft.rfftfreq(mx, dx)[None, :]
+    k = np.sqrt(kx * kx + ky * ky)
+    safe = np.where(k > 0, k, 1.0)
+    gauss = np.exp(-0.5 * (k * split.bulk_length) ** 2)
+    omegas = []
+    with jax.ensure_compile_time_eval(), jax.enable_x64(True):
+        for h in split.levels:
+            water = Water(g=split.solver.g, rho=split.rho, sigma=split.sigma, depth=h)
+            w_a = np.asarray(angular_frequency(jnp.asarray(k, jnp.float64), water))
+            omegas.append(np.stack([w_a, k * math.sqrt(split.solver.g * h)]))
+    return k, np.broadcast_to(kx / safe, k.shape), np.broadcast_to(ky / safe, k.shape), gauss, np.stack(omegas)
+
+
+def _taper(split, h):
+    lo, hi = split.taper
+    t = jnp.clip((h - lo) / (hi - lo), 0.0, 1.0)
+    return t * t * (3 - 2 * t)
+
+
+def _separate(split, bed, fields):
+    """Step 1: the surface waves x̃ = w (x − x̄), the smoothed x̄ (over the water; x itself where there is none),
+    the taper w and η_ref."""
+    h = fields[0]
+    shape = h.shape
+    _, _, _, gauss, _ = _tables(split, tuple(shape))
+    gauss = jnp.asarray(gauss, h.dtype)
+    w = _taper(split, h)
+    eta = h + bed
+    total = jnp.sum(w)
+    ref = jnp.where(total > 0, jnp.sum(w * eta) / jnp.where(total > 0, total, 1.0), 0.0)
+    x = jnp.stack([eta - ref, fields[1], fields[2]])
+    den = _from_spectrum(split, gauss * _to_spectrum(split, w), shape)
+    odd = ((False, False), (True, False), (False, True))
+    nums = [_from_spectrum(split, gauss * _to_spectrum(split, w * x[i], *odd[i]), shape) for i in range(3)]
+    inside = den > 1e-4
+    bar = jnp.stack([jnp.where(inside, n / jnp.where(inside, den, 1.0), xi) for n, xi in zip(nums, x)])
+    surf = w * (x - bar)
+    # a crest may not take more than the water there: the bulk keeps h ≥ 0 (the solver would add water to a
+    # negative depth: measured 5e-5 of a wake scene's water in 15 s before this)
+    surf = surf.at[0].set(jnp.minimum(surf[0], h))
+    return surf, bar, w, ref
+
+
+def _advance_surface(split, surf, wbar, depth, dt):
+    """A x̃ + (A − S)(w x̄) at each level, blended by ``depth`` (the bulk's, m): the surface increment (3, ny, nx)."""
+    shape = surf.shape[1:]
+    dtype = surf.dtype
+    k, ux, uy, _, omegas = _tables(split, tuple(shape))
+    k = jnp.asarray(k, dtype)
+    ux, uy = jnp.asarray(ux, dtype), jnp.asarray(uy, dtype)
+    omegas = jnp.asarray(omegas, dtype)
+    pos = k > 0
+    odd = ((False, False), (True, False), (False, True))
+    spec_s = [_to_spectrum(split, surf[i], *odd[i]) for i in range(3)]
+    spec_b = [_to_spectrum(split, wbar[i], *odd[i]) for i in range(3)]
+
+    def evolve(spec, omega):
+        eta, qx, qy = spec
+        ql = ux * qx + uy * qy
+        c, s = jnp.cos(omega * dt), jnp.sin(omega * dt)
+        k_over_w = jnp.where(pos, k / jnp.where(pos, omega, 1.0), 0.0)
+        w_over_k = jnp.where(pos, omega / jnp.where(pos, k, 1.0), 0.0)
+        eta_n = eta * c - 1j * k_over_w * s * ql
+        ql_n = ql * c - 1j * w_over_k * s * eta
+        return eta_n, qx + (ql_n - ql) * ux, qy + (ql_n - ql) * uy
+
+    weights = depth_weights(depth, np.asarray(split.levels)).astype(dtype)
+    out = jnp.zeros_like(surf)
+    for j in range(len(split.levels)):
+        a_s = evolve(spec_s, omegas[j, 0])
+        a_b = evolve(spec_b, omegas[j, 0])
+        s_b = evolve(spec_b, omegas[j, 1])
+        planes = [_from_spectrum(split, a_s[i] + a_b[i] - s_b[i], shape) for i in range(3)]
+        out = out + weights[j] * jnp.stack(planes)
+    return out
+
+
+def _force(split, bed, fields, t, dt):
+    """The moving pressure's push on the discharges, −h ∇(p/ρ) Δt (central differences)."""
+    p = split.pressure
+    if p is None or p.head == 0:
+        return fields
+    ny, nx = fields.shape[1:]
+    dx = split.solver.dx
+    y, x = jnp.meshgrid((jnp.arange(ny) + 0.5) * dx, (jnp.arange(nx) + 0.5) * dx, indexing="ij")
+    sides = split.solver.sides
+    period = (nx * dx if sides[0] == "periodic" else None, ny * dx if sides[2] == "periodic" else None)
+    head = p.head_at(x.astype(fields.dtype), y.astype(fields.dtype), t, period)
+    gy, gx = jnp.gradient(head, dx)
+    g = split.solver.g
+    h = fields[0]
+    return jnp.stack([h, fields[1] - dt * g * h * gx, fields[2] - dt * g * h * gy])
+
+
+def _split_advance(split, bed, fields, t, dt):
+    """One step of the split (module doc, steps 1–3)."""
+    fields = _force(split, bed, fields, t, dt)
+    surf, bar, w, ref = _separate(split, bed, fields)
+    bulk = fields - surf
+    bulk_new = advance_fields(split.solver, bed, bulk, t, dt)
+    bulk_depth = jnp.maximum(bar[0] + ref - bed, 0.0)
+    inc = _advance_surface(split, surf, w * bar, bulk_depth, dt)
+    # the surface waves keep their water: what lands where there are none (on dry or very shallow cells), and
+    # what the blend of levels with weights varying in space adds or takes (each level alone keeps it), goes
+    # back evenly over the surface-wave region
+    w_new = _taper(split, bulk_new[0])
+    lost = jnp.sum(surf[0]) - jnp.sum(inc[0] * w_new)
+    total = jnp.sum(w_new)
+    spread = jnp.where(total > 0, lost / jnp.where(total > 0, total, 1.0), 0.0)
+    inc = jnp.stack([inc[0] * w_new + spread * w_new, inc[1] * w_new, inc[2] * w_new])
+    new = bulk_new + inc
+    dry = split.solver.dry
+    wet = new[0] > dry
+    return jnp.stack([new[0], jnp.where(wet, new[1], 0.0), jnp.where(wet, new[2], 0.0)])
+
+
+def _check_split_run(split, fields, t, dt=None):
+    try:
+        check_run(split.solver, fields, t, dt)
+    except ValueError as error:
+        raise ValueError(f"{error}; in the split model, a bulk_length of "
+                         f"{split.bulk_length / split.solver.dx:.3g} cells (at least 8 advised) and surface "
+                         f"waves steep near the taper's depths {split.taper} m can do this too") from None
+
+
+def _checked(split, bed, state):
+    check_instance("split", split, Split, "wavephys.simulation.split.Split")
+    check_instance("state", state, SWState, "wavephys.simulation.shallow_water.SWState")
+    shape = np.shape(state.fields)
+    if len(shape) != 3:
+        raise ValueError(f"state.fields must have shape (3, ny, nx) (use jax.vmap for a batch), got {shape}")
+    check_array("bed", bed, ndim=2, shape_tail=shape[1:])
+    return jnp.asarray(bed, state.fields.dtype)
+
+
+def split_parts(split: Split, bed, state: SWState):
+    """The separation of step 1: (bulk, surface waves), each (3, ny, nx).
+
+    The surface waves' planes are (η̃, q̃_x, q̃_y), m and m²/s; the bulk's are (h − η̃, q_x − q̃_x, q_y − q̃_y), so
+    the two add up to the state's fields.
+
+    Parameters
+    ----------
+    split : Split
+    bed : array_like (ny, nx)
+        Bed elevation, m.
+    state : SWState
+
+    Returns
+    -------
+    (jax.Array, jax.Array)
+    """
+    b = _checked(split, bed, state)
+    surf = _separate(split, b, state.fields)[0]
+    return state.fields - surf, surf
+
+
+def _split_dt(split, fields):
+    """The bulk solver's adaptive step, capped by the still-water waves' own Courant limit (and the boat's speed),
+    so water at rest under a moving pressure is not stepped by an unbounded Δt."""
+    solver = split.solver
+    c = 2 * jnp.sqrt(solver.g * jnp.max(fields[0]))
+    if split.pressure is not None:
+        c = c + math.hypot(*split.pressure.velocity)
+    cap = jnp.where(c > 0, solver.cfl * solver.dx / jnp.where(c > 0, c, 1.0), jnp.inf)
+    return jnp.minimum(stable_dt_fields(solver, fields), cap)
+
+
+@functools.partial(jax.jit, static_argnums=0)
+def _step_program(split, bed, fields, t, dt):
+    dt = jnp.where(jnp.isfinite(dt), dt, _split_dt(split, fields))
+    return _split_advance(split, bed, fields, t, dt), t + dt
+
+
+def split_step(split: Split, bed, state: SWState, dt: Optional[float] = None) -> SWState:
+    """One step of the split model: Δt = ``dt`` when given, else the bulk solver's adaptive step.
+
+    Parameters
+    ----------
+    split : Split
+    bed : array_like (ny, nx)
+        Bed elevation, m.
+    state : SWState
+        Depth and discharges (:func:`~wavephys.simulation.shallow_water.sw_state`).
+    dt : float, optional
+        s, > 0 (the shallow-water solver's Courant limit applies: :func:`~wavephys.simulation.stable_dt`).
+
+    Returns
+    -------
+    SWState
+        At t + Δt. Pure: ``jax.jit`` and ``jax.vmap`` apply.
+    """
+    b = _checked(split, bed, state)
+    if dt is None:
+        dt = jnp.inf
+    else:
+        check_scalar("dt", dt, lo=0.0, lo_open=True)
+    fields, t = _step_program(split, b, state.fields, state.time, jnp.asarray(dt, state.fields.dtype))
+    if not is_traced(fields):
+        _check_split_run(split, fields, t, dt if np.isfinite(float(dt)) else None)
+    return SWState(fields, t)
+
+
+def _run_to(split, bed, fields, t, until, max_steps):
+    def cond(c):
+        f, t, n = c
+        return (t < until) & (n < max_steps) & jnp.all(jnp.isfinite(f[0]))
+
+    def body(c):
+        f, t, n = c
+        dt = jnp.minimum(_split_dt(split, f), until - t)
+        return _split_advance(split, bed, f, t, dt), jnp.where(until - t <= dt, until, t + dt), n + 1
+
+    return jax.lax.while_loop(cond, body, (fields, t, jnp.asarray(0, jnp.int32)))
+
+
+@functools.partial(jax.jit, static_argnums=0)
+def _run_program(split, bed, fields, t, until, max_steps):
+    return _run_to(split, bed, fields, t, until, max_steps)
+
+
+@functools.partial(jax.jit, static_argnums=(0, 5))
+def _fixed_program(split, bed, fields, t, dt, steps):
+    def body(c, _):
+        f, t = c
+        return (_split_advance(split, bed, f, t, dt), t + dt), None
+
+    return jax.lax.scan(body, (fields, t), None, length=steps)[0]
+
+
+def split_run(split: Split, bed, state: SWState, until: Optional[float] = None, *, steps: Optional[int] = None,
+              dt: Optional[float] = None, max_steps: int = 1_000_000):
+    """Advance to ``until`` with the bulk's adaptive steps, or ``steps`` steps of ``dt``.
+
+    Parameters
+    ----------
+    split : Split
+    bed : array_like (ny, nx)
+        Bed elevation, m.
+    state : SWState
+    until : float, optional
+        s, ≥ state.time.
+    steps : int, optional
+        Fixed steps of ``dt`` instead.
+    dt : float, optional
+        s, with ``steps``.
+    max_steps : int
+        Adaptive steps allowed, ≥ 1.
+
+    Returns
+    -------
+    (SWState, int)
+        The state at the end and the number of steps.
+
+    Raises
+    ------
+    ValueError
+        When the run makes a negative depth or a non-finite value (naming ``cfl`` or ``dt``), or runs out
+        of ``max_steps``.
+    """
+    b = _checked(split, bed, state)
+    if (until is None) == (steps is None):
+        raise ValueError("give either until (adaptive steps) or steps and dt (fixed steps)")
+    if steps is not None:
+        steps = check_int("steps", steps, lo=1)
+        if dt is None:
+            raise ValueError("steps needs dt (s)")
+        check_scalar("dt", dt, lo=0.0, lo_open=True)
+        fields, t = _fixed_program(split, b, state.fields, state.time, jnp.asarray(dt, state.fields.dtype), steps)
+        if not is_traced(fields):
+            _check_split_run(split, fields, t, dt)
+        return SWState(fields, t), steps
+    if dt is not None:
+        raise ValueError("dt is for fixed steps (with steps); adaptive steps (until) choose their own")
+    check_scalar("until", until)
+    max_steps = check_int("max_steps", max_steps, lo=1)
+    if not (is_traced(state.time) or is_traced(until)) and float(until) < float(state.time):
+        raise ValueError(f"until must not be before the state's time {float(state.time)}, got {until}")
+    fields, t, n = _run_program(split, b, state.fields, state.time, jnp.asarray(until, state.fields.dtype),
+                                jnp.asarray(max_steps, jnp.int32))
+    if not is_traced(fields):
+        _check_split_run(split, fields, t)
+        if float(t) < float(until):
+            raise ValueError(f"max_steps = {max_steps} steps reached t = {float(t):.6g} s, not until = {until} s")
+        n = int(n)
+    return SWState(fields, t), n
+
+
+@functools.partial(jax.jit, static_argnums=0)
+def _frames_program(split, bed, fields, t, times, max_steps):
+    def body(c, until):
+        f, t = c
+        f, t, _ = _run_to(split, bed, f, t, until, max_steps)
+        return (f, t), (f, t)
+
+    return jax.lax.scan(body, (fields, t), times)[1]
+
+
+def split_frames(split: Split, bed, state: SWState, times, max_steps: int = 1_000_000) -> SWState:
+    """The states at each of ``times`` (s, non-decreasing, ≥ state.time), stacked: fields (T, 3, ny, nx).
+
+    Parameters
+    ----------
+    split : Split
+    bed : array_like (ny, nx)
+    state : SWState
+    times : array_like (T,)
+    max_steps : int
+        Steps allowed between two frames, ≥ 1.
+
+    Returns
+    -------
+    SWState
+    """
+    b = _checked(split, bed, state)
+    check_array("times", times, ndim=1)
+    ts = np.asarray(times, np.float64)
+    if np.any(np.diff(ts) < 0) or ts[0] < float(state.time) - 1e-12:
+        raise ValueError("times must be non-decreasing and not before the state's time")
+    max_steps = check_int("max_steps", max_steps, lo=1)
+    fields, t = _frames_program(split, b, state.fields, state.time, jnp.asarray(ts, state.fields.dtype),
+                                jnp.asarray(max_steps, jnp.int32))
+    _check_split_run(split, fields, t)
+    if bool(jnp.any(t < jnp.asarray(ts, t.dtype))):
+        raise ValueError(f"max_steps = {max_steps} steps were not enough between two frames")
+    return SWState(fields, t)
