@@ -9,7 +9,12 @@ from wavephys.app.scenes import (SHALLOW_WATER_CYCLES, _ground, _shallow_water_s
                                  scene_frames, scene_water)
 
 
-@pytest.mark.parametrize("name", sorted(SHALLOW_WATER_CYCLES))
+_SLOW_SCENES = {"wakebeach"}  # the split: 5–15 s a run at n = 64; in the slow set (its own test below stays)
+SCENE_PARAMS = [pytest.param(name, marks=pytest.mark.slow) if name in _SLOW_SCENES else name
+                for name in sorted(SHALLOW_WATER_CYCLES)]
+
+
+@pytest.mark.parametrize("name", SCENE_PARAMS)
 def test_dry_land_shows_the_ground_and_the_water_moves(name):
     n = 64
     ground = _ground(name, n)[0]
@@ -21,7 +26,7 @@ def test_dry_land_shows_the_ground_and_the_water_moves(name):
     assert np.abs(a - b).max() > 0.05  # the wave / the flood has moved
 
 
-@pytest.mark.parametrize("name", sorted(SHALLOW_WATER_CYCLES))
+@pytest.mark.parametrize("name", SCENE_PARAMS)
 def test_frames_agree_with_single_frames_and_time_wraps(name):
     n = 64
     frames = list(scene_frames(name, 2, fps=2.0, n=n, start=1.0, caustics=False))

@@ -754,7 +754,7 @@ def sw_run(solver: ShallowWater, bed, state: SWState, until: Optional[float] = N
                                 jnp.asarray(max_steps, jnp.int32))
     if not isinstance(fields, jax.core.Tracer):
         _check_result(solver, fields, t)
-        if float(t) < float(until):
+        if float(t) < float(np.asarray(until, np.asarray(t).dtype)):  # in the state's precision
             raise ValueError(f"max_steps = {max_steps} steps reached t = {float(t):.6g} s, not until = {until} s")
         n = int(n)
     return SWState(fields, t), n

@@ -520,7 +520,7 @@ def split_run(split: Split, bed, state: SWState, until: Optional[float] = None, 
                                 jnp.asarray(max_steps, jnp.int32))
     if not is_traced(fields):
         _check_split_run(split, fields, t)
-        if float(t) < float(until):
+        if float(t) < float(np.asarray(until, np.asarray(t).dtype)):  # in the state's precision
             raise ValueError(f"max_steps = {max_steps} steps reached t = {float(t):.6g} s, not until = {until} s")
         n = int(n)
     return SWState(fields, t), n
