@@ -118,3 +118,18 @@ def test_bad_input_is_refused_by_name():
         choose_regime("beach", 0.01)
     with pytest.raises(ValueError, match="regime"):
         measure_speed_error("linear", 1.0, 32)
+
+
+def test_each_models_row_is_its_best_and_the_refusal_adds_up():
+    """A model that fits nowhere shows its smallest bound (not its first row); the refusal quotes that row's
+    bound with that row's own terms."""
+    long_waves = CoastalScene(depth=(1.0, 1.0), wave_height=0.0, wavelength=(200.0, 200.0), extent=400.0)
+    c = choose_regime(long_waves, 0.0021)  # the split (0.2 %) fits; shallow water needs 64 cells (0.17 %)
+    rows = {r["regime"]: r for r in c.rows}
+    assert rows["nonlinear"]["cells"] == 64 and rows["nonlinear"]["bound"] < 0.0021
+    c = choose_regime(long_waves, 0.0016)
+    assert {r["regime"]: r for r in c.rows}["nonlinear"]["cells"] == 64
+    with pytest.raises(ValueError) as refused:
+        choose_regime(CoastalScene(depth=(0.0, 1.0), wave_height=0.0, wavelength=(200.0, 200.0), extent=400.0), 1e-3)
+    text = str(refused.value)
+    assert "nonlinear 0.17% at 64 cells" in text and "finite volumes 0.15%" in text  # 0.02 % + 0.15 %

@@ -315,6 +315,14 @@ def _advance_surface(split, surf, wbar, depth, dt):
     return out
 
 
+def _central(f, axis, periodic):
+    """The derivative along ``axis`` times the spacing, by central differences (wrapping round a periodic axis;
+    one-sided at a wall)."""
+    if periodic:
+        return 0.5 * (jnp.roll(f, -1, axis) - jnp.roll(f, 1, axis))
+    return jnp.gradient(f, axis=axis)
+
+
 def _force(split, bed, fields, t, dt):
     """The moving pressure's push on the discharges, −h ∇(p/ρ) Δt (central differences)."""
     p = split.pressure
@@ -326,7 +334,8 @@ def _force(split, bed, fields, t, dt):
     sides = split.solver.sides
     period = (nx * dx if sides[0] == "periodic" else None, ny * dx if sides[2] == "periodic" else None)
     head = p.head_at(x.astype(fields.dtype), y.astype(fields.dtype), t, period)
-    gy, gx = jnp.gradient(head, dx)
+    gx = _central(head, -1, sides[0] == "periodic") / dx
+    gy = _central(head, -2, sides[2] == "periodic") / dx
     g = split.solver.g
     h = fields[0]
     return jnp.stack([h, fields[1] - dt * g * h * gx, fields[2] - dt * g * h * gy])
