@@ -63,9 +63,9 @@ def run_walls(args) -> None:
               f"{r['temp_bytes'] / 2**20:>9.1f}{r['energy_drift_1000']:>12.2e}  (quartiles {r['ratio_quartiles'][0]:.2f}–"
               f"{r['ratio_quartiles'][1]:.2f})")
     shoal = shoaling_rows(progress=_say)
-    print(f"{'method':<9}{'kh0':>6}{'ramp/lam':>10}{'slope':>9}{'A/A0':>9}{'mild-slope':>12}{'R ref':>8}{'error':>9}")
+    print(f"{'method':<14}{'kh0':>6}{'ramp/lam':>10}{'slope':>9}{'A/A0':>9}{'mild-slope':>12}{'R ref':>8}{'error':>9}")
     for r in shoal:
-        print(f"{r['method']:<9}{r['kh0']:>6}{r['ramp_wavelengths']:>10}{r['slope']:>9.4f}{r['amplitude']:>9.4f}"
+        print(f"{r['method'] + ' (' + str(r['levels']) + ')':<14}{r['kh0']:>6}{r['ramp_wavelengths']:>10}{r['slope']:>9.4f}{r['amplitude']:>9.4f}"
               f"{r['reference']:>12.4f}{r['reference_reflection']:>8.4f}{r['error']:>+9.2%}")
     _write(rows + shoal, {}, Path(args.json or "bench/results/walls.json"))
 

@@ -82,3 +82,19 @@ def test_the_boat_wake_reaches_the_beach_and_the_water_is_conserved():
     shallows = (bed > -0.8) & (bed < -0.2)
     eta = h[1] + bed
     assert np.abs(eta[shallows]).max() > 0.01  # the wake on the beach (measured 3–6 cm)
+
+
+def test_harbour_wake_reaches_the_quay_and_frames_match_single_times():
+    """``harbour``: the boat's wake has reached the quay by t = 8 s (the rows along it move 10× more than at 1 s,
+    before it arrives), the band under the quay holds still water, and the frames of one run equal the heights
+    made for each time alone."""
+    from wavephys.app.scenes import _harbour_simulation, scene_frames, scene_water
+
+    n = 64
+    _, band, _ = _harbour_simulation(n)
+    water = scene_water("harbour", n, 8.0)
+    assert np.abs(water[n - band:]).max() == 0.0
+    early = scene_water("harbour", n, 1.0)
+    assert np.abs(water[n - band - 3:n - band]).max() > 10 * np.abs(early[n - band - 3:n - band]).max()
+    frames = [np.asarray(s.water) for s in scene_frames("harbour", 2, fps=2.0, n=n, start=7.5, caustics=False)]
+    assert np.array_equal(frames[1], water)

@@ -21,6 +21,9 @@
           wetting and drying, docs/physics.md §1.13; a new wave every 8 s);
 ``dambreak`` a 16 m walled yard: a reservoir 1 m deep bursts through a 3 m breach in its wall and
           floods the dry ground around four blocks (the same solver; the dam breaks again every 12 s).
+``harbour`` a 32 m basin 4 m deep along a stone quay: a boat at 2.5 m/s runs parallel to the quay 6 m
+          off it, and its Kelvin wake reflects from the quay wall (the spectral step with one reflecting
+          side, docs/physics.md §1.11, and an open-sea margin on the others; the boat passes every 12 s).
 ``wakebeach`` a 32 m strip of coast: a boat at 2.5 m/s runs along the shore over 2 m of water, and
           its Kelvin wake (4 m waves, kh ≈ 3) crosses to a sandy beach and runs up it (the split
           model, docs/physics.md §1.15: shallow water alone would give no wake at all at this
@@ -35,6 +38,7 @@ and continues beyond its square to the horizon (:data:`SURROUNDINGS`).
 from __future__ import annotations
 
 import functools
+import math
 from typing import Callable, Iterator, Optional
 
 import numpy as np
@@ -65,14 +69,17 @@ BEACH_LENGTH, BEACH_DEPTH, BEACH_WAVE, BEACH_CYCLE = 16.0, 1.2, 0.15, 8.0  # sid
 DAM_LENGTH, DAM_RESERVOIR, DAM_CYCLE = 16.0, 1.0, 12.0  # side, reservoir depth (m), s
 WAKE_LENGTH, WAKE_DEPTH, WAKE_SPEED, WAKE_TRACK = 32.0, 2.0, 2.5, -5.0  # side, offshore depth (m), boat m/s, x (m)
 WAKE_CYCLE, WAKE_WARMUP = WAKE_LENGTH / WAKE_SPEED, 10.0  # s: a boat passage; the scene's t = 0 is 10 s into one
+HARBOUR_LENGTH, HARBOUR_DEPTH, HARBOUR_SPEED, HARBOUR_TRACK = 32.0, 4.0, 2.5, 6.0  # side, depth (m), boat m/s, y (m)
+HARBOUR_QUAY, HARBOUR_RUN, HARBOUR_CYCLE = 1.0, 6.4, 12.0  # quay band (m); the boat runs 6.4 s of every 12 s
 LENGTHS = {"pool": POOL_LENGTH, "shore": SHORE_LENGTH, "ship": SHIP_LENGTH, "storm": STORM_LENGTH,
-           "calm": CALM_LENGTH, "beach": BEACH_LENGTH, "dambreak": DAM_LENGTH, "wakebeach": WAKE_LENGTH}
+           "calm": CALM_LENGTH, "beach": BEACH_LENGTH, "dambreak": DAM_LENGTH, "wakebeach": WAKE_LENGTH,
+           "harbour": HARBOUR_LENGTH}
 SHALLOW_WATER_CYCLES = {"beach": BEACH_CYCLE, "dambreak": DAM_CYCLE, "wakebeach": WAKE_CYCLE}
 """The scenes run by nonlinear shallow water, and the period (s) after which each starts again
 from rest (time is taken modulo it, so a frame at any time costs at most one cycle of steps)."""
 
 CAUSTICS_METHODS = {"pool": "jacobian", "shore": "jacobian", "ship": "jacobian", "storm": "beam", "calm": "beam",
-                    "beach": "beam", "dambreak": "beam", "wakebeach": "beam"}
+                    "beach": "beam", "dambreak": "beam", "wakebeach": "beam", "harbour": "jacobian"}
 """Each built-in scene's caustics method (:data:`optics.caustics.FLOOR_IRRADIANCE_METHODS`): the
 Jacobian gather (with the exact beam on its folded windows) where it is as close to the converged
 reference as the beam on the scene's own surface, else the beam (the bores of the shallow-water
@@ -148,7 +155,7 @@ def scene_grid(name: str, n: int) -> Grid:
     -------
     Grid
         ``Grid(n, length)`` with the scene's side length, m (8 pool, 16 shore, 40 ship, 64 storm,
-        16 calm).
+        16 calm, 16 beach, 16 dambreak, 32 wakebeach, 32 harbour).
 
     Raises
     ------
@@ -213,6 +220,53 @@ def _pool_heights(sim, state, n):
     eta = np.asarray(sim.surface(state).eta, np.float32)
     pad = (n - eta.shape[0]) // 2
     return np.pad(eta, pad)
+
+
+def _harbour_simulation(n):
+    """(simulation, the quay band in texels, the boat): the basin's water is the scene's square less a band along
+    its top, whose lower edge is the quay wall (a reflecting side); the other three sides are open sea."""
+    from wavephys.physics.ship_waves import Hull, Ship, straight_path
+    from wavephys.simulation import Simulation
+
+    dx = HARBOUR_LENGTH / n
+    band = 2 * int(math.ceil(HARBOUR_QUAY / dx / 2))
+    inner = n - band
+    sim = Simulation(Grid(inner, inner * dx), Water(depth=HARBOUR_DEPTH), dt=1.0 / 30.0, walls=("top",),
+                     margin=max(2, inner // 16), ship_patch=min(inner, 2 * int(round(4.0 / dx))))  # an 8 m patch
+    track = HARBOUR_TRACK + band * dx / 2  # the basin's grid is centred below the band
+    boat = Ship(Hull("gaussian", 3.0, 1.2), straight_path((-8.0, track), (HARBOUR_SPEED, 0.0)), 0.3)
+    return sim, band, boat
+
+
+def _harbour_heights(n, times):
+    """The basin's heights on the scene's grid at each of ``times`` (s, modulo :data:`HARBOUR_CYCLE`), float32
+    (len(times), n, n); still water under the quay band (the ground is above it there)."""
+    sim, band, boat = _harbour_simulation(n)
+    phases = np.mod(np.asarray(times, np.float64), HARBOUR_CYCLE)
+    order = np.argsort(phases, kind="stable")
+    out = np.zeros((len(phases), n, n), np.float32)
+    state, step = sim.initial_state(), 0
+    for i in order:
+        target = int(round(phases[i] / sim.dt))
+        while step < target:
+            state, _ = sim.step(state, ships=[boat] if step * sim.dt < HARBOUR_RUN else [])
+            step += 1
+        out[i, :n - band, band // 2:n - band // 2] = np.asarray(sim.surface(state).eta, np.float32)
+    return out
+
+
+def _harbour_ground(n):
+    X, Y = _mesh("harbour", n)
+    band = 2 * int(math.ceil(HARBOUR_QUAY / (HARBOUR_LENGTH / n) / 2))
+    quay = (np.arange(n) >= n - band)[:, None] * np.ones((1, n))  # the band's rows: the quay, 1.2 m above the water
+    relief = 0.3 * np.sin(0.4 * X + 0.3 * Y) * np.cos(0.25 * Y - 0.2 * X)  # a muddy, uneven basin floor
+    ground = np.where(quay > 0, 1.2, -HARBOUR_DEPTH + relief)
+    face = np.arange(n)[:, None] < n - band // 2  # the quay's face and coping: one course of blocks; the top
+    blocks = 1 + 0.12 * face * np.sign(np.sin(np.pi * X / 1.5))  # beyond is plain (extended past the square)
+    stone = np.array([0.62, 0.6, 0.56]) * blocks[..., None]
+    mud = np.array([0.36, 0.34, 0.26]) * (1 + 0.1 * np.sin(1.3 * X) * np.cos(1.1 * Y))[..., None]
+    albedo = np.where(quay[..., None] > 0, stone, mud)
+    return ground.astype(np.float32), albedo.astype(np.float32)
 
 
 def _shore_ground(n):
@@ -502,7 +556,8 @@ def _cameras():
                 calm=look_at((0.0, -9.5, 2.6), (0.0, 0.5, -0.8), 55.0),
                 beach=look_at((-3.0, -7.5, 2.2), (3.5, 2.0, -0.2), 60.0),
                 dambreak=look_at((8.0, -9.5, 6.5), (-1.0, 0.5, 0.0), 55.0),
-                wakebeach=look_at((13.0, -12.0, 4.0), (-6.0, 2.0, -0.5), 60.0))
+                wakebeach=look_at((13.0, -12.0, 4.0), (-6.0, 2.0, -0.5), 60.0),
+                harbour=look_at((-6.0, -10.0, 4.5), (2.0, 8.0, -0.5), 60.0))
 
 
 def scene_water(name: str, n: int = 256, time: float = 0.0, ship: bool = True) -> np.ndarray:
@@ -543,6 +598,8 @@ def scene_water(name: str, n: int = 256, time: float = 0.0, ship: bool = True) -
         return np.asarray(_calm_sea(n).heights(scene_grid("calm", n), float(time)), np.float32)
     if name in SHALLOW_WATER_CYCLES:
         return _shallow_water_heights(name, n, [float(time)])[0]
+    if name == "harbour":
+        return _harbour_heights(n, [float(time)])[0]
     return _ship_wake(n, time) if ship else np.zeros((n, n), np.float32)
 
 
@@ -554,7 +611,7 @@ scattering and particles (Jerlov type II-like, 1/m), so the 20 m floor fades out
 def _ground(name, n):
     return {"pool": _pool_ground, "shore": _shore_ground, "ship": _ship_ground, "storm": _storm_ground,
             "calm": _calm_ground, "beach": _beach_ground, "dambreak": _dam_ground,
-            "wakebeach": _wake_ground}[name](n)
+            "wakebeach": _wake_ground, "harbour": _harbour_ground}[name](n)
 
 
 def scene_caustics(name: str, water, method: str | None = None, **options) -> np.ndarray:
@@ -619,13 +676,13 @@ def _assemble(name, n, water, caustics=True, camera=None, foam=None):
         c = _shallow_water_caustics(name, n, water, ground)
     else:
         c = _caustics(water, scene_grid(name, n), ground, CAUSTICS_METHODS[name])
-    extra = SEA_WATER if name in ("storm", "beach", "wakebeach") else {}
+    extra = SEA_WATER if name in ("storm", "beach", "wakebeach", "harbour") else {}
     return Scene(ground, water, LENGTHS[name], camera or _cameras()[name], sun=SUN, albedo=albedo, caustics=c,
                  foam=foam, sky="preetham", surroundings=SURROUNDINGS[name], **extra)
 
 
 SURROUNDINGS = {"pool": "extend", "shore": "tile", "ship": "extend", "storm": "tile", "calm": "extend",
-                "beach": "tile", "dambreak": "extend", "wakebeach": "tile"}
+                "beach": "tile", "dambreak": "extend", "wakebeach": "tile", "harbour": "extend"}
 """What each built-in scene shows beyond its square: the pool's deck, the lake's meadow, the
 ship's calm sea and the yard extended from their borders; the swell, the storm and the two beaches
 (periodic along their shores) tiled to the horizon."""
@@ -729,8 +786,9 @@ def _frames(name, count, fps, n, start, caustics):
         for water, foam in _storm_frames(n, [start + i / fps for i in range(count)]):
             yield _assemble(name, n, water, caustics, foam=foam)
         return
-    if name in SHALLOW_WATER_CYCLES:  # one run of the solver for all the frames
-        for water in _shallow_water_heights(name, n, [start + i / fps for i in range(count)]):
+    if name in SHALLOW_WATER_CYCLES or name == "harbour":  # one run of the simulation for all the frames
+        run = _harbour_heights if name == "harbour" else functools.partial(_shallow_water_heights, name)
+        for water in run(n, [start + i / fps for i in range(count)]):
             yield _assemble(name, n, water, caustics)
         return
     if name != "pool":

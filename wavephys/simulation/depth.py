@@ -29,6 +29,7 @@ import jax.numpy as jnp
 import numpy as np
 
 from wavephys.core.inputs import check_array, check_instance, check_int, check_scalar
+from wavephys.core.water import Water
 from wavephys.core.methods import Methods
 from wavephys.core.pytree import register
 from wavephys.physics.depth import depth_levels, depth_weights
@@ -36,8 +37,8 @@ from wavephys.physics.dispersion import angular_frequency, surface_operator
 from wavephys.physics.ring_waves import rotate_pair
 from wavephys.simulation.model import Model, operators
 
-__all__ = ["Floor", "DepthState", "depth_state", "step_levels", "step_shallow", "DEPTH_METHODS", "run_depth",
-           "shallow_substeps"]
+__all__ = ["Floor", "DepthState", "depth_state", "step_levels", "step_shallow", "step_symmetric", "DEPTH_METHODS",
+           "run_depth", "run_profile", "shallow_substeps", "symmetric_levels", "SYMMETRIC_COURANT"]
 
 
 @dataclass(frozen=True)
@@ -151,31 +152,42 @@ def depth_state(model: Model, eta, phi=None, time: float = 0.0) -> DepthState:
 
 
 # -- levels: the spectral step at a few depths, blended -----------------------------------------
+def _level_operators(k, water, dt, levels):
+    """Per level, on the wavenumbers ``k`` (rad/m, any shape): (cos ωΔt, sin ωΔt, ω/K, K/ω, K), (J, 5, *k.shape),
+    float64 (inside ``jax.enable_x64``)."""
+    k = jnp.asarray(k, jnp.float64)
+    rows = []
+    for h in levels:
+        lw = replace(water, depth=float(h))
+        w = angular_frequency(k, lw)
+        big_k = surface_operator(k, lw)
+        pos = k > 0
+        rows.append(jnp.stack(jnp.broadcast_arrays(
+            jnp.cos(w * dt), jnp.sin(w * dt),
+            jnp.where(pos, w / jnp.where(pos, big_k, 1.0), 0.0),
+            jnp.where(pos, big_k / jnp.where(pos, w, 1.0), 0.0), big_k)))
+    return jnp.stack(rows)
+
+
+def _model_k(model: Model):
+    ky, kx = model.mode_wavenumbers()
+    return jnp.sqrt(ky * ky + kx * kx)
+
+
 @functools.lru_cache(maxsize=8)
 def _level_tables(model: Model, floor: Floor):
     """Per level: (cos ωΔt, sin ωΔt, ω/K, K/ω, K) on the model's layout, float64 → model dtype; and the
     per-place weights (J, n, n)."""
     levels = depth_levels(floor.depth, floor.levels)
     with jax.enable_x64(True):
-        ky, kx = model.mode_wavenumbers()
-        k = jnp.sqrt(ky * ky + kx * kx).astype(jnp.float64)
-        rows = []
-        for h in levels:
-            water = replace(model.water, depth=float(h))
-            w = angular_frequency(k, water)
-            big_k = surface_operator(k, water)
-            pos = k > 0
-            rows.append(jnp.stack(jnp.broadcast_arrays(
-                jnp.cos(w * model.dt), jnp.sin(w * model.dt),
-                jnp.where(pos, w / jnp.where(pos, big_k, 1.0), 0.0),
-                jnp.where(pos, big_k / jnp.where(pos, w, 1.0), 0.0), big_k)))
-        tables = jnp.stack(rows).astype(model.dtype)
+        tables = _level_operators(_model_k(model), model.water, float(model.dt), levels).astype(model.dtype)
         weights = depth_weights(floor.depth, levels).astype(model.dtype)
     return tables, weights, levels
 
 
-def _levels_program(model: Model, tables, weights, mask, fields):
-    spec = model.transform(fields)
+def _levels_program(forward, inverse, tables, weights, mask, fields):
+    """One levels step of ``fields`` (η, φ) with the mode transform ``forward`` and its ``inverse``."""
+    spec = forward(fields)
     eta_h, phi_h = spec[0], spec[1]
     zero_k = tables[0, 4] == 0  # k = 0: the mean height stays
     planes = []
@@ -184,13 +196,15 @@ def _levels_program(model: Model, tables, weights, mask, fields):
         chi = -w_over_k * eta_h
         ph, ch = rotate_pair(phi_h, chi, c, s)
         planes.append(jnp.stack([jnp.where(zero_k, eta_h, -k_over_w * ch), ph, big_k * phi_h]))
-    out = model.inverse_transform(jnp.stack(planes))  # (J, 3, n, n)
+    out = inverse(jnp.stack(planes))  # (J, 3, n, n)
     blended = jnp.sum(weights[:, None] * out, axis=0)
     new = blended[:2] if mask is None else blended[:2] * mask
     return new, jnp.stack([fields[0], blended[2]])
 
 
-_levels_jit = jax.jit(_levels_program, static_argnums=0)
+@functools.partial(jax.jit, static_argnums=0)
+def _levels_jit(model, tables, weights, mask, fields):
+    return _levels_program(model.transform, model.inverse_transform, tables, weights, mask, fields)
 
 
 def step_levels(model: Model, floor: Floor, state: DepthState):
@@ -217,7 +231,8 @@ def step_levels(model: Model, floor: Floor, state: DepthState):
     """
     _check(model, floor, state)
     if not float(floor.depth.min()) > 0:
-        raise ValueError("floor: the levels method needs depth > 0 everywhere (dry land: method='shallow')")
+        raise ValueError("floor: the levels method needs depth > 0 everywhere (dry land: method='shallow' "
+                         "or 'symmetric')")
     tables, weights, _ = _level_tables(model, floor)
     new, surf = _levels_jit(model, tables, weights, operators(model).mask, state.fields)
     return DepthState(new.astype(model.dtype), state.time + model.dt), surf
@@ -255,11 +270,9 @@ def shallow_substeps(model: Model, floor: Floor) -> int:
     return max(1, int(math.ceil(c * float(model.dt) / (0.5 * float(model.grid.dx)))))
 
 
-@functools.partial(jax.jit, static_argnums=(0, 5))
-def _shallow_program(model: Model, hx, hy, mask, fields, substeps):
-    dx = model.grid.dx
-    g = model.water.g
-    d = model.dt / substeps
+def _shallow_steps(dx, g, dt, hx, hy, mask, fields, substeps):
+    """``substeps`` symplectic-Euler sub-steps of the linear shallow-water equations over Δt on any (ny, nx)."""
+    d = dt / substeps
 
     def divergence(phi):
         fx = hx * (jnp.roll(phi, -1, -1) - phi) / dx
@@ -277,6 +290,13 @@ def _shallow_program(model: Model, hx, hy, mask, fields, substeps):
     if mask is not None:
         new = new * mask
     return new, jnp.stack([fields[0], eta_dot])
+
+
+def _shallow_program(model: Model, hx, hy, mask, fields, substeps):
+    return _shallow_steps(model.grid.dx, model.water.g, model.dt, hx, hy, mask, fields, substeps)
+
+
+_shallow_jit = jax.jit(_shallow_program, static_argnums=(0, 5))
 
 
 def step_shallow(model: Model, floor: Floor, state: DepthState):
@@ -307,7 +327,141 @@ def step_shallow(model: Model, floor: Floor, state: DepthState):
     wx, wy = model.wall_axes
     hx = _faces(floor.depth, -1, wx).astype(model.dtype)
     hy = _faces(floor.depth, -2, wy).astype(model.dtype)
-    new, surf = _shallow_program(model, hx, hy, operators(model).mask, state.fields, shallow_substeps(model, floor))
+    new, surf = _shallow_jit(model, hx, hy, operators(model).mask, state.fields, shallow_substeps(model, floor))
+    return DepthState(new.astype(model.dtype), state.time + model.dt), surf
+
+
+# -- symmetric: the levels' operators blended so that energy is conserved ------------------------
+SYMMETRIC_COURANT = 1.0
+"""The symmetric method's sub-step δ keeps ω_max·δ ≤ this (leapfrog is stable to 2): the highest frequency
+on the grid turns by at most 1 rad a sub-step, a resolved wave's by far less (its phase error is (ωδ)²/24)."""
+
+
+def symmetric_levels(depth, count: int = 4) -> np.ndarray:
+    """The symmetric method's depth levels for a floor: :func:`~wavephys.physics.depth.depth_levels` over its
+    wet part, with 0 in front when it has dry land (h = 0), m, increasing.
+
+    Between the dry level and the shallowest wet one the operator is linear in h, which is the shallow-water
+    limit K = k²h: near a shoreline the blend is exact for long waves.
+
+    Parameters
+    ----------
+    depth : array_like
+        h(x), m, ≥ 0, with some water (h > 0).
+    count : int
+        Wet levels, 1 … 16.
+
+    Returns
+    -------
+    numpy.ndarray
+    """
+    check_array("depth", depth, lo=0.0)
+    h = np.asarray(depth, np.float64)
+    wet = h[h > 0]
+    if wet.size == 0:
+        raise ValueError("depth: the floor is dry everywhere (no water to step)")
+    levels = depth_levels(wet, count)
+    return np.concatenate([[0.0], levels]) if wet.size < h.size else levels
+
+
+def _symmetric_operators(k, water, levels):
+    """(K at each wet level (J, *k.shape), the restoring multiplier g + σk²/ρ or None without surface tension,
+    ω_max = max √(restoring·K)), float64 (inside ``jax.enable_x64``)."""
+    k = jnp.asarray(k, jnp.float64)
+    big_k = jnp.stack([surface_operator(k, replace(water, depth=float(h))) for h in levels if h > 0])
+    restoring = water.g + water.sigma * k * k / water.rho
+    omega_max = float(jnp.sqrt(jnp.max(restoring * big_k[-1])))
+    return big_k, (restoring if water.sigma > 0 else None), omega_max
+
+
+def _symmetric_steps(forward, inverse, big_k, roots, restoring, g, dt, mask, fields, substeps):
+    """``substeps`` leapfrog sub-steps over Δt of η_t = Σ_j S_j G_j S_j φ, φ_t = −Rη (module doc)."""
+    d = dt / substeps
+
+    def apply_g(phi):
+        return jnp.sum(roots * inverse(big_k * forward(roots * phi)), axis=0)
+
+    def restore(eta):
+        return g * eta if restoring is None else inverse(restoring * forward(eta))
+
+    def body(_, f):
+        eta, phi = f[0], f[1]
+        phi = phi - 0.5 * d * restore(eta)
+        eta = eta + d * apply_g(phi)
+        phi = phi - 0.5 * d * restore(eta)
+        return jnp.stack([eta, phi])
+
+    eta_dot = apply_g(fields[1])
+    new = jax.lax.fori_loop(0, substeps, body, fields)
+    if mask is not None:
+        new = new * mask
+    return new, jnp.stack([fields[0], eta_dot])
+
+
+@functools.lru_cache(maxsize=8)
+def _symmetric_tables(model: Model, floor: Floor):
+    """(K per wet level, restoring or None, √w per wet level (J, n, n), sub-steps), in the model's dtype."""
+    levels = symmetric_levels(floor.depth, floor.levels)
+    with jax.enable_x64(True):
+        big_k, restoring, omega_max = _symmetric_operators(_model_k(model), model.water, levels)
+        weights = depth_weights(floor.depth, levels)[int(levels[0] == 0):]  # the dry level carries no flux
+        roots = jnp.sqrt(weights)
+        cast = lambda a: None if a is None else a.astype(model.dtype)
+        substeps = max(1, int(math.ceil(omega_max * float(model.dt) / SYMMETRIC_COURANT)))
+        return cast(big_k), cast(restoring), cast(roots), substeps
+
+
+def _symmetric_program(model: Model, big_k, restoring, roots, mask, fields, substeps):
+    return _symmetric_steps(model.transform, model.inverse_transform, big_k, roots, restoring, model.water.g,
+                            model.dt, mask, fields, substeps)
+
+
+_symmetric_jit = jax.jit(_symmetric_program, static_argnums=(0, 6))
+
+
+def _is_one_level(floor: Floor) -> bool:
+    """A floor the symmetric method steps exactly by the spectral step: one depth, no dry land."""
+    return len(symmetric_levels(floor.depth, floor.levels)) == 1
+
+
+def step_symmetric(model: Model, floor: Floor, state: DepthState):
+    """One step over the floor by the depth levels blended symmetrically: η_t = Σ_j S_j G_j S_j φ, φ_t = −gη.
+
+    G_j is the exact linear operator (Dirichlet-to-Neumann, K_j = |k| tanh(|k|h_j) on the model's modes) at
+    depth level h_j and S_j multiplies by √w_j(x), the square root of the level's weight at each place (linear
+    in h between the two levels around h(x)). The blend is self-adjoint, so the scheme is Hamiltonian: energy
+    ½∫(gη² + φ·Σ S_j G_j S_j φ) is conserved, and over a slowly varying floor a wave's energy flux is too —
+    it shoals right at every kh, where the levels method (which blends the levels' outputs) does not. Time:
+    Störmer–Verlet (leapfrog) with ω_max·δ ≤ :data:`SYMMETRIC_COURANT` sub-steps. A floor at one depth with
+    no dry land is stepped exactly, by the spectral step. Dry land (h = 0) is a level with no flux: between it
+    and the shallowest wet level the operator is k²h, the shallow-water limit, so waves run to a shoreline
+    and reflect from it.
+
+    Parameters
+    ----------
+    model : Model
+        Grid, water (g, ρ, σ; its depth is ignored: the floor's is used), Δt, walls and margin.
+    floor : Floor
+        h(x) ≥ 0, with water somewhere.
+    state : DepthState
+
+    Returns
+    -------
+    (DepthState, jax.Array (2, n, n))
+        The state at t + Δt, and (η, η̇) at t, m and m/s.
+
+    References
+    ----------
+    S. Jeschke & C. Wojtan (2023). Generalizing shallow water simulations with dispersive surface waves.
+    *ACM TOG* 42(4), 83 (depth levels blended per place); V. E. Zakharov (1968). Stability of periodic
+    waves of finite amplitude on the surface of a deep fluid. *J. Appl. Mech. Tech. Phys.* 9, 190–194
+    (water waves as a Hamiltonian system in η and the surface potential).
+    """
+    _check(model, floor, state)
+    if _is_one_level(floor):
+        return step_levels(model, floor, state)
+    big_k, restoring, roots, substeps = _symmetric_tables(model, floor)
+    new, surf = _symmetric_jit(model, big_k, restoring, roots, operators(model).mask, state.fields, substeps)
     return DepthState(new.astype(model.dtype), state.time + model.dt), surf
 
 
@@ -323,7 +477,7 @@ def _check(model, floor, state):
         raise ValueError(f"state.fields must have shape (2, {n}, {n}), got {np.shape(state.fields)}")
 
 
-DEPTH_METHODS = Methods("varying depth", levels=step_levels, shallow=step_shallow)
+DEPTH_METHODS = Methods("varying depth", levels=step_levels, shallow=step_shallow, symmetric=step_symmetric)
 """Steppers over a varying floor by name (module doc)."""
 
 
@@ -337,7 +491,7 @@ def run_depth(model: Model, floor: Floor, state: DepthState, steps: int, method:
     state : DepthState
     steps : int
         ≥ 1.
-    method : {"levels", "shallow"}
+    method : {"levels", "shallow", "symmetric"}
         A name in :data:`DEPTH_METHODS`.
 
     Returns
@@ -348,11 +502,17 @@ def run_depth(model: Model, floor: Floor, state: DepthState, steps: int, method:
     DEPTH_METHODS.check(method, "method")
     _check(model, floor, state)
     mask = operators(model).mask
+    if method == "symmetric" and _is_one_level(floor):
+        method = "levels"  # one depth, no dry land: the exact spectral step
     if method == "levels":
         if not float(floor.depth.min()) > 0:
-            raise ValueError("floor: the levels method needs depth > 0 everywhere (dry land: method='shallow')")
+            raise ValueError("floor: the levels method needs depth > 0 everywhere (dry land: method='shallow' "
+                             "or 'symmetric')")
         tables, weights, _ = _level_tables(model, floor)
         fields, surfaces = _scan(model, "levels", (tables, weights, mask), state.fields, steps, 0)
+    elif method == "symmetric":
+        big_k, restoring, roots, substeps = _symmetric_tables(model, floor)
+        fields, surfaces = _scan(model, "symmetric", (big_k, restoring, roots, mask), state.fields, steps, substeps)
     else:
         wx, wy = model.wall_axes
         hx = _faces(floor.depth, -1, wx).astype(model.dtype)
@@ -366,8 +526,84 @@ def _scan(model, kind, args, fields, steps, substeps):
     """``steps`` steps of one method, compiled once per (model, method, steps, sub-steps)."""
     if kind == "levels":
         def body(f, _):
-            return _levels_program(model, *args, f)
+            return _levels_program(model.transform, model.inverse_transform, *args, f)
+    elif kind == "symmetric":
+        def body(f, _):
+            return _symmetric_program(model, *args, f, substeps)
     else:
         def body(f, _):
-            return _shallow_program.__wrapped__(model, *args, f, substeps)
+            return _shallow_program(model, *args, f, substeps)
     return jax.lax.scan(body, fields, None, length=steps)
+
+
+def run_profile(depth, dx: float, water: Water, dt: float, eta, phi, steps: int, method: str = "symmetric",
+                levels: int = 4):
+    """Plane waves along x over a depth profile h(x), periodic: the steppers of :data:`DEPTH_METHODS` on one
+    row (what a square grid gives for waves uniform in y, at 1/n of the cost).
+
+    Parameters
+    ----------
+    depth : array_like (n,)
+        h(x), m, ≥ 0 (> 0 for ``"levels"``), n even ≥ 4.
+    dx : float
+        Spacing, m, > 0.
+    water : Water
+        g, ρ, σ (its depth is ignored).
+    dt : float
+        Step, s, > 0.
+    eta, phi : array_like (n,)
+        Height (m) and surface potential (m²/s) at the start.
+    steps : int
+        ≥ 1.
+    method : {"levels", "shallow", "symmetric"}
+    levels : int
+        Depth levels, 1 … 16 (as :class:`Floor`).
+
+    Returns
+    -------
+    (jax.Array, jax.Array)
+        η and φ after ``steps`` steps, (n,), float64 when x64 is on, else float32.
+    """
+    check_array("depth", depth, ndim=1, lo=0.0)
+    n = check_int("depth.shape[0]", np.shape(depth)[0], lo=4, even=True)
+    dx = check_scalar("dx", dx, lo=0.0, lo_open=True)
+    check_instance("water", water, Water, "wavephys.Water")
+    dt = check_scalar("dt", dt, lo=0.0, lo_open=True)
+    check_array("eta", eta, ndim=1, shape_tail=(n,))
+    check_array("phi", phi, ndim=1, shape_tail=(n,))
+    steps = check_int("steps", steps, lo=1)
+    DEPTH_METHODS.check(method, "method")
+    levels = check_int("levels", levels, lo=1, hi=16)
+    h = np.broadcast_to(np.asarray(depth, np.float64), (2, n))
+    dtype = jnp.float64 if jax.config.jax_enable_x64 else jnp.float32
+    forward = jnp.fft.rfft2
+    inverse = lambda spec: jnp.fft.irfft2(spec, s=(2, n))
+    ky = 2 * np.pi * np.fft.fftfreq(2, dx)[:, None]
+    kx = 2 * np.pi * np.fft.rfftfreq(n, dx)[None, :]
+    k = np.sqrt(kx * kx + ky * ky)
+    fields = jnp.stack([jnp.broadcast_to(jnp.asarray(eta, dtype), (2, n)),
+                        jnp.broadcast_to(jnp.asarray(phi, dtype), (2, n))])
+    if method == "symmetric" and len(symmetric_levels(h, levels)) == 1:
+        method = "levels"
+    with jax.enable_x64(True):
+        if method == "levels":
+            lv = depth_levels(h, levels)
+            args = (np.asarray(_level_operators(k, water, dt, lv)), np.asarray(depth_weights(h, lv)))
+            one = lambda f: _levels_program(forward, inverse, *(jnp.asarray(a, dtype) for a in args), None, f)[0]
+        elif method == "symmetric":
+            lv = symmetric_levels(h, levels)
+            big_k, restoring, omega_max = _symmetric_operators(k, water, lv)
+            roots = np.sqrt(np.asarray(depth_weights(h, lv))[int(lv[0] == 0):])
+            sub = max(1, int(math.ceil(omega_max * dt / SYMMETRIC_COURANT)))
+            args = (np.asarray(big_k), None if restoring is None else np.asarray(restoring), roots)
+            one = lambda f: _symmetric_steps(forward, inverse, jnp.asarray(args[0], dtype), jnp.asarray(args[2], dtype),
+                                             None if args[1] is None else jnp.asarray(args[1], dtype), water.g, dt,
+                                             None, f, sub)[0]
+        else:
+            hx, hy = _faces(h, -1, False), np.zeros((2, n))
+            c = math.sqrt(float(water.g) * float(h.max()))
+            sub = max(1, int(math.ceil(c * dt / (0.5 * dx))))
+            one = lambda f: _shallow_steps(dx, water.g, dt, jnp.asarray(hx, dtype), jnp.asarray(hy, dtype), None, f,
+                                           sub)[0]
+    out = jax.jit(lambda f: jax.lax.fori_loop(0, steps, lambda _, f: one(f), f))(fields)
+    return out[0, 0], out[1, 0]
