@@ -98,3 +98,21 @@ def test_harbour_wake_reaches_the_quay_and_frames_match_single_times():
     assert np.abs(water[n - band - 3:n - band]).max() > 10 * np.abs(early[n - band - 3:n - band]).max()
     frames = [np.asarray(s.water) for s in scene_frames("harbour", 2, fps=2.0, n=n, start=7.5, caustics=False)]
     assert np.array_equal(frames[1], water)
+
+
+def test_shore_swell_feels_the_beach():
+    """``shore``: the swell runs over the beach's floor (the symmetric depth blend) — none under the sand (the old
+    swell passed under it), waves up to the surf zone, damped within it; one run's frames equal the heights made
+    for each time alone."""
+    from wavephys.app.scenes import _shore_setup, scene_frames, scene_water
+
+    n = 64
+    _, floor, _, _, _ = _shore_setup(n)
+    depth = floor.depth
+    water = scene_water("shore", n, 3.0)
+    assert np.abs(water[depth == 0]).max() == 0.0
+    rms = lambda band: float(np.sqrt(np.mean(water[band] ** 2)))
+    assert rms((depth > 0.4) & (depth < 1.0)) > 0.02
+    assert rms((depth > 0) & (depth < 0.05)) < 0.2 * rms((depth > 0.4) & (depth < 1.0))
+    frames = [np.asarray(s.water) for s in scene_frames("shore", 2, fps=1.0, n=n, start=2.0, caustics=False)]
+    assert np.array_equal(frames[1], water)

@@ -5,8 +5,10 @@
           with ring waves of three stones from the spectral simulation of a tank whose
           walls reflect them (docs/physics.md §1.11), caustics by the Jacobian gather
           (:data:`CAUSTICS_METHODS`);
-``shore`` a 16 m sandy beach rising out of the water under a three-component swell
-          (deep-water dispersion), caustics on the sloping ground;
+``shore`` a 16 m sandy beach rising out of the water under a three-component swell that feels the
+          floor: it slows, shortens, turns towards the beach and grows as the water shoals (the
+          symmetric depth blend, docs/physics.md §1.12), then is damped in the surf zone; made along
+          the offshore side by a relaxation zone; caustics on the sloping ground;
 ``ship``  a 40 m patch of 8 m deep water with the steady Kelvin wake of a hull at 2 m/s;
           ``ship=False`` gives the same frame without the ship (for comparisons).
 ``storm`` a 64 m patch of open sea under a 9 m/s wind: a Phillips sea with choppy
@@ -60,6 +62,8 @@ MAX_N = 8192
 """Largest resolution of a built-in scene, texels per side."""
 POOL_LENGTH, POOL_DEPTH, POOL_TANK = 8.0, 1.5, 6.9  # scene side, water depth, side between the walls (m)
 SHORE_LENGTH = 16.0
+SHORE_WARMUP, SHORE_CYCLE = 16.0, 16.0  # s: the swell has crossed to the beach; frames repeat after a cycle
+SHORE_RELAX, SHORE_SURF = (-8.0, -5.5), (0.35, 0.05, 3.0)  # relaxation zone x (m); surf damping depths (m), rate 1/s
 SWELL = ((4, 0, 0.05, 0.0), (5, 1, 0.03, 1.3), (3, -1, 0.035, 2.1))  # (m_x, m_y, amplitude m, phase)
 SHIP_LENGTH, SHIP_SPEED, SHIP_DEPTH = 40.0, 2.0, 8.0
 STORM_LENGTH, STORM_WIND, STORM_CHOPPINESS, STORM_DEPTH = 64.0, 9.0, 1.0, 20.0
@@ -78,7 +82,7 @@ SHALLOW_WATER_CYCLES = {"beach": BEACH_CYCLE, "dambreak": DAM_CYCLE, "wakebeach"
 """The scenes run by nonlinear shallow water, and the period (s) after which each starts again
 from rest (time is taken modulo it, so a frame at any time costs at most one cycle of steps)."""
 
-CAUSTICS_METHODS = {"pool": "jacobian", "shore": "jacobian", "ship": "jacobian", "storm": "beam", "calm": "beam",
+CAUSTICS_METHODS = {"pool": "jacobian", "shore": "beam", "ship": "jacobian", "storm": "beam", "calm": "beam",
                     "beach": "beam", "dambreak": "beam", "wakebeach": "beam", "harbour": "jacobian"}
 """Each built-in scene's caustics method (:data:`optics.caustics.FLOOR_IRRADIANCE_METHODS`): the
 Jacobian gather (with the exact beam on its folded windows) where it is as close to the converged
@@ -281,16 +285,64 @@ def _shore_ground(n):
     return ground.astype(np.float32), (sand * ripple[..., None]).astype(np.float32)
 
 
-def _swell(n, t):
+@functools.lru_cache(maxsize=4)
+def _shore_setup(n):
+    """(model, floor, relaxation weights, surf damping per step, swell components (kx, ky, ω, a, phase)) of the
+    shore: linear waves over the beach's floor by the symmetric depth blend (docs/physics.md §1.12)."""
     from wavephys.physics.dispersion import angular_frequency
+    from wavephys.simulation import Model
+    from wavephys.simulation.depth import Floor
 
-    X, Y = _mesh("shore", n)
-    eta = np.zeros((n, n))
-    for mx, my, a, phase in SWELL:  # periodic on the square, so the caustics' FFTs see no seams
+    X = _mesh("shore", n)[0]
+    ground = _shore_ground(n)[0].astype(np.float64)
+    depth = np.maximum(-ground, 0.0)
+    model = Model(scene_grid("shore", n), Water(sigma=0.0), dt=1.0 / 30.0)
+    deep = Water(sigma=0.0, depth=float(depth[:, 0].mean()))
+    components = []
+    for mx, my, a, phase in SWELL:  # periodic along the shore, so the swell and its caustics have no seams
         kx, ky = 2 * np.pi * mx / SHORE_LENGTH, 2 * np.pi * my / SHORE_LENGTH
-        w = float(angular_frequency(np.hypot(kx, ky), Water(sigma=0.0)))
-        eta += a * np.cos(kx * X + ky * Y - w * t + phase)
-    return eta.astype(np.float32)
+        components.append((kx, ky, float(angular_frequency(np.hypot(kx, ky), deep)), a, phase))
+    relax = np.where(X < SHORE_RELAX[1], _smoothstep(SHORE_RELAX[1], SHORE_RELAX[0], X), 0.0)
+    surf = np.exp(-SHORE_SURF[2] * _smoothstep(SHORE_SURF[0], SHORE_SURF[1], depth) * model.dt) * (depth > 0)
+    return model, Floor(depth, levels=4), relax, surf, tuple(components)
+
+
+def _shore_swell(n, t):
+    """The incoming swell's (η, φ) at time t, m and m²/s (deep-water components at the offshore depth)."""
+    X, Y = _mesh("shore", n)
+    eta, phi = np.zeros((n, n)), np.zeros((n, n))
+    for kx, ky, w, a, phase in _shore_setup(n)[4]:
+        theta = kx * X + ky * Y - w * t + phase
+        eta += a * np.cos(theta)
+        phi += 9.81 * a / w * np.sin(theta)
+    return eta, phi
+
+
+def _shore_heights(n, times):
+    """The shore's heights at each of ``times`` (s, modulo :data:`SHORE_CYCLE`, after :data:`SHORE_WARMUP`),
+    float32 (len(times), n, n). Each step of the symmetric depth blend is followed by the relaxation zone along
+    the offshore side (the water there is pulled to the incoming swell: it makes the swell and takes what the
+    beach sends back) and by a surf-zone damping where the water is shallower than 35 cm (a crude stand-in for
+    breaking: linear waves would steepen without limit at the shoreline)."""
+    from wavephys.simulation.depth import depth_state, run_depth
+
+    model, floor, relax, surf, _ = _shore_setup(n)
+    phases = SHORE_WARMUP + np.mod(np.asarray(times, np.float64), SHORE_CYCLE)
+    order = np.argsort(phases, kind="stable")
+    out = np.zeros((len(phases), n, n), np.float32)
+    state = depth_state(model, *(f * relax for f in _shore_swell(n, 0.0)))
+    step = 0
+    for i in order:
+        target = int(round(phases[i] / model.dt))
+        while step < target:
+            state, _ = run_depth(model, floor, state, 1, "symmetric")
+            step += 1
+            want_eta, want_phi = _shore_swell(n, step * model.dt)
+            eta, phi = np.asarray(state.eta, np.float64), np.asarray(state.phi, np.float64)
+            state = depth_state(model, (eta + relax * (want_eta - eta)) * surf,
+                                (phi + relax * (want_phi - phi)) * surf, step * model.dt)
+        out[i] = np.asarray(state.eta, np.float32)
+    return out
 
 
 def _ship_wake(n, t):
@@ -571,7 +623,8 @@ def scene_water(name: str, n: int = 256, time: float = 0.0, ship: bool = True) -
         Grid points per side, even, 64 to 8192 (:data:`MAX_N`).
     time : float
         Seconds after the start, s, 0 to 3600 (:data:`MAX_TIME`): the pool's simulation is stepped
-        up to it (at 1/30 s), the swell's phase, the ship's position, the storm's sea, the pond's noise.
+        up to it (at 1/30 s), the shore's swell too (16 s of warm-up, then modulo 16 s), the ship's position, the
+        harbour's boat (modulo 12 s), the storm's sea, the pond's noise.
     ship : bool
         ``"ship"`` only: False gives flat water, the same frame without the ship.
 
@@ -591,7 +644,7 @@ def scene_water(name: str, n: int = 256, time: float = 0.0, ship: bool = True) -
             state, _ = sim.run(state, steps)
         return _pool_heights(sim, state, n)
     if name == "shore":
-        return _swell(n, time)
+        return _shore_heights(n, [float(time)])[0]
     if name == "storm":
         return _storm_frames(n, [float(time)])[0][0]
     if name == "calm":
@@ -672,7 +725,7 @@ def _assemble(name, n, water, caustics=True, camera=None, foam=None):
     ground, albedo = _ground(name, n)
     if not caustics:
         c = None
-    elif name in SHALLOW_WATER_CYCLES:
+    elif name in SHALLOW_WATER_CYCLES or name == "shore":
         c = _shallow_water_caustics(name, n, water, ground)
     else:
         c = _caustics(water, scene_grid(name, n), ground, CAUSTICS_METHODS[name])
@@ -786,8 +839,9 @@ def _frames(name, count, fps, n, start, caustics):
         for water, foam in _storm_frames(n, [start + i / fps for i in range(count)]):
             yield _assemble(name, n, water, caustics, foam=foam)
         return
-    if name in SHALLOW_WATER_CYCLES or name == "harbour":  # one run of the simulation for all the frames
-        run = _harbour_heights if name == "harbour" else functools.partial(_shallow_water_heights, name)
+    if name in SHALLOW_WATER_CYCLES or name in ("harbour", "shore"):  # one run of the simulation for all the frames
+        run = {"harbour": _harbour_heights, "shore": _shore_heights}.get(name)
+        run = run or functools.partial(_shallow_water_heights, name)
         for water in run(n, [start + i / fps for i in range(count)]):
             yield _assemble(name, n, water, caustics)
         return
