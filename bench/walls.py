@@ -21,7 +21,8 @@ from wavephys.simulation.stepping import add_source, energy, initial_state, run,
 
 WATER = Water(sigma=0.0, depth=1.5)
 CASES = (("periodic", {}, 1), ("walls all", dict(walls="all"), 1), ("walls x", dict(walls="x"), 1),
-         ("walls bottom + margin", dict(walls=("bottom",), margin=None), 1), ("doubled periodic", {}, 2))
+         ("walls bottom + margin", dict(walls=("bottom",), margin=None), 1),
+         ("tank 8 x 4 m in 8 m", dict(walls="all", tank=(8.0, 4.0)), 1), ("doubled periodic", {}, 2))
 
 
 def _model(n, kw, factor):

@@ -65,7 +65,17 @@ def packet_potential(k, analytic, omega):
     numpy.ndarray
         φ, m²/s, real, the shape of ``analytic``.
     """
+    from wavephys.core.inputs import check_array
+
+    check_array("analytic", analytic, complex_ok=True, min_ndim=1)
+    check_array("k", k, lo=0.0)
+    if not callable(omega):
+        raise TypeError(f"omega must be a function of |k| (rad/m → rad/s), got {type(omega).__name__}")
     a = np.asarray(analytic)
+    try:
+        np.broadcast_shapes(np.shape(k), a.shape)
+    except ValueError:
+        raise ValueError(f"k must broadcast to analytic's shape {a.shape}, got {np.shape(k)}") from None
     w = np.asarray(omega(np.asarray(k)))
     spec = np.fft.fftn(a)
     return np.fft.ifftn(np.where(w > 0, -1j * G / np.where(w > 0, w, 1.0), 0.0) * spec).real

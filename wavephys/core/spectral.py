@@ -269,17 +269,40 @@ def inverse_cosine_transform2(coefficients):
     return _take(_take(v, nx, "unorder", -1), ny, "unorder", -2).astype(c.dtype)
 
 
-def mode_transform(field, walls=(False, False)):
+def _tank_block(n: int, extent):
+    """The (rows, columns) slices of a centred tank of ``extent`` = (my, mx) cells in an n × n grid."""
+    my, mx = extent
+    return slice((n - my) // 2, (n - my) // 2 + my), slice((n - mx) // 2, (n - mx) // 2 + mx)
+
+
+def _embed(xp, small, shape, where):
+    """``small`` placed at ``where`` (a tuple of slices of the last two axes) in zeros of ``shape``."""
+    index = (Ellipsis,) + tuple(where)
+    if _is_numpy(xp):
+        out = xp.zeros(shape, small.dtype)
+        out[index] = small
+        return out
+    return xp.zeros(shape, small.dtype).at[index].set(small)
+
+
+def mode_transform(field, walls=(False, False), extent=None):
     """A real field ``(..., n, n)`` on the modes of its domain: ``walls`` = (x walled, y walled).
 
     No walls: the ``rfft2`` half spectrum ``(n, n//2 + 1)``. Walls on both axes: the 2-D
     cosine transform ``(n, n)`` (real). Walls on x only: cosine along x, then ``rfft`` along y
     (``(n//2 + 1, n)``); on y only: cosine along y, then ``rfft`` along x (``(n, n//2 + 1)``).
-    :func:`mode_wavenumbers` gives (k_y, k_x) on the same layout, and
-    :func:`inverse_mode_transform` undoes it exactly.
+    ``extent`` = (my, mx) (walls on both axes only): a tank of my × mx cells centred in the grid
+    (even counts), the rest land: the cosine transform of that block, its (my, mx) coefficients
+    first in an ``(n, n)`` array of zeros. :func:`mode_wavenumbers` gives (k_y, k_x) on the same
+    layout, and :func:`inverse_mode_transform` undoes it exactly (land comes back as zeros).
     """
     xp = array_module(field)
     wx, wy = walls
+    if extent is not None:
+        x = xp.asarray(field)
+        n = x.shape[-1]
+        block = cosine_transform2(x[(Ellipsis,) + _tank_block(n, extent)])
+        return _embed(xp, block, x.shape, (slice(0, extent[0]), slice(0, extent[1])))
     if not wx and not wy:
         return xp.fft.rfft2(field)
     if wx and wy:
@@ -289,10 +312,14 @@ def mode_transform(field, walls=(False, False)):
     return xp.fft.rfft(cosine_transform(field, -2), axis=-1)
 
 
-def inverse_mode_transform(spectra, n: int, walls=(False, False)):
+def inverse_mode_transform(spectra, n: int, walls=(False, False), extent=None):
     """The real fields ``(..., n, n)`` of :func:`mode_transform`'s spectra."""
     xp = array_module(spectra)
     wx, wy = walls
+    if extent is not None:
+        c = xp.asarray(spectra)
+        block = inverse_cosine_transform2(c[..., :extent[0], :extent[1]])
+        return _embed(xp, block, c.shape[:-2] + (n, n), _tank_block(n, extent))
     if not wx and not wy:
         return xp.fft.irfft2(spectra, s=(n, n))
     if wx and wy:
@@ -302,11 +329,18 @@ def inverse_mode_transform(spectra, n: int, walls=(False, False)):
     return inverse_cosine_transform(xp.fft.irfft(spectra, n=n, axis=-1), -2)
 
 
-def mode_wavenumbers(n: int, spacing, walls=(False, False), xp=None):
+def mode_wavenumbers(n: int, spacing, walls=(False, False), xp=None, extent=None):
     """``(ky, kx)``, rad/m, of :func:`mode_transform`'s layout, shaped to broadcast against it:
-    2π·fftfreq / 2π·rfftfreq along periodic axes, mπ/L (m = 0 … n − 1, L = n·spacing) along walled ones."""
+    2π·fftfreq / 2π·rfftfreq along periodic axes, mπ/L (m = 0 … n − 1, L = n·spacing) along walled ones;
+    with a tank ``extent`` = (my, mx), pπ/(my·spacing) and mπ/(mx·spacing) on its coefficients and 0 on
+    the unused rest (their coefficients are always 0)."""
     xp = xp or array_module(spacing)
     wx, wy = walls
+    if extent is not None:
+        index = xp.arange(n)
+        ky = xp.where(index < extent[0], index * math.pi / (extent[0] * spacing), 0.0)
+        kx = xp.where(index < extent[1], index * math.pi / (extent[1] * spacing), 0.0)
+        return ky[:, None], kx[None, :]
     if not wx and not wy:
         return angular_wavenumbers((n, n), spacing, real=True, xp=xp)
     cosine = xp.arange(n) * math.pi / (n * spacing)

@@ -88,8 +88,15 @@ class Stones:
 
     # -- the simulation's source protocol -------------------------------------------
     def check(self, model) -> None:
-        """Host-side check against a simulation model (before any work)."""
+        """Host-side check against a simulation model (before any work): with a ``tank``, every stone
+        inside it."""
         self.check_on(model_grid(model))
+        tank = getattr(model, "tank", None)
+        if tank is not None and not _traced(self.x) and not _traced(self.y):
+            outside = (np.abs(np.asarray(self.x)) > tank[0] / 2) | (np.abs(np.asarray(self.y)) > tank[1] / 2)
+            if np.any(outside):
+                raise ValueError(f"stones at x = {np.asarray(self.x)[outside]}, y = {np.asarray(self.y)[outside]} m "
+                                 f"fall outside the tank ({tank[0]:g} × {tank[1]:g} m, centred): they would hit land")
 
     def impulse(self, model, ops, t):
         """(Δφ̂, Δχ̂) half spectra the stones add at ``t``: fluid at rest, χ̂ −= (ω/K)·η̂_stone.
@@ -98,7 +105,8 @@ class Stones:
         axes without walls) and put on the model's cosine modes, which holds their mirror
         images in the walls (docs/physics.md §1.11)."""
         if getattr(model, "walls", ()):
-            eta = stone_height(self, model.grid, walls=model.walls).astype(ops.inverse_height.dtype)
+            eta = stone_height(self, model.grid, walls=model.walls, lengths=getattr(model, "tank", None))
+            eta = eta.astype(ops.inverse_height.dtype)
             return None, -ops.inverse_height * model.transform(eta)
         complex_dtype = jnp.result_type(ops.inverse_height.dtype, jnp.complex64)
         eta_hat = stone_height_spectrum(self, model.grid).astype(complex_dtype)
@@ -144,7 +152,7 @@ def stone_height_spectrum(stones: Stones, grid: Grid, real: bool = True):
 
 
 @validate(stones=Instance(Stones, "wavephys.Stones"), grid=GRID)
-def stone_height(stones: Stones, grid: Grid, walls=None):
+def stone_height(stones: Stones, grid: Grid, walls=None, lengths=None):
     """The stones' crater heights in space, m, shape ``(n, n)``.
 
     Parameters
@@ -158,6 +166,9 @@ def stone_height(stones: Stones, grid: Grid, walls=None):
         (:func:`wavephys.physics.walls.check_walls`): each crater's mirror images in the walls
         of walled axes (x → ±L − x; the part of a crater beyond a wall folds back in) and its
         periodic images (±L) along axes without walls are added.
+    lengths : (float, float), optional
+        (Lx, Ly), m: the sides of the walled domain, centred on the grid (a model's ``tank``); default
+        the grid's side on both axes.
 
     Returns
     -------
@@ -168,13 +179,18 @@ def stone_height(stones: Stones, grid: Grid, walls=None):
     ----------
     J. Loviscach (2003). Complex water effects at interactive frame rates. *WSCG*, §3.
     """
+    if lengths is not None:
+        from wavephys.core.inputs import check_array
+
+        check_array("lengths", lengths, ndim=1, shape_tail=(2,), lo=0.0, lo_open=True)
+        lengths = tuple(float(v) for v in np.asarray(lengths, np.float64))
     x, y = grid.mesh()
     copies_x, copies_y = [(1.0, 0.0)], [(1.0, 0.0)]  # (sign, offset): the copy sits at sign·x + offset
     if walls is not None:
         from wavephys.physics.walls import wall_axes
 
-        length = grid.length
-        for axis_walled, copies in zip(wall_axes(walls), (copies_x, copies_y)):
+        sides = (grid.length, grid.length) if lengths is None else lengths
+        for axis_walled, copies, length in zip(wall_axes(walls), (copies_x, copies_y), sides):
             copies += [(-1.0, -length), (-1.0, length)] if axis_walled else [(1.0, -length), (1.0, length)]
     total = 0.0
     for ax, bx in copies_x:

@@ -440,6 +440,9 @@ class Ship:
     def check(self, model) -> None:
         """Host-side checks: the patch fits the grid (nothing else is known before the step)."""
         grid = model_grid(model)
+        if getattr(model, "tank", None) is not None:
+            raise ValueError(f"ships in a tank smaller than the grid (tank={model.tank}) are not supported yet: "
+                             f"their patch would fold at the grid's edges, not the tank's walls")
         if model.ship_patch > grid.n:
             raise ValueError(f"ship_patch {model.ship_patch} must not exceed the grid's n = {grid.n}")
 

@@ -38,7 +38,8 @@ from wavephys.physics.ring_waves import rotate_pair
 from wavephys.simulation.model import Model, operators
 
 __all__ = ["Floor", "DepthState", "depth_state", "step_levels", "step_shallow", "step_symmetric", "DEPTH_METHODS",
-           "run_depth", "run_profile", "shallow_substeps", "symmetric_levels", "SYMMETRIC_COURANT"]
+           "run_depth", "run_profile", "shallow_substeps", "symmetric_levels", "SYMMETRIC_COURANT",
+           "MAX_SUBSTEPS"]
 
 
 @dataclass(frozen=True)
@@ -267,7 +268,7 @@ def shallow_substeps(model: Model, floor: Floor) -> int:
     check_instance("model", model, Model, "wavephys.simulation.Model")
     check_instance("floor", floor, Floor, "wavephys.simulation.depth.Floor")
     c = math.sqrt(float(model.water.g) * float(floor.depth.max()))
-    return max(1, int(math.ceil(c * float(model.dt) / (0.5 * float(model.grid.dx)))))
+    return _substeps(c * float(model.dt) / (0.5 * float(model.grid.dx)), float(model.dt), "shallow")
 
 
 def _shallow_steps(dx, g, dt, hx, hy, mask, fields, substeps):
@@ -332,6 +333,9 @@ def step_shallow(model: Model, floor: Floor, state: DepthState):
 
 
 # -- symmetric: the levels' operators blended so that energy is conserved ------------------------
+MAX_SUBSTEPS = 100_000
+"""Sub-steps per Δt beyond which a stepper refuses the Δt (by name) rather than run for hours."""
+
 SYMMETRIC_COURANT = 1.0
 """The symmetric method's sub-step δ keeps ω_max·δ ≤ this (leapfrog is stable to 2): the highest frequency
 on the grid turns by at most 1 rad a sub-step, a resolved wave's by far less (its phase error is (ωδ)²/24)."""
@@ -362,6 +366,14 @@ def symmetric_levels(depth, count: int = 4) -> np.ndarray:
         raise ValueError("depth: the floor is dry everywhere (no water to step)")
     levels = depth_levels(wet, count)
     return np.concatenate([[0.0], levels]) if wet.size < h.size else levels
+
+
+def _substeps(count: float, dt: float, what: str) -> int:
+    """``ceil(count)`` sub-steps, at least 1; ValueError naming ``dt`` above :data:`MAX_SUBSTEPS`."""
+    if not count <= MAX_SUBSTEPS:
+        raise ValueError(f"dt = {dt:g} s needs {count:.3g} sub-steps of the {what} stepper (stability), more than "
+                         f"{MAX_SUBSTEPS}: give a smaller dt")
+    return max(1, int(math.ceil(count)))
 
 
 def _symmetric_operators(k, water, levels):
@@ -407,7 +419,7 @@ def _symmetric_tables(model: Model, floor: Floor):
         weights = depth_weights(floor.depth, levels)[int(levels[0] == 0):]  # the dry level carries no flux
         roots = jnp.sqrt(weights)
         cast = lambda a: None if a is None else a.astype(model.dtype)
-        substeps = max(1, int(math.ceil(omega_max * float(model.dt) / SYMMETRIC_COURANT)))
+        substeps = _substeps(omega_max * float(model.dt) / SYMMETRIC_COURANT, float(model.dt), "symmetric")
         return cast(big_k), cast(restoring), cast(roots), substeps
 
 
@@ -472,6 +484,10 @@ def _check(model, floor, state):
     floor.check(model)
     if model.mesh is not None:
         raise ValueError("a varying floor with a mesh (sharded model) is not supported yet")
+    if model.tank is not None:
+        raise ValueError(f"a varying floor in a tank smaller than the grid (tank={model.tank}) is not supported: "
+                         f"give the land as depth 0 in the floor of a square model (method 'shallow' or "
+                         f"'symmetric' take dry land)")
     n = model.grid.n
     if tuple(np.shape(state.fields)) != (2, n, n):
         raise ValueError(f"state.fields must have shape (2, {n}, {n}), got {np.shape(state.fields)}")
@@ -594,7 +610,7 @@ def run_profile(depth, dx: float, water: Water, dt: float, eta, phi, steps: int,
             lv = symmetric_levels(h, levels)
             big_k, restoring, omega_max = _symmetric_operators(k, water, lv)
             roots = np.sqrt(np.asarray(depth_weights(h, lv))[int(lv[0] == 0):])
-            sub = max(1, int(math.ceil(omega_max * dt / SYMMETRIC_COURANT)))
+            sub = _substeps(omega_max * dt / SYMMETRIC_COURANT, dt, "symmetric")
             args = (np.asarray(big_k), None if restoring is None else np.asarray(restoring), roots)
             one = lambda f: _symmetric_steps(forward, inverse, jnp.asarray(args[0], dtype), jnp.asarray(args[2], dtype),
                                              None if args[1] is None else jnp.asarray(args[1], dtype), water.g, dt,
@@ -602,7 +618,7 @@ def run_profile(depth, dx: float, water: Water, dt: float, eta, phi, steps: int,
         else:
             hx, hy = _faces(h, -1, False), np.zeros((2, n))
             c = math.sqrt(float(water.g) * float(h.max()))
-            sub = max(1, int(math.ceil(c * dt / (0.5 * dx))))
+            sub = _substeps(c * dt / (0.5 * dx), dt, "shallow")
             one = lambda f: _shallow_steps(dx, water.g, dt, jnp.asarray(hx, dtype), jnp.asarray(hy, dtype), None, f,
                                            sub)[0]
     out = jax.jit(lambda f: jax.lax.fori_loop(0, steps, lambda _, f: one(f), f))(fields)

@@ -35,6 +35,9 @@ class Simulation:
         The mesh axis the rows are split over (default ``"rows"``).
     walls : str or sequence of str
         Reflecting walls, as :class:`~wavephys.simulation.Model` (``"all"`` for a tank).
+    tank : (float, float), optional
+        (width, height), m: a rectangular tank smaller than the grid, centred, with ``walls="all"``
+        (:class:`~wavephys.simulation.Model`).
 
     Examples
     --------
@@ -49,7 +52,7 @@ class Simulation:
     def __init__(self, grid: Grid, water: Water = Water(), dt: float = 1.0 / 30.0, margin: int = 0,
                  cutoff: str = "quadratic", second_order: bool = False, dtype=jnp.float32,
                  ship_patch: int | None = None, leak_tolerance: float = 1e-3, ship_method: str = "kernels",
-                 devices=None, mesh=None, mesh_axis: str = "rows", walls=()):
+                 devices=None, mesh=None, mesh_axis: str = "rows", walls=(), tank=None):
         if not isinstance(mesh_axis, str) or not mesh_axis:
             raise TypeError(f"mesh_axis must be a non-empty str, got {type(mesh_axis).__name__}")
         if devices is not None:
@@ -59,7 +62,7 @@ class Simulation:
 
             mesh = row_mesh(devices, mesh_axis)
         self.model = Model(grid, water, dt, margin, cutoff, second_order, dtype, ship_patch, leak_tolerance,
-                           ship_method, mesh, mesh_axis, walls)
+                           ship_method, mesh, mesh_axis, walls, tank)
 
     def __repr__(self) -> str:
         return f"Simulation({self.model})"
@@ -70,6 +73,7 @@ class Simulation:
     dt = property(lambda self: float(self.model.dt), doc="Δt, s.")
     margin = property(lambda self: self.model.margin, doc="Cutoff margin, samples.")
     walls = property(lambda self: self.model.walls, doc="The walled sides.")
+    tank = property(lambda self: self.model.tank, doc="(width, height) of a tank smaller than the grid, m, or None.")
     dtype = property(lambda self: jnp.dtype(self.model.dtype), doc="Floating dtype.")
 
     # -- states ---------------------------------------------------------------------

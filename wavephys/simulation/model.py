@@ -9,7 +9,7 @@ shapes and compiled programs). ``dataclasses.replace(model, water=...)`` makes v
 from __future__ import annotations
 
 import functools
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from typing import NamedTuple, Optional
 
 import jax
@@ -89,6 +89,12 @@ class Model:
         stepped on its cosine modes (exact per mode, like the periodic step); its other sides
         are open when ``margin`` > 0 (the cutoff sits only on the sides that are not walls),
         periodic otherwise. Not yet with a mesh (a distributed cosine transform).
+    tank : (float, float), optional
+        (width along x, height along y), m: a rectangular tank smaller than the grid's square (Lx ≠ Ly),
+        centred in it, with ``walls="all"``; the rest of the grid is land (its heights stay 0). Each side
+        an even number of cells (a multiple of 2·dx), at most the grid's side. The step is exact on the
+        tank's own cosine modes cos(mπx/Lx)·cos(pπy/Ly). Ships are not supported in it yet. None
+        (default): the tank is the grid's whole square.
 
     Examples
     --------
@@ -97,6 +103,7 @@ class Model:
     >>> model = Model(Grid(64, 2.0), Water(), dt=0.02, margin=8)
     >>> shallow = replace(model, water=Water(depth=0.1))
     >>> tank = Model(Grid(64, 2.0), Water(depth=0.1), dt=0.02, walls="all")
+    >>> lane = Model(Grid(64, 2.0), Water(depth=0.1), dt=0.02, walls="all", tank=(2.0, 0.5))
     """
 
     grid: Grid
@@ -112,6 +119,8 @@ class Model:
     mesh: Optional[Mesh] = None
     mesh_axis: str = AXIS
     walls: tuple = ()
+    tank: Optional[tuple] = None
+    tank_cells: Optional[tuple] = field(default=None, init=False, repr=False, compare=False)
 
     def __post_init__(self):
         check_instance("grid", self.grid, Grid, "wavephys.Grid")
@@ -133,6 +142,7 @@ class Model:
         if self.walls and self.mesh is not None:
             raise ValueError("walls with a mesh (sharded model) are not supported yet: the distributed cosine "
                              "transform is not written; step a walled tank on one device (mesh=None)")
+        set_("tank", self._check_tank())
         if self.mesh is not None:
             check_mesh(self.mesh, self.mesh_axis, self.grid.n)
         elif not isinstance(self.mesh_axis, str):
@@ -140,6 +150,32 @@ class Model:
         elif self.mesh_axis != AXIS:
             raise ValueError(f"mesh_axis {self.mesh_axis!r} names an axis of a mesh, but mesh is None (no sharding): "
                              f"give the mesh too, or leave mesh_axis at {AXIS!r}")
+
+    def _check_tank(self):
+        """The tank as (width, height) floats, its cells set in :attr:`tank_cells` = (rows, columns)."""
+        if self.tank is None:
+            object.__setattr__(self, "tank_cells", None)
+            return None
+        check_array("tank", self.tank, ndim=1, shape_tail=(2,), lo=0.0, lo_open=True)
+        if len(self.walls) != 4:
+            raise ValueError(f"tank: a tank smaller than the grid is closed by walls on all four sides: give "
+                             f"walls='all' (got walls={self.walls!r})")
+        if is_traced(self.grid.length):
+            raise ValueError("tank: the grid's length must be a concrete number (it fixes the tank's cells)")
+        n, length = self.grid.n, float(self.grid.length)
+        dx = length / n
+        cells = []
+        for name, value in zip(("width", "height"), (float(v) for v in np.asarray(self.tank, np.float64))):
+            count = value / dx
+            whole = int(round(count))
+            if abs(count - whole) > 1e-6 * max(1.0, count) or whole % 2 or whole < 2:
+                raise ValueError(f"tank {name} {value:g} m must be an even number of cells, a multiple of 2·dx = "
+                                 f"{2 * dx:g} m")
+            if whole > n:
+                raise ValueError(f"tank {name} {value:g} m must be at most the grid's side {length:g} m")
+            cells.append(whole)
+        object.__setattr__(self, "tank_cells", (cells[1], cells[0]))
+        return tuple(float(v) for v in np.asarray(self.tank, np.float64))
 
     @property
     def real_dtype(self):
@@ -195,7 +231,7 @@ class Model:
             return self.rfft2(field)
         n = self.grid.n
         check_array("field", field, min_ndim=2, shape_tail=(n, n))
-        return mode_transform(field, self.wall_axes)
+        return mode_transform(field, self.wall_axes, self.tank_cells)
 
     def inverse_transform(self, spectra):
         """Real fields ``(..., n, n)`` from spectra in the model's layout (the inverse of :meth:`transform`)."""
@@ -204,17 +240,17 @@ class Model:
         check_array("spectra", spectra, complex_ok=True, min_ndim=2)
         if not self.walls:
             return irfft2(spectra, self.grid.n, self.mesh, self.mesh_axis)
-        return inverse_mode_transform(spectra, self.grid.n, self.wall_axes)
+        return inverse_mode_transform(spectra, self.grid.n, self.wall_axes, self.tank_cells)
 
     def mode_wavenumbers(self):
         """``(ky, kx)``, rad/m, on the model's spectral layout (broadcastable): Fourier
-        wavenumbers along periodic axes, mπ/L along walled ones."""
-        return mode_wavenumbers(self.grid.n, self.grid.dx, self.wall_axes, xp=jnp)
+        wavenumbers along periodic axes, mπ/L along walled ones (L the tank's side with ``tank``)."""
+        return mode_wavenumbers(self.grid.n, self.grid.dx, self.wall_axes, xp=jnp, extent=self.tank_cells)
 
 
 register(Model, ("grid", "water", "dt"),
          ("margin", "cutoff", "second_order", "dtype", "ship_patch", "leak_tolerance", "ship_method", "mesh",
-          "mesh_axis", "walls"))
+          "mesh_axis", "walls", "tank", "tank_cells"))
 
 
 class Operators(NamedTuple):

@@ -49,13 +49,13 @@ def _rfft2(model: Model, fields):
     """The model's forward transform: ``rfft2``, the slab transform of a sharded model, or the
     cosine transform along walled axes (:meth:`Model.transform`)."""
     if model.walls:
-        return mode_transform(fields, model.wall_axes)
+        return mode_transform(fields, model.wall_axes, model.tank_cells)
     return rfft2(fields, model.mesh, model.mesh_axis)
 
 
 def _irfft2(model: Model, spectra):
     if model.walls:
-        return inverse_mode_transform(spectra, model.grid.n, model.wall_axes)
+        return inverse_mode_transform(spectra, model.grid.n, model.wall_axes, model.tank_cells)
     return irfft2(spectra, model.grid.n, model.mesh, model.mesh_axis)
 
 
