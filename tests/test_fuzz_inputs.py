@@ -190,14 +190,21 @@ def test_commands_refuse_bad_files_and_counts_in_one_line(argv, words, tmp_path,
     assert code == 2 and words in err and "Traceback" not in err, (argv, err)
 
 
-def test_every_builtin_scene_builds_at_the_smallest_size():
-    """n = 64, the smallest size the commands accept, for every scene (calm once raised deep in its noise)."""
+def _scene_params():
     from wavephys.app import SCENES
+
+    # the shallow-water scenes run their solver for seconds; their own tests (tests/app) build them by default
+    slow = {"beach", "dambreak", "wakebeach"}
+    return [pytest.param(name, marks=pytest.mark.slow) if name in slow else name for name in SCENES]
+
+
+@pytest.mark.parametrize("name", _scene_params())
+def test_every_builtin_scene_builds_at_the_smallest_size(name):
+    """n = 64, the smallest size the commands accept, for every scene (calm once raised deep in its noise)."""
     from wavephys.app.scenes import builtin_scene
 
-    for name in SCENES:
-        scene = builtin_scene(name, n=64)
-        assert np.all(np.isfinite(np.asarray(scene.water)))
+    scene = builtin_scene(name, n=64)
+    assert np.all(np.isfinite(np.asarray(scene.water)))
 
 
 def test_half_float_exr_never_holds_inf(tmp_path):

@@ -55,7 +55,7 @@ def test_a_rectangular_tank_steps_its_own_modes_exactly(mx, my, m, p, depth):
     omega = math.sqrt(9.81 * k * (math.tanh(k * depth) if math.isfinite(depth) else 1.0))
     got = np.asarray(surface(model, end).eta)
     assert np.abs(got - 1e-3 * mode * math.cos(omega * 2.0)).max() < 1e-10 * 1e-3
-    assert np.abs(got[~inside]).max() == 0.0
+    assert np.all(got[~inside] == 0.0)  # (a generated tank may fill the grid: no land)
     assert abs(float(energy(model, end)) / e0 - 1) < 1e-11
 
 
