@@ -84,10 +84,10 @@ def test_the_boat_wake_reaches_the_beach_and_the_water_is_conserved():
     assert np.abs(eta[shallows]).max() > 0.01  # the wake on the beach (measured 3–6 cm)
 
 
-def test_harbour_wake_reaches_the_quay_and_frames_match_single_times():
+def test_harbour_wake_reaches_the_quay_and_frames_match_single_times(monkeypatch):
     """``harbour``: the boat's wake has reached the quay by t = 8 s (the rows along it move 10× more than at 1 s,
-    before it arrives), the band under the quay holds still water, and the frames of one run equal the heights
-    made for each time alone."""
+    before it arrives) and is reflected there (1.5× more than with the quay's side open), the band under the quay
+    holds still water, and the frames of one run equal the heights made for each time alone."""
     from wavephys.app.scenes import _harbour_simulation, scene_frames, scene_water
 
     n = 64
@@ -98,6 +98,19 @@ def test_harbour_wake_reaches_the_quay_and_frames_match_single_times():
     assert np.abs(water[n - band - 3:n - band]).max() > 10 * np.abs(early[n - band - 3:n - band]).max()
     frames = [np.asarray(s.water) for s in scene_frames("harbour", 2, fps=2.0, n=n, start=7.5, caustics=False)]
     assert np.array_equal(frames[1], water)
+    # the quay reflects: with its side open instead (the margin there), the rows along it move far less
+    import wavephys.simulation
+
+    walled = wavephys.simulation.Simulation
+
+    def open_quay(*args, **kwargs):
+        kwargs["walls"] = ()
+        return walled(*args, **kwargs)
+
+    monkeypatch.setattr(wavephys.simulation, "Simulation", open_quay)
+    opened = scene_water("harbour", n, 8.0)
+    quay = slice(n - band - 3, n - band)
+    assert np.abs(water[quay]).max() > 1.5 * np.abs(opened[quay]).max()
 
 
 def test_shore_swell_feels_the_beach():
