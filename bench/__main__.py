@@ -355,7 +355,7 @@ def main(argv=None) -> int:
         if name == "scale":
             s.add_argument("--huge", action="store_true", help="a 16384² run on 1 and on 4 devices (20 GiB, minutes)")
         if name == "calibrate":
-            s.add_argument("--only", choices=("caustics", "caustics_jacobian", "shade", "texture", "surface", "ship", "ship_impulses"), help="measure this table alone and update its entry")
+            s.add_argument("--only", choices=("caustics", "caustics_jacobian", "step_walls", "step_symmetric", "shade", "texture", "surface", "ship", "ship_impulses"), help="measure this table alone and update its entry")
         if name == "propagation":
             s.add_argument("--device", choices=("cpu", "gpu", "tpu"),
                            help="time the step on this device against its own FFT floor (N = 1024–8192)")

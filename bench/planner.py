@@ -47,6 +47,67 @@ def _median(fn, repeats=5, warmup=1):
     return statistics.median(ts)
 
 
+def step_walls_seconds(progress=print, step: dict | None = None) -> dict:
+    """Seconds per step in a walled tank by n: the ``step`` table (``step``, default the shipped
+    one) times the ratio walled / periodic step measured here in interleaved rounds at the same n
+    (a ratio from one run, not two tables measured on different days)."""
+    import wavephys.simulation.stepping as st
+    from bench.timing import interleaved
+    from wavephys import Grid, Stones, Water
+    from wavephys.simulation.model import Model
+
+    step = step or json.loads(CAL_PATH.read_text())["step"]
+    out = {"n": list(step["n"]), "first": [], "second": [], "ratio_first": [], "ratio_second": []}
+    for i, n in enumerate(step["n"]):
+        steps = max(4, min(50, 500_000 // (n * n)))
+        for so, key in ((False, "first"), (True, "second")):
+            fns = {}
+            for name, kw in (("periodic", dict(margin=n // 8)), ("walls", dict(walls="all"))):
+                model = Model(Grid(n, float(n)), Water(depth=5.0), 1 / 30, second_order=so, **kw)
+                state = st.add_source(model, st.initial_state(model), Stones(0.0, 0.0, 3.0, 0.05))
+                fns[name] = (lambda m=model, s=state: st.run(m, s, steps))
+            times = interleaved(fns, repeats=7, warmup=1, block=3)
+            ratio = float(np.median([w / p for w, p in zip(times["walls"], times["periodic"])]))
+            out[f"ratio_{key}"].append(ratio)
+            out[key].append(ratio * step[key][i])
+        progress(f"step (walls) n={n}: ×{out['ratio_first'][-1]:.2f} the periodic step, second order "
+                 f"×{out['ratio_second'][-1]:.2f}")
+    return out
+
+
+def step_symmetric_seconds(progress=print, step: dict | None = None) -> dict:
+    """Seconds of one leapfrog sub-step of one wet level of the symmetric depth stepper, by n: the
+    ``step`` table's linear step (``step``, default the shipped one) times the ratio measured here
+    in interleaved rounds (a sloping floor 2.5–7.5 m deep, its levels and sub-steps from
+    :func:`wavephys.simulation.depth.symmetric_work`, divided out)."""
+    import wavephys.simulation.stepping as st
+    from bench.timing import interleaved
+    from wavephys import Grid, Stones, Water
+    from wavephys.simulation.depth import Floor, depth_state, run_depth, symmetric_work
+    from wavephys.simulation.model import Model
+
+    step = step or json.loads(CAL_PATH.read_text())["step"]
+    out = {"n": list(step["n"]), "seconds": [], "ratio": [], "work": []}
+    for i, n in enumerate(step["n"]):
+        steps = max(4, min(50, 500_000 // (n * n)))
+        model = Model(Grid(n, float(n)), Water(depth=5.0), 1 / 30, margin=n // 8)
+        state = st.add_source(model, st.initial_state(model), Stones(0.0, 0.0, 3.0, 0.05))
+        x = np.asarray(model.grid.coordinates, np.float64)
+        floor = Floor(np.broadcast_to(5.0 - 2.5 * x[None, :] / (0.5 * n), (n, n)))
+        levels, substeps = symmetric_work(model, floor)
+        ds = depth_state(model, st.surface(model, state).eta)
+        times = interleaved({"spectral": lambda: st.run(model, state, steps),
+                             "symmetric": lambda: run_depth(model, floor, ds, steps, method="symmetric")},
+                            repeats=7, warmup=1, block=3)
+        ratio = float(np.median([a / b for a, b in zip(times["symmetric"], times["spectral"])])) / (levels * substeps)
+        out["ratio"].append(ratio)
+        out["work"].append([levels, substeps])
+        out["seconds"].append(ratio * step["first"][i])
+        progress(f"symmetric depth step n={n}: {levels} levels × {substeps} sub-steps, ×{ratio:.2f} the spectral "
+                 f"step per level and sub-step")
+    return out
+
+
 def step_seconds(progress=print) -> dict:
     """Seconds per step by n, linear and second order (a scan of steps, divided)."""
     import wavephys.simulation.stepping as st
@@ -305,7 +366,7 @@ def kappa(progress=print, count: int = KAPPA_SCENES, seed: int = 99) -> dict:
 
 def calibrate(progress=print, only=None) -> dict:
     """Measure everything the cost model needs and write the calibration file (module doc).
-    ``only="caustics"``, ``"caustics_jacobian"``, ``"shade"``, ``"texture"``, ``"surface"``, ``"ship"`` or ``"ship_impulses"``: measure that table alone and update the shipped file's entry."""
+    ``only="caustics"``, ``"caustics_jacobian"``, ``"step_walls"``, ``"step_symmetric"``, ``"shade"``, ``"texture"``, ``"surface"``, ``"ship"`` or ``"ship_impulses"``: measure that table alone and update the shipped file's entry."""
     import platform
 
     from wavephys.core.files import atomic_path
@@ -314,6 +375,7 @@ def calibrate(progress=print, only=None) -> dict:
         parts = {"caustics": caustics_seconds, "caustics_jacobian": caustics_jacobian_seconds,
                  "shade": shade_seconds, "texture": texture_seconds,
                  "surface": surface_seconds, "ship": ship_seconds,
+                 "step_walls": step_walls_seconds, "step_symmetric": step_symmetric_seconds,
                  "ship_impulses": lambda p: ship_seconds(p, "impulses")}
         if only not in parts:
             raise ValueError(f"only must be None or one of {sorted(parts)}, got {only!r}")
@@ -324,6 +386,8 @@ def calibrate(progress=print, only=None) -> dict:
             tmp.write_text(json.dumps(data, indent=1))
         return data
     step = step_seconds(progress)
+    step_walls = step_walls_seconds(progress, step)
+    step_symmetric = step_symmetric_seconds(progress, step)
     ship = ship_seconds(progress)
     ship_impulses = ship_seconds(progress, "impulses")
     frame, blend, refine = frame_seconds(progress)
@@ -336,7 +400,7 @@ def calibrate(progress=print, only=None) -> dict:
     surface = surface_seconds(progress)
     k = kappa(progress)
     data = dict(machine=f"{platform.machine()} {os.cpu_count()} cores, {platform.python_version()}",
-                date=time.strftime("%Y-%m-%d"), step=step, ship=ship, ship_impulses=ship_impulses, frame=frame, blend=blend, refine=refine,
+                date=time.strftime("%Y-%m-%d"), step=step, step_walls=step_walls, step_symmetric=step_symmetric, ship=ship, ship_impulses=ship_impulses, frame=frame, blend=blend, refine=refine,
                 fresnel=fresnel, absorption=absorption, caustics=caustics, caustics_jacobian=caustics_jacobian, shade=shade, texture=texture, surface=surface, run_overhead=overhead, kappa=k["kappa"],
                 kappa_measured=k["measured"],
                 kappa_note="4 × the worst measured max|η32 − η64| / s0 over the scenes")

@@ -332,6 +332,7 @@ OVERRIDES = {
     "wavephys.simulation.depth.step_shallow": {"floor": _floor, "state": _depth_state},
     "wavephys.simulation.depth.run_depth": {"floor": _floor, "state": _depth_state, "steps": lambda: 2},
     "wavephys.simulation.depth.shallow_substeps": {"floor": _floor},
+    "wavephys.simulation.depth.symmetric_work": {"floor": _floor},
     "wavephys.checks.depth.packet_potential": {"k": lambda: np.abs(2 * np.pi * np.fft.fftfreq(8, 0.1)),
                                               "analytic": lambda: 1e-3 * np.exp(2j * np.pi * np.arange(8) / 8),
                                               "omega": lambda: (lambda k: np.sqrt(9.81 * k))},
@@ -454,6 +455,9 @@ OVERRIDES = {
                                         "heading": lambda: 0.0, "length": lambda: 2.0, "width": lambda: 0.8,
                                         "strength": lambda: 0.02},
     "wavephys.planner.scene.ShipSpec.position": {"t": lambda: 1.0},
+    "wavephys.planner.scene.FloorSpec": {"slope": lambda: 0.05, "direction": lambda: 30.0},
+    "wavephys.planner.scene.FloorSpec.depth": {"depth": lambda: 1.0, "x": lambda: np.linspace(-1.0, 1.0, 5),
+                                               "y": lambda: np.zeros(5)},
     "wavephys.planner.scene.WindSpec": {"speed": lambda: 5.0, "direction": lambda: 0.0, "amplitude": lambda: 1e-4,
                                         "seed": lambda: 0},
     "wavephys.planner.model.SceneModel": {"scene": _plan_scene, "choices": lambda: __import__(
@@ -725,7 +729,7 @@ def instance(cls):
         makers[MovingPressure] = lambda: MovingPressure((0.5, 0.5), (1.0, 0.0), 0.05, 0.3, 0.2)
         makers.update({pl.Scene: _plan_scene, pl.SceneModel: _scene_model, pl.Plan: _plan, pl.Choices: pl.Choices,
                        pl.ShipSpec: lambda: pl.ShipSpec(0.0, 0.0, 1.0), pl.StoneSpec: lambda: pl.StoneSpec(0, 0, 0.1, 0.01),
-                       pl.WindSpec: lambda: pl.WindSpec(5.0)})
+                       pl.WindSpec: lambda: pl.WindSpec(5.0), pl.FloorSpec: lambda: pl.FloorSpec(0.05, 30.0)})
         for base, make in makers.items():
             if issubclass(cls, base):
                 _INSTANCES[cls] = make()

@@ -276,6 +276,7 @@ def test_ship_bounds_skip_coarsenings_that_cannot_divide_the_grid(monkeypatch):
 
     monkeypatch.setattr(predict, "patch_bound", patch)
     monkeypatch.setattr(predict, "margin_errors", lambda scene: {"n/8": 0.0})
+    monkeypatch.setattr(predict, "margin_step_errors", lambda scene: {})
     import wavephys.planner.spectrum as spectrum
 
     spectrum._scene_spectrum.cache_clear()

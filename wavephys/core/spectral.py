@@ -20,7 +20,7 @@ import math
 from wavephys.core.sampling import array_module
 
 __internal__ = True  # tooling for the library's own modules (users call the Grid's methods)
-__all__ = ["angular_wavenumbers", "spectral_gradient", "central_gradient", "central_laplacian", "GRADIENT_METHODS",
+__all__ = ["angular_wavenumbers", "cosine_refine", "spectral_gradient", "central_gradient", "central_laplacian", "GRADIENT_METHODS",
            "cosine_transform", "inverse_cosine_transform", "cosine_transform2", "inverse_cosine_transform2",
            "mode_transform", "inverse_mode_transform", "mode_wavenumbers",
            "gradient", "spectral_laplacian", "fourier_refine", "spectral_derivatives", "bspline_coefficients"]
@@ -108,6 +108,24 @@ def fourier_refine(field, factor: int):
     ky, kx = angular_wavenumbers((m, m), 1.0 / m, real=True, xp=xp)  # on a unit square
     shift = 0.5 / m - 0.5 / n  # fine origin − coarse origin, in units of L
     return xp.fft.irfft2(full * xp.exp(1j * (kx + ky) * shift) * (factor * factor), s=(m, m)).astype(f.dtype)
+
+
+def cosine_refine(field, factor: int):
+    """A field in a walled tank (n, n) resampled ``factor`` times finer by cosine interpolation.
+
+    The tank's heights are even about its walls (no flux: ∂η/∂n = 0), so their cosine series
+    is the Fourier series of the field's even extension, twice the side: the extension is
+    refined by :func:`fourier_refine` and its first quadrant kept. Exact for fields band-limited
+    in the tank's cosine modes (Fourier interpolation of the tank itself would ring at the
+    walls, where its periodic copy jumps)."""
+    if factor == 1:
+        return field
+    xp = array_module(field)
+    f = xp.asarray(field)
+    n = f.shape[-1]
+    f = xp.concatenate([f, xp.flip(f, axis=-1)], axis=-1)
+    f = xp.concatenate([f, xp.flip(f, axis=-2)], axis=-2)
+    return fourier_refine(f, factor)[..., :n * factor, :n * factor]
 
 
 def spectral_derivatives(field, spacing):

@@ -19,8 +19,8 @@ from wavephys.planner.generate import KINDS, generate_scenes
 from wavephys.planner.model import Choices, SceneModel
 from wavephys.planner.plan import Candidate, Infeasible, Plan, Term, candidates, colour_errors, full_model, plan
 from wavephys.planner.runner import Output, compare, run
-from wavephys.planner.scene import Scene, ShipSpec, StoneSpec, WindSpec
+from wavephys.planner.scene import FloorSpec, Scene, ShipSpec, StoneSpec, WindSpec
 
-__all__ = ["Scene", "StoneSpec", "ShipSpec", "WindSpec", "Choices", "SceneModel", "plan", "Plan", "Term", "Candidate",
+__all__ = ["Scene", "StoneSpec", "ShipSpec", "WindSpec", "FloorSpec", "Choices", "SceneModel", "plan", "Plan", "Term", "Candidate",
            "Infeasible", "candidates", "colour_errors", "full_model", "run", "compare", "Output", "generate_scenes",
            "KINDS", "BUILTIN_SCENES", "builtin_scene"]

@@ -4,7 +4,9 @@
 ``ocean``   128 m of deep open sea at 1 m texels under an 8 m/s wind (σ is dropped);
 ``pond``    three stones in a 1 m deep pond (finite depth matters);
 ``lake``    stones in a 40 m deep lake (kh > π everywhere: tanh kh is dropped);
-``harbour`` a launch at 3 m/s in a 6 m deep basin.
+``harbour`` a launch at 3 m/s in a 6 m deep basin;
+``pool``    two stones in a walled 6 m pool (reflecting walls);
+``shelf``   stones off a floor shelving 5 cm per metre (1.25–2.75 m deep).
 """
 
 from __future__ import annotations
@@ -15,7 +17,7 @@ from wavephys.core.inputs import check_choice
 
 __all__ = ["BUILTIN_SCENES", "builtin_scene", "builtin_path"]
 
-BUILTIN_SCENES = ("ripples", "ocean", "pond", "lake", "harbour")
+BUILTIN_SCENES = ("ripples", "ocean", "pond", "lake", "harbour", "pool", "shelf")
 
 
 def builtin_path(name: str):
@@ -41,7 +43,7 @@ def builtin_scene(name: str):
     Parameters
     ----------
     name : str
-        A name in :data:`BUILTIN_SCENES` (``ripples``, ``ocean``, ``pond``, ``lake``, ``harbour``).
+        A name in :data:`BUILTIN_SCENES` (``ripples``, ``ocean``, ``pond``, ``lake``, ``harbour``, ``pool``: a walled pool, ``shelf``: a sloping floor).
 
     Returns
     -------

@@ -7,7 +7,10 @@ Kinds (drawn in turn, parameters drawn at random within each kind's range):
               its floor's caustics shown;
 ``open_sea``  open deep water 32–400 m at coarse pixels (0.25–2 m), a wind sea;
 ``ship``      open water with a ship at 0.2–10 m/s (hull 4–6 pixels wide), 1–20 m deep or deep;
-``ripples``   a small tank 0.2–0.8 m at fine pixels (1–4 mm): capillary waves resolved.
+``ripples``   a small tank 0.2–0.8 m at fine pixels (1–4 mm): capillary waves resolved;
+``tank``      a walled pool 1–12 m (waves reflect at its edges), 0.2–2 m deep, 1–3 stones;
+``slope``     water 2–16 m over a plane floor (slope 0.003 up to the steepest the scene allows,
+              any direction), 0.3–2 m deep at the centre, open or walled, 1–2 stones.
 
 Texels per side are 32–128 (ship scenes 64–128), 12–60 frames at 24–60 fps, height
 textures of 8 or 16 bits. Ship scenes whose full model cannot run (the patch leaves the
@@ -23,11 +26,11 @@ import numpy as np
 from wavephys.core.inputs import check_choice, check_int
 from wavephys.core.water import Water
 from wavephys.planner.model import Choices, SceneModel
-from wavephys.planner.scene import MIN_TEXELS, Scene, ShipSpec, StoneSpec, WindSpec
+from wavephys.planner.scene import MIN_FLOOR_DEPTH, MIN_TEXELS, FloorSpec, Scene, ShipSpec, StoneSpec, WindSpec
 
 __all__ = ["generate_scenes", "KINDS"]
 
-KINDS = ("pool", "shore", "open_sea", "ship", "ripples")
+KINDS = ("pool", "shore", "open_sea", "ship", "ripples", "tank", "slope")
 
 
 def generate_scenes(count: int, seed: int = 0, kinds=KINDS, texels=(32, 48, 64, 96, 128)) -> list:
@@ -147,4 +150,21 @@ def _draw(kind, rng, n, name):
         stones = tuple(StoneSpec(s.x, s.y, s.radius, min(s.depth, 0.002)) for s in stones)
         return Scene(extent, pixel, depth=float(rng.uniform(0.02, 0.3)), open_water=False, stones=stones,
                      water=Water(), height_range=2 * max(s.depth for s in stones), name=name, **c)
+    if kind == "tank":
+        extent = float(rng.uniform(1, 12))
+        pixel = extent / n
+        stones = _stones(rng, extent, pixel, int(rng.integers(1, 4)), 1.0)
+        return Scene(extent, pixel, depth=float(rng.uniform(0.2, 2.0)), walls=True, stones=stones,
+                     height_range=2 * max(s.depth for s in stones), name=name, **c)
+    if kind == "slope":
+        extent = float(rng.uniform(2, 16))
+        pixel = extent / n
+        stones = _stones(rng, extent, pixel, int(rng.integers(1, 3)), 1.0)
+        depth = float(rng.uniform(0.3, 2.0))
+        direction = float(rng.uniform(0, 360))
+        a = math.radians(direction)
+        steepest = (1 - MIN_FLOOR_DEPTH) * depth / (0.625 * extent * (abs(math.cos(a)) + abs(math.sin(a))))
+        slope = float(np.exp(rng.uniform(math.log(0.003), math.log(0.999 * min(0.5, steepest)))))
+        return Scene(extent, pixel, depth=depth, walls=bool(rng.random() < 0.5), stones=stones,
+                     floor=FloorSpec(slope, direction), height_range=2 * max(s.depth for s in stones), name=name, **c)
     raise ValueError(kind)

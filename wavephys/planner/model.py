@@ -27,7 +27,7 @@ from wavephys.core.water import Water
 from wavephys.planner.scene import Scene
 
 __all__ = ["Choices", "SceneModel", "TERMS", "COARSEN", "STEPS_PER_FRAME",
-           "CAUSTICS_REFINE", "CAUSTICS_JACOBIAN", "CAUSTICS_OPTIONS", "FULL_REFINE", "TEXTURES", "TEXTURE_BYTES", "SURFACES", "SHIP_METHODS", "SHIP_PATCHES", "MARGINS", "full_choices"]
+           "CAUSTICS_REFINE", "CAUSTICS_JACOBIAN", "CAUSTICS_OPTIONS", "FULL_REFINE", "TEXTURES", "TEXTURE_BYTES", "SURFACES", "SHIP_METHODS", "SHIP_PATCHES", "MARGINS", "BOUNDARIES", "DEPTH_MODELS", "full_choices"]
 
 COARSEN = (1, 2, 4)
 """Simulation grid spacings the planner considers, in output texels."""
@@ -59,6 +59,17 @@ MARGINS = ("n/8", "n/16", "none")
 """Open-water cutoff margins the planner considers, per side: an eighth of the visible texels
 (the full model), a sixteenth, or none (the visible square simulated periodic, right only while
 nothing that matters reaches its edges). Periodic scenes have none either way."""
+BOUNDARIES = ("walls", "periodic", "margin")
+"""How a walled scene's edges are modelled (``Scene(walls=True)``, a pool): reflecting walls,
+the tank's cosine modes stepped exactly (the full model); the square periodic (a wave that
+reaches a wall comes back through the opposite one: right until the first wave reaches a wall);
+or an open-water cutoff margin of n/8 texels around it (the wave leaves: no reflection).
+Scenes without walls ignore it."""
+DEPTH_MODELS = ("varying", "constant")
+"""How a scene with a sloping floor (``Scene(floor=...)``) is stepped: over the floor by the
+symmetric depth stepper (:func:`wavephys.simulation.depth.step_symmetric`, linear, a step per
+frame on the full grid: the full model), or by the spectral step at the centre's depth (every
+other term open). Scenes with a flat floor ignore it."""
 SHIP_PATCHES = (1, 2)
 """Ship patch sides the planner considers, in multiples of the smallest power-of-two patch that
 holds the hull and its motion over a step (:attr:`SceneModel.ship_patch`); the full model takes
@@ -69,7 +80,7 @@ TEXTURES = ("f32", "f16", "u16", "u8")
 (:func:`optics.rendering.textures.encode_height`)."""
 TEXTURE_BYTES = {"f32": 4, "f16": 2, "u16": 2, "u8": 1}
 """Bytes per texel of each height texture format."""
-TERMS = ("surface", "margin", "surface_tension", "finite_depth", "coarsen", "steps_per_frame", "second_order", "ship_method",
+TERMS = ("surface", "depth_model", "margin", "boundary", "surface_tension", "finite_depth", "coarsen", "steps_per_frame", "second_order", "ship_method",
          "ship_patch", "texture", "fresnel",
          "absorption", "caustics")
 """The switchable terms' names, in the order model cards list them (the terms themselves, one
@@ -127,6 +138,12 @@ class Choices:
         run with 0.
     margin : str
         The open-water cutoff margin (:data:`MARGINS`); periodic scenes ignore it.
+    boundary : str
+        A walled scene's edges (:data:`BOUNDARIES`); scenes without walls ignore it.
+    depth_model : str
+        A sloping floor's model (:data:`DEPTH_MODELS`); scenes with a flat floor ignore it.
+        ``"varying"`` runs with ``coarsen`` 1, ``steps_per_frame`` 1, ``second_order`` False,
+        σ and tanh kh kept, and the full margin.
     ship_method : str
         How ships make waves (:data:`SHIP_METHODS`); scenes without ships ignore it.
     ship_patch : int
@@ -153,6 +170,8 @@ class Choices:
     ship_method: str = "kernels"
     ship_patch: int = 2
     margin: str = "n/8"
+    boundary: str = "walls"
+    depth_model: str = "varying"
 
     def __post_init__(self):
         for k in ("surface_tension", "finite_depth", "second_order"):
@@ -176,6 +195,8 @@ class Choices:
         object.__setattr__(self, "ship_patch", check_int("ship_patch", self.ship_patch, lo=1))
         check_choice("ship_patch", self.ship_patch, SHIP_PATCHES)
         check_choice("margin", self.margin, MARGINS)
+        check_choice("boundary", self.boundary, BOUNDARIES)
+        check_choice("depth_model", self.depth_model, DEPTH_MODELS)
         if self.surface != "spectral" and (self.coarsen != 1 or self.steps_per_frame != 1 or self.second_order):
             raise ValueError(f"surface = {self.surface!r} is evaluated on the output texels at every frame and has no "
                              f"second-order term: it needs coarsen = 1, steps_per_frame = 1 and second_order = False, "
@@ -214,6 +235,8 @@ def full_choices(scene: Scene | None = None) -> Choices:
 @lru_cache(maxsize=64)
 def _full_choices(scene: Scene) -> Choices:
     out = Choices() if scene.caustics else Choices(caustics=0)
+    if scene.floor is not None and scene.floor.slope > 0:  # the depth stepper is linear
+        out = replace(out, second_order=False)
     if scene.ships:
         try:
             SceneModel(scene, out).check_ships()
@@ -232,18 +255,20 @@ class SceneModel:
     Parameters
     ----------
     scene : Scene
-    choices : Choices
-        One setting per term (default the full model's).
+    choices : Choices, optional
+        One setting per term (default the full model's, :func:`full_choices` of the scene).
     dtype : {"float32", "float64"}
         The simulation's (float64 needs ``jax_enable_x64``; the planner plans float32).
     """
 
     scene: Scene
-    choices: Choices = Choices()
+    choices: Choices = None
     dtype: str = "float32"
 
     def __post_init__(self):
         check_instance("scene", self.scene, Scene, "wavephys.planner.Scene")
+        if self.choices is None:
+            object.__setattr__(self, "choices", full_choices(self.scene))
         check_instance("choices", self.choices, Choices, "wavephys.planner.Choices")
         check_choice("dtype", self.dtype, ("float32", "float64"))
         if self.choices.surface != "spectral" and (self.scene.stones or self.scene.ships or self.scene.wind is None):
@@ -264,7 +289,10 @@ class SceneModel:
     @property
     def margin(self) -> int:
         """The cutoff margin, output texels per side: the scene's (n/8 for open water, 0 for a
-        periodic scene) with ``choices.margin`` n/16 or none instead of n/8."""
+        periodic scene) with ``choices.margin`` n/16 or none instead of n/8; a walled scene's
+        n/8 with ``choices.boundary`` ``"margin"``, else 0."""
+        if self.scene.walls:
+            return self.scene.texels // 8 if self.choices.boundary == "margin" else 0
         if not self.scene.margin:
             return 0
         return {"n/8": self.scene.margin, "n/16": self.scene.texels // 16, "none": 0}[self.choices.margin]
@@ -326,13 +354,49 @@ class SceneModel:
         return min(side, self.grid.n)
 
     @property
+    def varying(self) -> bool:
+        """Whether the waves are stepped over a sloping floor (``depth_model`` ``"varying"``)."""
+        floor = self.scene.floor
+        return floor is not None and floor.slope > 0 and self.choices.depth_model == "varying"
+
+    def floor(self):
+        """The sloping floor on the simulation grid (:class:`wavephys.simulation.depth.Floor`, 4
+        levels), or None where the depth is constant."""
+        if not self.varying:
+            return None
+        self.check_varying()
+        from wavephys.simulation.depth import Floor
+
+        x = np.asarray(self.grid.coordinates, np.float64)
+        return Floor(self.scene.floor.depth(self.scene.depth, x[None, :], x[:, None]))
+
+    def check_varying(self) -> None:
+        """ValueError unless a sloping floor's other height terms are the full model's (the depth
+        stepper runs on the full grid, a step per frame, linear, with σ, tanh kh and the full
+        margin)."""
+        if self.varying:
+            c = self.choices
+            if (c.coarsen, c.steps_per_frame, c.second_order, c.surface_tension, c.finite_depth, c.margin) != (
+                    1, 1, False, True, True, "n/8"):
+                raise ValueError(f"depth_model = 'varying' steps the floor on the full grid, a step per frame, linear, "
+                                 f"with σ, tanh kh and the full margin: it needs coarsen 1, steps_per_frame 1, "
+                                 f"second_order False, surface_tension and finite_depth True, margin 'n/8'; got "
+                                 f"{c.coarsen}, {c.steps_per_frame}, {c.second_order}, {c.surface_tension}, "
+                                 f"{c.finite_depth}, {c.margin!r}")
+
+    @property
+    def walls(self) -> bool:
+        """Whether the simulation has reflecting walls (a walled scene, ``boundary`` ``"walls"``)."""
+        return self.scene.walls and self.choices.boundary == "walls"
+
+    @property
     def simulation(self):
         """The :class:`wavephys.simulation.Model` of this configuration (pure step, ``run``)."""
         from wavephys.simulation.model import Model
 
         return Model(self.grid, self.water, self.dt, margin=self.margin // self.choices.coarsen,
                      second_order=self.choices.second_order, dtype=self.dtype, ship_patch=self.ship_patch,
-                     ship_method=self.choices.ship_method)
+                     ship_method=self.choices.ship_method, walls="all" if self.walls else ())
 
     # -- sources ----------------------------------------------------------------------
     def stones(self):
@@ -376,7 +440,11 @@ class SceneModel:
                      f"absorption {c.absorption}"]
             return ", ".join(parts)
         parts = [f"grid {self.grid.n}² (dx {self.grid.dx:.3g} m)" + (
-                     f", margin {self.margin}" if self.scene.margin else ""), f"Δt {self.dt:.4g} s",
+                     f", margin {self.margin}" if self.scene.margin or self.margin else "") + (
+                     f", {c.boundary}" + (" (reflecting)" if self.walls else "") if self.scene.walls else "") + (
+                     (", over the sloping floor (symmetric depth stepper)" if self.varying else
+                      f", constant depth {self.scene.depth:g} m") if self.scene.floor is not None else ""),
+                 f"Δt {self.dt:.4g} s",
                  "σ" if c.surface_tension else "no σ", "tanh kh" if c.finite_depth else "deep",
                  "2nd order" if c.second_order else "linear"] + (
                     [f"ship {c.ship_method}, patch {self.ship_patch}²"] if self.scene.ships else []) + [
@@ -398,7 +466,7 @@ def _patch_leaks(scene: Scene, coarsen: int, dt: float, half: int) -> tuple:
 
     n = scene.texels + 2 * scene.margin
     grid = Grid(n // coarsen, n * scene.pixel)
-    return tuple(patch_leak(ship, grid, scene.water, 0.0, dt, half) for ship in SceneModel(scene).ships())
+    return tuple(patch_leak(ship, grid, scene.water, 0.0, dt, half) for ship in SceneModel(scene, Choices()).ships())
 
 
 def interior(model: SceneModel, field):

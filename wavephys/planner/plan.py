@@ -243,7 +243,8 @@ def _context(scene: Scene, cal: dict) -> PlanContext:
         if name in TERMS["surface"].options(scene):
             model = SceneModel(scene, Choices(second_order=False, surface=name))
             out.append(Candidate(model.choices, b, height_cost(model, cal)["total"]))
-    full_key = replace(Choices(), ship_patch=full_choices(scene).ship_patch)
+    fc = full_choices(scene)
+    full_key = replace(Choices(), ship_patch=fc.ship_patch, second_order=fc.second_order)
     full = next((c for c in out if c.choices == full_key), None)
     if full is None:
         raise Infeasible(f"scene {scene.name!r}: the full model cannot run it (a ship's patch leaks or leaves "

@@ -40,7 +40,7 @@ from functools import lru_cache
 
 import numpy as np
 
-from wavephys.planner.model import (COARSEN, MARGINS, SHIP_METHODS, STEPS_PER_FRAME, Choices, SceneModel,
+from wavephys.planner.model import (BOUNDARIES, COARSEN, DEPTH_MODELS, MARGINS, SHIP_METHODS, STEPS_PER_FRAME, Choices, SceneModel,
                                    full_choices)
 from wavephys.planner.scene import Scene
 from wavephys.planner.spectrum import (CHOPPINESS, NOISE_HURST, NOISE_OCTAVES, SceneSpectrum, blended_mode_heights,
@@ -48,7 +48,7 @@ from wavephys.planner.spectrum import (CHOPPINESS, NOISE_HURST, NOISE_OCTAVES, S
                                        mode_heights, noise_sea, pair_bound, scene_spectrum, variant_index)
 
 __all__ = ["HeightBounds", "default_height_options", "height_bounds", "hermite_blend_error", "texture_error", "height_peak", "surface_bounds",
-           "RESAMPLE_ERROR", "patch_bound", "margin_errors"]
+           "RESAMPLE_ERROR", "patch_bound", "margin_errors", "margin_step_errors", "boundary_errors", "depth_errors"]
 
 
 def second_order_blend(spec: SceneSpectrum, dt: float) -> float:
@@ -164,6 +164,57 @@ def margin_errors(scene: Scene) -> dict:
     return dict(_margin_errors(scene))  # a copy: the cached result stays as measured
 
 
+def margin_step_errors(scene: Scene) -> dict:
+    """{(coarsen, steps per frame): error}, m, for an open-water scene ({} for a periodic one):
+    how much the cutoff margin's own effect changes with the simulation grid and Δt, × 1.25.
+
+    The cutoff damps once per step on the simulation grid's points (docs/physics.md, the
+    open-ocean cutoff), so how much it absorbs, and reflects back into the square, depends on
+    Δt and on the grid: a change the per-mode bounds (which see a periodic square) do not hold.
+    Measured 1.1 mm at 4 steps per frame and 2.5 mm on a grid 2× coarser, on a 48-texel scene
+    whose per-mode bounds for the same changes were 0.05 and 0.03 mm; a plan of it at 8 steps per
+    frame, its η₂ (whose interpolation bound had hidden this) 100× smaller, missed its promise by
+    33 %. Evaluated like the margin: the largest difference on the visible square over every
+    frame between the full model's linear heights on a grid c× coarser (a step per frame) and
+    on the texels, and likewise with s steps per frame; a pair's error is the sum of its two
+    (each holds that term's own error again: a conservative double count). Scenes larger than
+    :data:`MARGIN_TEXELS`: inf for all but the full model's (1, 1)."""
+    return dict(_margin_step_errors(scene))
+
+
+@lru_cache(maxsize=16)
+def _margin_step_errors(scene: Scene) -> dict:
+    from wavephys.planner.runner import simulated_heights
+
+    if not scene.margin:
+        return {}
+    spfs = tuple(s for s in STEPS_PER_FRAME if s <= scene.frames)
+    if scene.texels > MARGIN_TEXELS:
+        return {(c, s): (0.0 if (c, s) == (1, 1) else math.inf) for c in COARSEN for s in spfs}
+    full = replace(full_choices(scene), second_order=False, depth_model="constant")
+
+    def heights(**kw):
+        model = SceneModel(scene, replace(full, **kw))
+        if scene.ships:
+            try:
+                model.check_ships()
+            except ValueError:  # the doubled patch leaves the square on this grid: the cutoff is the same
+                model = SceneModel(scene, replace(full, ship_patch=1, **kw))
+                model.check_ships()
+        return simulated_heights(model).astype(np.float64)
+
+    ref = heights()
+    alone = {}
+    for key, kw in [(("coarsen", c), dict(coarsen=c)) for c in COARSEN[1:]] + \
+                   [(("steps", s), dict(steps_per_frame=s)) for s in spfs[1:]]:
+        try:
+            alone[key] = MARGIN_SAFETY * float(np.abs(heights(**kw) - ref).max())
+        except ValueError:  # this grid cannot run the scene, or a ship's patch leaks at this Δt
+            alone[key] = math.inf
+    alone[("coarsen", 1)] = alone[("steps", 1)] = 0.0
+    return {(c, s): alone[("coarsen", c)] + alone[("steps", s)] for c in COARSEN for s in spfs}
+
+
 @lru_cache(maxsize=16)
 def _margin_errors(scene: Scene) -> dict:
     from wavephys.planner.model import MARGINS
@@ -175,7 +226,8 @@ def _margin_errors(scene: Scene) -> dict:
         return {k: (0.0 if k == "n/8" else math.inf) for k in MARGINS}
     runs = {}
     for key in MARGINS:
-        model = SceneModel(scene, Choices(second_order=False, margin=key, ship_patch=full_choices(scene).ship_patch))
+        model = SceneModel(scene, Choices(second_order=False, margin=key, ship_patch=full_choices(scene).ship_patch,
+                                          depth_model="constant"))
         try:
             if scene.ships:
                 model.check_ships()
@@ -185,6 +237,59 @@ def _margin_errors(scene: Scene) -> dict:
     ref = runs["n/8"]
     return {k: (0.0 if k == "n/8" else math.inf if v is None else MARGIN_SAFETY * float(np.abs(v - ref).max()))
             for k, v in runs.items()}
+
+
+def boundary_errors(scene: Scene) -> dict:
+    """{boundary choice: error}, m, for a walled scene ({} for one without walls): the largest
+    difference on the visible square, over every frame, between the full model's linear heights
+    with that boundary (:data:`wavephys.planner.model.BOUNDARIES`) and with reflecting walls,
+    × 1.25 (:data:`MARGIN_SAFETY`: the other terms change it a little).
+
+    Evaluated, not bounded, as the margin is: the planner runs the scene's linear model three
+    times. Scenes larger than :data:`MARGIN_TEXELS` keep the walls (inf for the others)."""
+    return dict(_boundary_errors(scene))  # a copy: the cached result stays as measured
+
+
+@lru_cache(maxsize=16)
+def _boundary_errors(scene: Scene) -> dict:
+    from wavephys.planner.model import BOUNDARIES
+    from wavephys.planner.runner import simulated_heights
+
+    if not scene.walls:
+        return {}
+    if scene.texels > MARGIN_TEXELS:
+        return {k: (0.0 if k == "walls" else math.inf) for k in BOUNDARIES}
+    runs = {key: simulated_heights(SceneModel(scene, Choices(second_order=False, boundary=key,
+                                                             depth_model="constant"))).astype(np.float64)
+            for key in BOUNDARIES}
+    ref = runs["walls"]
+    return {k: (0.0 if k == "walls" else MARGIN_SAFETY * float(np.abs(v - ref).max())) for k, v in runs.items()}
+
+
+def depth_errors(scene: Scene) -> dict:
+    """{depth model: error}, m, for a scene with a sloping floor ({} for a flat one): the largest
+    difference on the visible square, over every frame, between the spectral step's linear
+    heights at the centre's depth (``"constant"``) and the waves stepped over the floor
+    (``"varying"``, the full model), × 1.25 (:data:`MARGIN_SAFETY`).
+
+    Evaluated, not bounded, as the margin is: the planner runs the scene's linear model over the
+    floor and at constant depth (docs/planner.md, the depth model). Scenes larger than
+    :data:`MARGIN_TEXELS` keep the floor (inf for constant depth)."""
+    return dict(_depth_errors(scene))  # a copy: the cached result stays as measured
+
+
+@lru_cache(maxsize=16)
+def _depth_errors(scene: Scene) -> dict:
+    from wavephys.planner.runner import simulated_heights
+
+    if scene.floor is None or scene.floor.slope == 0:
+        return {}
+    if scene.texels > MARGIN_TEXELS:
+        return {"varying": 0.0, "constant": math.inf}
+    full = full_choices(scene)
+    runs = {key: simulated_heights(SceneModel(scene, replace(full, depth_model=key))).astype(np.float64)
+            for key in DEPTH_MODELS}
+    return {"varying": 0.0, "constant": MARGIN_SAFETY * float(np.abs(runs["constant"] - runs["varying"]).max())}
 
 
 @dataclass(frozen=True)
@@ -233,13 +338,22 @@ def default_height_options(scene: Scene) -> dict:
     :mod:`wavephys.planner.terms` offers them from), {term: values}: both dispersion switches, every coarsening, the
     steps per frame up to the scene's frames, the second-order term on and off, the impulse
     method and the single patch only where there are ships (the latter where the full model
-    takes the doubled patch), the narrower margins only for open water."""
+    takes the doubled patch), the narrower margins only for open water; over a sloping floor the
+    linear model only (the depth stepper, the full model, is linear) and both depth models, the boundaries other than
+    walls only for a walled scene."""
     full_patch = full_choices(scene).ship_patch
     return dict(surface_tension=(True, False), finite_depth=(True, False), coarsen=COARSEN,
-                steps_per_frame=tuple(s for s in STEPS_PER_FRAME if s <= scene.frames), second_order=(True, False),
+                steps_per_frame=tuple(s for s in STEPS_PER_FRAME if s <= scene.frames),
+                second_order=(False,) if _sloping(scene) else (True, False),
                 ship_method=SHIP_METHODS if scene.ships else SHIP_METHODS[:1],
                 ship_patch=(1, 2) if scene.ships and full_patch == 2 else (full_patch,),
-                margin=MARGINS if scene.margin else MARGINS[:1])
+                margin=MARGINS if scene.margin else MARGINS[:1],
+                boundary=BOUNDARIES if scene.walls else BOUNDARIES[:1],
+                depth_model=DEPTH_MODELS if _sloping(scene) else DEPTH_MODELS[:1])
+
+
+def _sloping(scene: Scene) -> bool:
+    return scene.floor is not None and scene.floor.slope > 0
 
 
 @dataclass(frozen=True)
@@ -260,6 +374,8 @@ class _Linear:
 
 
 def _linear_context(scene: Scene, coarsens, spfs) -> _Linear:
+    if scene.walls:  # the tank's cosine modes are its even extension's Fourier modes (exactly)
+        scene = scene.even_extension()
     spec = scene_spectrum(scene)
     full_grid = SceneModel(scene).full_grid
     t = (evaluated_frames(scene.frames) / scene.fps)[:, None]
@@ -324,7 +440,11 @@ def height_bounds(scene: Scene, kappa: float, options=None) -> dict:
     ``options`` ({term: values} for each of the spectral step's terms; default
     :func:`default_height_options`), less what cannot run. The single patch adds
     :func:`patch_bound` where the full model takes the doubled patch; the narrower margins add
-    :func:`margin_errors` (a margin whose error is inf is left out).
+    :func:`margin_errors` (a margin whose error is inf is left out), a walled scene's other
+    boundaries :func:`boundary_errors`. A walled scene's per-mode bounds are its even
+    extension's (:meth:`wavephys.planner.scene.Scene.even_extension`), whose Fourier modes are
+    the tank's cosine modes: exact for the walls, and the boundary's evaluated change added
+    for the others.
 
     Stones and ships are bounded by the triangle inequality (rigorous for the linear
     surface); the wind sea by z × its RMS (:func:`wavephys.planner.spectrum.gaussian_factor`).
@@ -337,13 +457,24 @@ def height_bounds(scene: Scene, kappa: float, options=None) -> dict:
     full_patch = full_choices(scene).ship_patch
     measured = margin_errors(scene) or {"n/8": 0.0}
     margins = {k: v for k, v in measured.items() if k in opts["margin"] and math.isfinite(v)} or {"n/8": 0.0}
+    measured = boundary_errors(scene) or {"walls": 0.0}
+    boundaries = {k: v for k, v in measured.items() if k in opts.get("boundary", ("walls",)) and math.isfinite(v)}
+    margins = {(m, b): e + f for m, e in margins.items() for b, f in (boundaries or {"walls": 0.0}).items()}
+    stepped = margin_step_errors(scene)
+    full = full_choices(scene)
+    floor = _sloping(scene) and "constant" in opts.get("depth_model", ("varying",))
+    e_depth = depth_errors(scene).get("constant", math.inf) if floor else math.inf
     out = {}
     for st, fd, method, spf in itertools.product(opts["surface_tension"], opts["finite_depth"], opts["ship_method"],
                                                   spfs):
+
         vi = variant_index(Choices(surface_tension=st, finite_depth=fd))
         impulses = method == "impulses"
         diffs = _differences(lin, vi, impulses, spf, scene.fps)
         for c in opts["coarsen"]:
+            e_step = stepped.get((c, spf), 0.0)  # the cutoff's change with the grid and Δt (margin_step_errors)
+            if not math.isfinite(e_step):
+                continue
             e_lin, d0, d1, rms = _linear_sums(lin, diffs, c)
             same = lin.waters[vi] == lin.waters[0] and c == 1 and spf == 1 and not impulses  # e.g. no tanh, deep
             for so, patch in itertools.product(opts["second_order"], opts["ship_patch"]):
@@ -356,10 +487,24 @@ def height_bounds(scene: Scene, kappa: float, options=None) -> dict:
                     b = HeightBounds(b.linear + p_lin, b.second_order, b.rounding, b.rms + p_lin)
                 else:
                     b = _bound(lin.spec, kappa, same, so, c, spf, e_lin, d0, d1, rms * lin.area, lin.blend)
-                for margin, e_margin in margins.items():  # the margin's measured change adds
-                    key = Choices(st, fd, c, spf, so, ship_method=method, ship_patch=patch, margin=margin)
-                    out[key] = b if not e_margin else HeightBounds(b.linear + e_margin, b.second_order, b.rounding,
-                                                                   b.rms + e_margin)
+                if _sloping(scene):  # the full model is linear (the depth stepper; so is every option): no η₂ to lose
+                    b = HeightBounds(b.linear, 0.0, b.rounding, b.rms - b.second_order)
+                for (margin, boundary), e_margin in margins.items():  # the margin's (boundary's) measured change adds
+                    if boundary == "margin" and (c > 1 or spf > 1):  # its cutoff's change with grid and Δt: unmeasured
+                        continue
+                    key = Choices(st, fd, c, spf, so, ship_method=method, ship_patch=patch, margin=margin,
+                                  boundary=boundary)
+                    e_margin += e_step
+                    bb = b if not e_margin else HeightBounds(b.linear + e_margin, b.second_order, b.rounding,
+                                                            b.rms + e_margin)
+                    if not _sloping(scene):
+                        out[key] = bb
+                        continue
+                    if replace(key, caustics=full.caustics) == full:  # the floor stepped: the full model itself
+                        out[key] = HeightBounds(0.0, 0.0, bb.rounding, bb.rounding)
+                    if math.isfinite(e_depth):  # the spectral step at the centre's depth: its measured change adds
+                        out[replace(key, depth_model="constant")] = HeightBounds(
+                            bb.linear + e_depth, bb.second_order, bb.rounding, bb.rms + e_depth)
     return out
 
 

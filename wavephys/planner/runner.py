@@ -134,6 +134,8 @@ def simulated_heights(model: SceneModel) -> np.ndarray:
     scene, frames blended between steps and refined onto the texels."""
     import wavephys.simulation.stepping as stepping
 
+    if model.varying:
+        return _floor_heights(model)
     sim = model.simulation
     state = _initial_state(model)
     if model.scene.ships:
@@ -153,6 +155,19 @@ def simulated_heights(model: SceneModel) -> np.ndarray:
     return _frames(model, eta, eta_dot)
 
 
+def _floor_heights(model: SceneModel) -> np.ndarray:
+    """Frames (F, n, n), m, on the output texels, of the waves stepped over the scene's sloping
+    floor by the symmetric depth stepper, from the stones' craters at rest."""
+    import wavephys.simulation.stepping as stepping
+    from wavephys.simulation.depth import depth_state, run_depth
+
+    sim = model.simulation
+    eta0 = stepping.surface(sim, _initial_state(model)).eta  # the craters, exactly as the spectral step's
+    state, surfs = run_depth(sim, model.floor(), depth_state(sim, eta0), model.steps, method="symmetric")
+    eta = jnp.concatenate([surfs[1:, 0], state.eta[None]])
+    return np.asarray(interior(model, eta))
+
+
 @jax.jit
 def _blend(e0, e1, d0, d1, dt, s):
     """Hermite frames at fractions ``s`` (shape (F, 1, 1)) between surfaces e0, e1 with rates d0, d1."""
@@ -162,18 +177,20 @@ def _blend(e0, e1, d0, d1, dt, s):
     return h00 * e0 + h01 * e1 + dt * (h10 * d0 + h11 * d1)
 
 
-@functools.partial(jax.jit, static_argnames=("factor",))
-def _assemble(eta, eta_dot, index, s, dt, factor):
+@functools.partial(jax.jit, static_argnames=("factor", "walls"))
+def _assemble(eta, eta_dot, index, s, dt, factor, walls=False):
     """One block of frames: gathered from the step surfaces, blended where s > 0, refined by
-    ``factor`` (Fourier interpolation) — one compiled program per block."""
-    from wavephys.core.spectral import fourier_refine
+    ``factor`` (Fourier interpolation; cosine interpolation in a walled tank) — one compiled
+    program per block."""
+    from wavephys.core.spectral import cosine_refine, fourier_refine
 
     last = eta.shape[0] - 1
     nxt = jnp.minimum(index + 1, last)
     w = s[:, None, None]
     blend = _blend(eta[index], eta[nxt], eta_dot[index], eta_dot[nxt], dt, w)
     frames = jnp.where(w > 0, blend, eta[index])
-    return jax.vmap(lambda f: fourier_refine(f, factor))(frames) if factor > 1 else frames
+    refine = cosine_refine if walls else fourier_refine
+    return jax.vmap(lambda f: refine(f, factor))(frames) if factor > 1 else frames
 
 
 def surface_frames(model: SceneModel) -> np.ndarray:
@@ -312,7 +329,7 @@ def _frames(model: SceneModel, eta, eta_dot):
         count = len(index[sl])
         idx[:count], fr[:count] = index[sl], rest[sl]  # padded to one block shape: one compile
         block = _assemble(eta, eta_dot, jnp.asarray(idx), jnp.asarray(fr), jnp.asarray(model.dt, dtype),
-                          model.choices.coarsen)
+                          model.choices.coarsen, model.walls)
         out.append(np.asarray(interior(model, block))[:count])
     return np.concatenate(out)
 

@@ -16,6 +16,7 @@ TOML layout (every key optional except ``extent`` and one of ``pixel`` /
     pixel = 0.0625           # m per output texel (extent / pixel = texels per side, even)
     depth = 2.0              # m, or "inf" for deep water
     open_water = true        # waves leave the square (open-ocean cutoff) or wrap (a tank)
+    walls = false            # the square is a walled tank (a pool): waves reflect at its edges
     duration = 2.0           # s of output
     fps = 30.0               # output frames per second
     height_bits = 8          # bit depth of the height texture
@@ -39,6 +40,9 @@ TOML layout (every key optional except ``extent`` and one of ``pixel`` /
     length = 2.0             # m, Gaussian hull of this length and width
     width = 0.8
     strength = 0.02          # m²/s
+    [floor]                  # a plane floor: depth varies across the square (default: flat)
+    slope = 0.02             # tan β, the rise per metre, in [0, 0.5]
+    direction = 0.0          # degrees anticlockwise from +x: the way the water gets shallower
     [wind]                   # a Phillips sea added at t = 0
     speed = 5.0              # m/s
     direction = 0.0          # degrees
@@ -58,7 +62,7 @@ from typing import Optional
 from wavephys.core.inputs import check_bool, check_instance, check_int, check_scalar, describe
 from wavephys.core.water import Water
 
-__all__ = ["Scene", "StoneSpec", "ShipSpec", "WindSpec", "MIN_TEXELS", "MAX_TEXELS"]
+__all__ = ["Scene", "StoneSpec", "ShipSpec", "WindSpec", "FloorSpec", "MIN_TEXELS", "MAX_TEXELS", "MIN_FLOOR_DEPTH"]
 
 MIN_TEXELS, MAX_TEXELS = 32, 2048
 """Output texels per side the planner accepts (the range its error and cost models were measured on)."""
@@ -147,6 +151,47 @@ class ShipSpec:
         return self.x + vx * t, self.y + vy * t
 
 
+MIN_FLOOR_DEPTH = 0.2
+"""Shallowest water a sloping floor may leave anywhere on the simulated square, as a fraction of
+the scene's ``depth`` (the planner's depth models were measured on submerged floors; a shoreline is
+the ``shore`` render scene's)."""
+
+
+@dataclass(frozen=True)
+class FloorSpec:
+    """A plane floor under the scene: the depth is the scene's ``depth`` at the centre of the
+    visible square and changes by ``slope`` metres per metre, shallower along ``direction``:
+    h(x, y) = depth − slope·(x cos θ + y sin θ).
+
+    Parameters
+    ----------
+    slope : float
+        tan β of the floor, in [0, 0.5].
+    direction : float
+        Degrees anticlockwise from +x: the way the water gets shallower.
+    """
+
+    slope: float
+    direction: float = 0.0
+
+    def __post_init__(self):
+        object.__setattr__(self, "slope", _float("floor.", "slope", self.slope, lo=0.0, hi=0.5))
+        object.__setattr__(self, "direction", _float("floor.", "direction", self.direction))
+
+    def depth(self, depth: float, x, y):
+        """h(x, y), m, for the centre depth ``depth`` (m, > 0, finite) at points x, y (m, finite,
+        arrays that broadcast)."""
+        import numpy as np
+
+        from wavephys.core.inputs import check_array
+
+        check_scalar("depth", depth, lo=0.0, lo_open=True)
+        check_array("x", x)
+        check_array("y", y)
+        a = math.radians(self.direction)
+        return depth - self.slope * (np.asarray(x) * math.cos(a) + np.asarray(y) * math.sin(a))
+
+
 @dataclass(frozen=True)
 class WindSpec:
     """A Phillips wind sea added at t = 0 (:func:`wavephys.physics.wind.phillips_spectrum`).
@@ -194,10 +239,11 @@ class Scene:
         ``camera_distance`` (m) and ``pixel_angle`` (rad), whose product it is.
     depth : float
         Water depth, m (``math.inf``: deep water).
-    open_water : bool
+    open_water : bool, optional
         True: waves leave the square (an open-ocean cutoff margin of 1/8 of the side
         surrounds it); False: the square is periodic (a tank whose waves wrap). A scene
-        with a wind sea is periodic either way (:attr:`margin`).
+        with a wind sea is periodic either way (:attr:`margin`). Default: True, or False
+        for a walled scene.
     duration, fps : float
         Seconds of output and output frames per second (frames at 1/fps, 2/fps, …,
         duration).
@@ -216,12 +262,27 @@ class Scene:
         :mod:`wavephys.planner.caustics`). Needs a floor (finite ``depth``) and a periodic
         scene (a tank, or a wind sea: :attr:`margin` 0), because the light is traced
         through the visible square alone.
+    floor : FloorSpec, optional
+        A sloping plane floor (None: flat at ``depth``, which is then the depth at the centre).
+        The full model steps the waves over it with the symmetric depth stepper
+        (:func:`wavephys.simulation.depth.step_symmetric`, linear); the planner weighs that
+        against the spectral step at the centre's depth (the ``depth_model`` term). Needs a
+        finite depth, open water or walls (a periodic square would put a step in the floor
+        at its seam), stones only, and water at least :data:`MIN_FLOOR_DEPTH` × ``depth``
+        deep everywhere on the visible square and an n/8 margin around it.
+    walls : bool
+        The visible square is a tank closed by vertical walls at its four edges (a pool):
+        waves reflect there (docs/physics.md §1.11). Its full model steps the tank's cosine
+        modes exactly; the planner weighs that against a periodic square and an absorbing
+        margin (the ``boundary`` term). Stones only (ships and a wind sea in a walled tank
+        are not planned), no caustics, at most 1024 texels per side (its per-mode bounds
+        are taken on the tank's even extension, twice the side: :meth:`even_extension`).
     """
 
     extent: float
     pixel: float
     depth: float = math.inf
-    open_water: bool = True
+    open_water: Optional[bool] = None
     duration: float = 2.0
     fps: float = 30.0
     height_bits: int = 8
@@ -234,6 +295,8 @@ class Scene:
     ships: tuple = ()
     wind: Optional[WindSpec] = None
     caustics: bool = False
+    walls: bool = False
+    floor: Optional[FloorSpec] = None
     name: str = "scene"
 
     def __post_init__(self):
@@ -251,7 +314,13 @@ class Scene:
             raise ValueError(f"extent / pixel = {n} texels per side is outside [{MIN_TEXELS}, {MAX_TEXELS}], the "
                              f"range the planner's models were measured on")
         set_("depth", _float("", "depth", self.depth, lo=0.0, lo_open=True, allow_inf=True))
+        set_("walls", check_bool("walls", self.walls))
+        if self.open_water is None:
+            set_("open_water", not self.walls)
         set_("open_water", check_bool("open_water", self.open_water))
+        if self.walls and self.open_water:
+            raise ValueError("walls = true closes the square with reflecting walls: open_water = true (waves leave "
+                             "it) contradicts it; leave open_water out or set it false")
         set_("duration", _float("", "duration", self.duration, lo=0.0, lo_open=True, hi=3600.0))
         set_("fps", _float("", "fps", self.fps, lo=1.0, hi=1000.0))
         frames = round(self.duration * self.fps)
@@ -286,6 +355,67 @@ class Scene:
         if self.caustics and self.margin:
             raise ValueError("caustics = true needs a periodic scene (open_water = false, or a wind sea): the light "
                              "is traced through the visible square alone, which an open-water cutoff margin surrounds")
+        self._check_walls()
+        self._check_floor()
+
+    def _check_walls(self):
+        if not self.walls:
+            return
+        if self.ships or self.wind is not None:
+            raise ValueError(f"walls = true: a walled tank is planned with stones only (this scene has "
+                             f"{len(self.ships)} ships{', a wind sea' if self.wind is not None else ''}): the pure step "
+                             f"refuses ships in a tank, and a wind sea fills an open square")
+        if self.caustics:
+            raise ValueError("walls = true with caustics = true is not planned yet: the floor light is traced "
+                             "through a periodic square, which a walled tank is not")
+        if self.texels > MAX_TEXELS // 2:
+            raise ValueError(f"walls = true is planned up to {MAX_TEXELS // 2} texels per side (its bounds are taken "
+                             f"on the tank's even extension, twice the side), got {self.texels}")
+
+    def _check_floor(self):
+        if self.floor is None:
+            return
+        check_instance("floor", self.floor, FloorSpec, "wavephys.planner.FloorSpec (or None)")
+        if math.isinf(self.depth):
+            raise ValueError("floor: a sloping floor needs a finite depth (m) at the centre, not inf")
+        if not (self.margin or self.walls):
+            raise ValueError("floor: a sloping floor needs open water (a margin) or walls: a periodic square would "
+                             "join its deep and shallow edges in a step")
+        if self.ships:
+            raise ValueError(f"floor: a sloping floor is planned with stones only (this scene has {len(self.ships)} "
+                             f"ships): the depth stepper has no ship source")
+        half = 0.625 * self.extent  # the simulated square with an n/8 margin (a walled scene's margin option too)
+        a = math.radians(self.floor.direction)
+        shallowest = self.depth - self.floor.slope * half * (abs(math.cos(a)) + abs(math.sin(a)))
+        if shallowest < MIN_FLOOR_DEPTH * self.depth:
+            raise ValueError(f"floor: slope {self.floor.slope:g} leaves {shallowest:.3g} m of water at the shallowest "
+                             f"corner of the square and its n/8 margin, below {MIN_FLOOR_DEPTH:g} × depth = "
+                             f"{MIN_FLOOR_DEPTH * self.depth:.3g} m (the planned range; a shoreline is the "
+                             f"shore render scene's)")
+
+    def depth_range(self) -> tuple[float, float]:
+        """(shallowest, deepest) water on the visible square and an n/8 margin around it, m (both
+        ``depth`` without a floor)."""
+        if self.floor is None:
+            return self.depth, self.depth
+        half = 0.625 * self.extent
+        a = math.radians(self.floor.direction)
+        reach = self.floor.slope * half * (abs(math.cos(a)) + abs(math.sin(a)))
+        return self.depth - reach, self.depth + reach
+
+    def even_extension(self) -> "Scene":
+        """The walled tank as a periodic scene twice its side: each stone with its three images
+        in the walls (the method of images). The tank's cosine modes are exactly this scene's
+        Fourier modes (docs/physics.md §1.11), so its heights on the quadrant [−extent, 0]²
+        are the tank's, and its per-mode bounds are the tank's (a floor is left out: the
+        per-mode bounds are the constant-depth model's). ValueError for a scene without walls."""
+        if not self.walls:
+            raise ValueError("even_extension: this scene has no walls")
+        half = self.extent / 2
+        stones = tuple(replace(s, x=sx * (s.x - half), y=sy * (s.y - half))
+                       for s in self.stones for sx in (1, -1) for sy in (1, -1))
+        return replace(self, extent=2 * self.extent, walls=False, open_water=False, stones=stones, floor=None,
+                       name=f"{self.name} (even extension)")
 
     def _check_sources(self):
         half = self.extent / 2
@@ -389,14 +519,15 @@ class Scene:
                             raise ValueError(f"{key}[{i}] needs {', '.join(need)}; got {sorted(item)}") from None
                         raise
                 data[key] = tuple(built)
-        if "wind" in data:
-            wind = data["wind"]
-            if not isinstance(wind, dict):
-                raise TypeError(f"wind must be a table, got {describe(wind)}")
-            _refuse_unknown("wind", wind, {f.name for f in fields(WindSpec)})
-            if "speed" not in wind:
-                raise ValueError("wind needs speed (m/s)")
-            data["wind"] = WindSpec(**wind)
+        for key, spec, need in (("floor", FloorSpec, "slope (tan β)"), ("wind", WindSpec, "speed (m/s)")):
+            if key in data:
+                table = data[key]
+                if not isinstance(table, dict):
+                    raise TypeError(f"{key} must be a table, got {describe(table)}")
+                _refuse_unknown(key, table, {f.name for f in fields(spec)})
+                if need.split()[0] not in table:
+                    raise ValueError(f"{key} needs {need}")
+                data[key] = spec(**table)
         data.setdefault("name", name)
         return cls(**data)
 
@@ -429,13 +560,15 @@ class Scene:
     def as_dict(self) -> dict:
         """The scene as the TOML layout's dict (``from_dict(scene.as_dict())`` equals it)."""
         out = {f.name: getattr(self, f.name) for f in fields(self)
-               if f.name not in ("water", "stones", "ships", "wind")}
+               if f.name not in ("water", "stones", "ships", "wind", "floor")}
         out["depth"] = "inf" if math.isinf(self.depth) else self.depth
         out["water"] = dict(g=self.water.g, rho=self.water.rho, sigma=self.water.sigma)
         out["stones"] = [vars(s).copy() for s in self.stones]
         out["ships"] = [vars(s).copy() for s in self.ships]
         if self.wind is not None:
             out["wind"] = vars(self.wind).copy()
+        if self.floor is not None:
+            out["floor"] = vars(self.floor).copy()
         return out
 
 

@@ -99,8 +99,10 @@ class SceneSpectrum:
 
 
 def scene_spectrum(scene: Scene) -> SceneSpectrum:
-    """The scene's per-mode amplitudes on its full grid (cached per scene)."""
-    return _scene_spectrum(scene)
+    """The scene's per-mode amplitudes on its full grid (cached per scene); a walled scene's are
+    its even extension's (:meth:`wavephys.planner.scene.Scene.even_extension`: the tank's cosine
+    modes)."""
+    return _scene_spectrum(scene.even_extension() if scene.walls else scene)
 
 
 @lru_cache(maxsize=16)

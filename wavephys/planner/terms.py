@@ -99,6 +99,11 @@ class PlanContext:
     def by_choices(self) -> dict:
         return {c.choices: c for c in self.candidates}
 
+    def base(self, choices: Choices) -> Candidate:
+        """The full model's candidate with ``choices``' depth model (over a sloping floor the
+        constant-depth model's other terms are measured from the constant-depth full model)."""
+        return self.by_choices.get(replace(self.full.choices, depth_model=choices.depth_model), self.full)
+
     def alone(self, name: str, value) -> Optional[Candidate]:
         """The height candidate with ``name`` set to ``value`` and every other term full (None
         if that configuration cannot run)."""
@@ -147,11 +152,17 @@ class PlanTerm:
     def row(self, ctx: PlanContext, choices: Choices) -> Term:
         """The model card's row for the plan's ``choices``."""
         value = getattr(choices, self.name)
-        err = self.bound(ctx, value)
+        base = ctx.base(choices) if self.kind == "height" and self.name != "depth_model" else ctx.full
+        if base is ctx.full:
+            err, saving = self.bound(ctx, value), self.saving(ctx, value)
+        else:  # constant depth under a sloping floor: this term's share from that model's full configuration
+            alone = ctx.by_choices.get(replace(base.choices, **{self.name: value}))
+            err = (alone.bounds.total - base.bounds.total) if alone else math.nan
+            saving = (base.cost - alone.cost) if alone else math.nan
         reason = self.reason(ctx, value, err)
         if ctx.scene.caustics and self.kind == "height":
             reason += "; heights kept as the full model's: the image shows caustics, which a height change moves"
-        return Term(self.name, value, max(err, 0.0), self.saving(ctx, value), reason, self.unit)
+        return Term(self.name, value, max(err, 0.0), saving, reason, self.unit)
 
 
 def _effect(ctx: PlanContext, err: float) -> str:
@@ -213,6 +224,8 @@ class SecondOrder(PlanTerm):
 
     def reason(self, ctx, option, error):
         spec = ctx.spectrum
+        if ctx.scene.floor is not None and ctx.scene.floor.slope > 0:
+            return "linear: over a sloping floor the full model (the depth stepper) is linear"
         return f"kept: η₂ up to {spec.s0 * spec.s1 / 2:.2g} m" if option else f"dropped: {_effect(ctx, error)}"
 
 
@@ -223,6 +236,8 @@ class Margin(PlanTerm):
 
     def reason(self, ctx, option, error):
         scene = ctx.scene
+        if scene.walls:
+            return "a walled scene: its edges are the boundary term's"
         if not scene.margin:
             return "a periodic scene: no margin"
         if scene.texels > MARGIN_TEXELS:
@@ -231,6 +246,43 @@ class Margin(PlanTerm):
         if option == "n/8":
             return f"the full model's {size} texels a side"
         return f"{size} texels a side (measured against n/8 on the linear model, ×1.25): {_effect(ctx, error)}"
+
+
+class DepthModel(PlanTerm):
+    """A sloping floor: the waves stepped over it (the symmetric depth stepper), or the spectral
+    step at the centre's depth (:data:`wavephys.planner.model.DEPTH_MODELS`); evaluated like the
+    margin (:func:`wavephys.planner.predict.depth_errors`)."""
+
+    name = "depth_model"
+
+    def reason(self, ctx, option, error):
+        scene = ctx.scene
+        if scene.floor is None or scene.floor.slope == 0:
+            return "a flat floor: the spectral step is exact"
+        lo, hi = scene.depth_range()
+        span = f"the floor slopes {scene.floor.slope:g} (depth {lo:.3g}–{hi:.3g} m over the simulated square)"
+        if option == "varying":
+            return f"stepped over the floor (symmetric depth stepper, linear): {span}"
+        return (f"constant depth {scene.depth:g} m (the spectral step, every other term open): {span}; measured "
+                f"against the floor on the linear model, ×1.25: {_effect(ctx, error)}")
+
+
+class Boundary(PlanTerm):
+    """A walled scene's edges: reflecting walls (exact), a periodic square, or an absorbing margin
+    (:data:`wavephys.planner.model.BOUNDARIES`); evaluated like the margin
+    (:func:`wavephys.planner.predict.boundary_errors`)."""
+
+    name = "boundary"
+
+    def reason(self, ctx, option, error):
+        scene = ctx.scene
+        if not scene.walls:
+            return "no walls"
+        if option == "walls":
+            return "reflecting walls: the tank's cosine modes stepped exactly"
+        what = ("periodic: a wave reaching a wall comes back through the opposite one" if option == "periodic" else
+                f"an absorbing margin of {scene.texels // 8} texels: the waves leave instead of reflecting")
+        return f"{what} (measured against the walls on the linear model, ×1.25): {_effect(ctx, error)}"
 
 
 class ShipMethod(PlanTerm):
@@ -531,7 +583,7 @@ class Terms(Mapping):
         return tuple(t for t in self._terms.values() if t.kind == kind)
 
 
-TERMS = Terms(Surface(), Margin(), SurfaceTension(), FiniteDepth(), Coarsen(), StepsPerFrame(), SecondOrder(),
+TERMS = Terms(Surface(), DepthModel(), Margin(), Boundary(), SurfaceTension(), FiniteDepth(), Coarsen(), StepsPerFrame(), SecondOrder(),
               ShipMethod(), ShipPatch(), Texture(), Fresnel(), Absorption(), Caustics())
 """Every switchable term, in model-card order."""
 HEIGHT_TERMS = tuple(t.name for t in TERMS.of_kind("height") if t.name != "surface")
