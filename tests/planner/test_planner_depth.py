@@ -54,6 +54,7 @@ def test_depth_errors_match_runs_on_generated_slopes():
         assert bound / 1.6 <= measured <= bound, (scene.name, measured, bound)
 
 
+@pytest.mark.slow
 def test_a_gentle_floor_is_planned_at_constant_depth_and_a_steep_one_over_the_floor():
     """At 8 quanta a 0.003 slope is not worth stepping (constant depth, within its promise); at
     ½ quantum a 0.1 slope is (the symmetric depth stepper, the full model itself)."""
@@ -148,3 +149,23 @@ def test_the_floor_on_the_grid_is_the_plane():
     assert np.allclose(h[:, 0], h[:, -1]) and h[0, 0] > h[-1, 0]  # rises along +y
     x = (np.arange(40) + 0.5) * 0.125 - 2.5
     assert np.allclose(h[:, 7], 0.5 - 0.05 * x)
+
+
+@pytest.mark.slow
+def test_the_cutoffs_change_is_evaluated_only_where_a_plan_needs_it():
+    """The plan adds the cutoff's change only to candidates already within its tolerance (it only
+    adds): a tight plan of a short open scene runs none of the five extra runs, its Pareto front
+    (made when first read) runs them all, and every candidate's bound equals the eager one."""
+    from wavephys.planner import candidates
+    from wavephys.planner.plan import plan_context
+    from wavephys.planner.predict import _margin_step_single, height_bounds
+
+    scene = Scene(2.0, 2.0 / 32, depth=0.5, duration=6 / 30, fps=30.0, height_range=0.02,
+                  stones=(StoneSpec(0.0, 0.0, 0.15, 0.01),), name="test-lazy")
+    _margin_step_single.cache_clear()
+    p = plan(scene, 0.05 * scene.height_quantum)
+    assert _margin_step_single.cache_info().currsize <= 1  # (1, 1): nothing to run
+    assert len(p.front) >= 2 and _margin_step_single.cache_info().currsize >= 4
+    eager = height_bounds(scene, plan_context(scene).calibration["kappa"])
+    for c in candidates(scene):
+        assert math.isclose(c.bounds.total, eager[c.choices].total, rel_tol=1e-12), c.choices

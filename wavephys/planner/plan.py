@@ -70,7 +70,9 @@ class Plan:
     height_cost : float
         The heights' share of ``cost``, s.
     front : tuple of Candidate
-        The Pareto front of the height candidates.
+        The Pareto front of the height candidates (computed when first read: it evaluates the
+        cutoff's change for every coarsening and steps per frame, which the plan itself needs only
+        for the candidates within its tolerance).
     texture_error : float
         The height texture's rounding, m (added to ``bounds.total`` in :attr:`predicted_error`).
     """
@@ -85,8 +87,15 @@ class Plan:
     full_cost: float
     terms: tuple
     height_cost: float = 0.0
-    front: tuple = field(repr=False, default=())
+    front: tuple = field(repr=False, default=(), compare=False)
     texture_error: float = 0.0
+
+    def __getattribute__(self, name):
+        value = object.__getattribute__(self, name)
+        if name == "front" and callable(value):  # made on first read (class doc)
+            value = value()
+            object.__setattr__(self, "front", value)
+        return value
 
     @property
     def predicted_error(self) -> float:
@@ -187,7 +196,8 @@ def candidates(scene: Scene, calibration: Optional[dict] = None) -> list:
     list of Candidate
     """
     check_instance("scene", scene, Scene, "wavephys.planner.Scene")
-    return list(plan_context(scene, calibration).candidates)
+    ctx = plan_context(scene, calibration)
+    return [ctx.settle(c) for c in ctx.candidates]
 
 
 def plan_context(scene: Scene, calibration: Optional[dict] = None) -> PlanContext:
@@ -231,14 +241,15 @@ def _shipped_context(scene: Scene) -> PlanContext:
 def _context(scene: Scene, cal: dict) -> PlanContext:
     options = {name: TERMS[name].options(scene) for name in HEIGHT_TERMS}
     out = []
-    for choices, b in height_bounds(scene, cal["kappa"], options).items():
+    for choices, b in height_bounds(scene, cal["kappa"], options, defer_steps=True).items():
         try:
             model = SceneModel(scene, choices)
             if scene.ships:
                 model.check_ships()
         except ValueError:
             continue
-        out.append(Candidate(model.choices, b, height_cost(model, cal)["total"]))
+        pending = bool(scene.margin) and (choices.coarsen, choices.steps_per_frame) != (1, 1)
+        out.append(Candidate(model.choices, b, height_cost(model, cal)["total"], pending))
     for name, b in surface_bounds(scene, cal["kappa"]).items():  # wind seas: the other surface models
         if name in TERMS["surface"].options(scene):
             model = SceneModel(scene, Choices(second_order=False, surface=name))
@@ -315,7 +326,8 @@ def plan(scene: Scene, tolerance: float, colour_tolerance: Optional[float] = Non
     tolerance, colour_tolerance = float(tolerance), float(colour_tolerance)
     ctx = plan_context(scene, calibration)
     cands, full = ctx.candidates, ctx.full
-    ok = [c for c in cands if c.bounds.total <= tolerance]
+    # a deferred term only adds: the candidates within the tolerance without it are the only ones it can keep
+    ok = [c for c in (ctx.settle(c) for c in cands if c.bounds.total <= tolerance) if c.bounds.total <= tolerance]
     if not ok:
         raise Infeasible(f"no model meets {tolerance:.3g} m: the full model's own float32 floor is "
                          f"{full.bounds.total:.3g} m (run in float64 for less), and the best candidate reaches "
@@ -344,7 +356,7 @@ def plan(scene: Scene, tolerance: float, colour_tolerance: Optional[float] = Non
     cand, tex_err, choices, colour_err, cost = best[fmt]
     terms = tuple(term.row(ctx, choices) for term in TERMS.values())
     return Plan(scene, tolerance, colour_tolerance, SceneModel(scene, choices), cand.bounds, colour_err, cost,
-                full_cost(ctx), terms, cand.cost, tuple(_pareto(cands)), tex_err)
+                full_cost(ctx), terms, cand.cost, lambda: tuple(_pareto([ctx.settle(c) for c in cands])), tex_err)
 
 
 def full_cost(ctx: PlanContext) -> float:

@@ -48,7 +48,7 @@ from wavephys.planner.spectrum import (CHOPPINESS, NOISE_HURST, NOISE_OCTAVES, S
                                        mode_heights, noise_sea, pair_bound, scene_spectrum, variant_index)
 
 __all__ = ["HeightBounds", "default_height_options", "height_bounds", "hermite_blend_error", "texture_error", "height_peak", "surface_bounds",
-           "RESAMPLE_ERROR", "patch_bound", "margin_errors", "margin_step_errors", "boundary_errors", "depth_errors"]
+           "RESAMPLE_ERROR", "patch_bound", "margin_errors", "margin_step_errors", "margin_step_error", "boundary_errors", "depth_errors"]
 
 
 def second_order_blend(spec: SceneSpectrum, dt: float) -> float:
@@ -184,13 +184,30 @@ def margin_step_errors(scene: Scene) -> dict:
 
 @lru_cache(maxsize=16)
 def _margin_step_errors(scene: Scene) -> dict:
-    from wavephys.planner.runner import simulated_heights
-
     if not scene.margin:
         return {}
     spfs = tuple(s for s in STEPS_PER_FRAME if s <= scene.frames)
+    return {(c, s): margin_step_error(scene, c, s) for c in COARSEN for s in spfs}
+
+
+def margin_step_error(scene: Scene, coarsen: int, steps_per_frame: int) -> float:
+    """One entry of :func:`margin_step_errors` (m; 0 for a periodic scene and for (1, 1)): the
+    evaluated change of coarsening ``coarsen`` plus that of ``steps_per_frame``, each run once per
+    scene (cached), so a plan runs only the ones its candidates within the tolerance need."""
+    if not scene.margin or (coarsen, steps_per_frame) == (1, 1):
+        return 0.0
     if scene.texels > MARGIN_TEXELS:
-        return {(c, s): (0.0 if (c, s) == (1, 1) else math.inf) for c in COARSEN for s in spfs}
+        return math.inf
+    return _margin_step_single(scene, "coarsen", coarsen) + _margin_step_single(scene, "steps_per_frame",
+                                                                                steps_per_frame)
+
+
+@lru_cache(maxsize=64)
+def _margin_step_single(scene: Scene, name: str, value: int) -> float:
+    from wavephys.planner.runner import simulated_heights
+
+    if value == 1:
+        return 0.0
     full = replace(full_choices(scene), second_order=False, depth_model="constant")
 
     def heights(**kw):
@@ -203,16 +220,18 @@ def _margin_step_errors(scene: Scene) -> dict:
                 model.check_ships()
         return simulated_heights(model).astype(np.float64)
 
-    ref = heights()
-    alone = {}
-    for key, kw in [(("coarsen", c), dict(coarsen=c)) for c in COARSEN[1:]] + \
-                   [(("steps", s), dict(steps_per_frame=s)) for s in spfs[1:]]:
-        try:
-            alone[key] = MARGIN_SAFETY * float(np.abs(heights(**kw) - ref).max())
-        except ValueError:  # this grid cannot run the scene, or a ship's patch leaks at this Δt
-            alone[key] = math.inf
-    alone[("coarsen", 1)] = alone[("steps", 1)] = 0.0
-    return {(c, s): alone[("coarsen", c)] + alone[("steps", s)] for c in COARSEN for s in spfs}
+    try:
+        return MARGIN_SAFETY * float(np.abs(heights(**{name: value}) - _margin_step_reference(scene)).max())
+    except ValueError:  # this grid cannot run the scene, or a ship's patch leaks at this Δt
+        return math.inf
+
+
+@lru_cache(maxsize=16)
+def _margin_step_reference(scene: Scene) -> np.ndarray:
+    from wavephys.planner.runner import simulated_heights
+
+    full = replace(full_choices(scene), second_order=False, depth_model="constant")
+    return simulated_heights(SceneModel(scene, full)).astype(np.float64)
 
 
 @lru_cache(maxsize=16)
@@ -434,7 +453,7 @@ def _linear_sums(lin: _Linear, diffs: dict, c: int) -> tuple:
     return e_lin, d0, d1, rms
 
 
-def height_bounds(scene: Scene, kappa: float, options=None) -> dict:
+def height_bounds(scene: Scene, kappa: float, options=None, defer_steps: bool = False) -> dict:
     """:class:`HeightBounds` of every height configuration of ``scene``, a dict keyed by its
     :class:`~wavephys.planner.model.Choices` (the other terms full): the product of
     ``options`` ({term: values} for each of the spectral step's terms; default
@@ -444,7 +463,9 @@ def height_bounds(scene: Scene, kappa: float, options=None) -> dict:
     boundaries :func:`boundary_errors`. A walled scene's per-mode bounds are its even
     extension's (:meth:`wavephys.planner.scene.Scene.even_extension`), whose Fourier modes are
     the tank's cosine modes: exact for the walls, and the boundary's evaluated change added
-    for the others.
+    for the others. The cutoff's change with the grid and Δt (:func:`margin_step_error`) is added
+    too, unless ``defer_steps``: then it is left for the caller to add where it needs it (the plan
+    adds it only to the candidates within its tolerance, :meth:`~wavephys.planner.terms.PlanContext.settle`).
 
     Stones and ships are bounded by the triangle inequality (rigorous for the linear
     surface); the wind sea by z × its RMS (:func:`wavephys.planner.spectrum.gaussian_factor`).
@@ -460,7 +481,7 @@ def height_bounds(scene: Scene, kappa: float, options=None) -> dict:
     measured = boundary_errors(scene) or {"walls": 0.0}
     boundaries = {k: v for k, v in measured.items() if k in opts.get("boundary", ("walls",)) and math.isfinite(v)}
     margins = {(m, b): e + f for m, e in margins.items() for b, f in (boundaries or {"walls": 0.0}).items()}
-    stepped = margin_step_errors(scene)
+    stepped = {} if defer_steps else margin_step_errors(scene)
     full = full_choices(scene)
     floor = _sloping(scene) and "constant" in opts.get("depth_model", ("varying",))
     e_depth = depth_errors(scene).get("constant", math.inf) if floor else math.inf
@@ -473,6 +494,8 @@ def height_bounds(scene: Scene, kappa: float, options=None) -> dict:
         diffs = _differences(lin, vi, impulses, spf, scene.fps)
         for c in opts["coarsen"]:
             e_step = stepped.get((c, spf), 0.0)  # the cutoff's change with the grid and Δt (margin_step_errors)
+            if defer_steps and scene.margin and scene.texels > MARGIN_TEXELS and (c, spf) != (1, 1):
+                e_step = math.inf
             if not math.isfinite(e_step):
                 continue
             e_lin, d0, d1, rms = _linear_sums(lin, diffs, c)

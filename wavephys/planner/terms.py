@@ -58,6 +58,9 @@ class Candidate:
     choices: Choices
     bounds: HeightBounds
     cost: float
+    pending: bool = False
+    """True while its bounds lack the cutoff's change with the grid and Δt
+    (:func:`wavephys.planner.predict.margin_step_error`): :meth:`PlanContext.settle` adds it."""
 
 
 @dataclass(frozen=True)
@@ -99,15 +102,33 @@ class PlanContext:
     def by_choices(self) -> dict:
         return {c.choices: c for c in self.candidates}
 
+    @cached_property
+    def _settled(self) -> dict:
+        return {}
+
+    def settle(self, cand: Optional[Candidate]) -> Optional[Candidate]:
+        """``cand`` with the cutoff's change with the grid and Δt added to its bounds (run once per
+        coarsening and steps per frame, on the first candidate that needs it)."""
+        if cand is None or not cand.pending:
+            return cand
+        if cand.choices not in self._settled:
+            from wavephys.planner.predict import margin_step_error
+
+            e = margin_step_error(self.scene, cand.choices.coarsen, cand.choices.steps_per_frame)
+            b = cand.bounds
+            self._settled[cand.choices] = Candidate(cand.choices, HeightBounds(b.linear + e, b.second_order, b.rounding,
+                                                                               b.rms + e), cand.cost)
+        return self._settled[cand.choices]
+
     def base(self, choices: Choices) -> Candidate:
         """The full model's candidate with ``choices``' depth model (over a sloping floor the
         constant-depth model's other terms are measured from the constant-depth full model)."""
-        return self.by_choices.get(replace(self.full.choices, depth_model=choices.depth_model), self.full)
+        return self.settle(self.by_choices.get(replace(self.full.choices, depth_model=choices.depth_model), self.full))
 
     def alone(self, name: str, value) -> Optional[Candidate]:
         """The height candidate with ``name`` set to ``value`` and every other term full (None
         if that configuration cannot run)."""
-        return self.by_choices.get(replace(self.full.choices, **{name: value}))
+        return self.settle(self.by_choices.get(replace(self.full.choices, **{name: value})))
 
 
 class PlanTerm:
@@ -156,7 +177,7 @@ class PlanTerm:
         if base is ctx.full:
             err, saving = self.bound(ctx, value), self.saving(ctx, value)
         else:  # constant depth under a sloping floor: this term's share from that model's full configuration
-            alone = ctx.by_choices.get(replace(base.choices, **{self.name: value}))
+            alone = ctx.settle(ctx.by_choices.get(replace(base.choices, **{self.name: value})))
             err = (alone.bounds.total - base.bounds.total) if alone else math.nan
             saving = (base.cost - alone.cost) if alone else math.nan
         reason = self.reason(ctx, value, err)
