@@ -1,4 +1,4 @@
-"""``python -m bench {propagation,boundaries,walls,shallow,optics,jacobian,ship,wake,harness,halffloat,render,surfaces,scale,calibrate,planner} [--json PATH] [--quick]``.
+"""``python -m bench {propagation,boundaries,walls,shallow,optics,jacobian,ship,wake,harness,halffloat,render,surfaces,scale,calibrate,planner,savings} [--json PATH] [--quick]``.
 
 Each writes its rows as JSON and its charts as PNG next to it (default
 ``bench/results/``) and prints a table.
@@ -312,7 +312,7 @@ def run_calibrate(args) -> None:
 
     data = calibrate(_say, only=args.only)
     if args.only:
-        print(f"updated {args.only} in {CAL_PATH}")
+        print(f"updated {', '.join(args.only)} in {CAL_PATH}")
     else:
         print(f"kappa {data['kappa']:.3g}; step at n=128 {1e3 * data['step']['first'][6]:.3f} ms; wrote {CAL_PATH}")
 
@@ -329,6 +329,24 @@ def run_planner(args) -> None:
           f"measured/predicted error worst {max(ratios):.3g}, median {sorted(ratios)[len(ratios) // 2]:.3g}; "
           f"measured saving median ×{savings[len(savings) // 2]:.2f} (range ×{savings[0]:.2f}–×{savings[-1]:.2f})")
     _write(rows, planner.figures(rows), Path(args.json or "bench/results/planner.json"))
+
+
+def run_savings(args) -> None:
+    from bench import planner
+    from wavephys.planner import BUILTIN_SCENES, builtin_scene, generate_scenes
+
+    scenes = [builtin_scene(n) for n in BUILTIN_SCENES]
+    scenes += generate_scenes(7 if args.quick else 21, seed=2027, texels=(32, 48, 64, 96, 128))
+    rows = planner.savings_rows(scenes, rounds=5 if args.quick else 7, progress=_say)
+    ok = [r for r in rows if "measured_saving" in r]
+    for q in sorted({r["quanta"] for r in ok}):
+        s = sorted(r["measured_saving"] for r in ok if r["quanta"] == q)
+        p = sorted(r["predicted_saving"] for r in ok if r["quanta"] == q)
+        print(f"{q:g} quanta: {len(s)} plans; measured saving median ×{s[len(s) // 2]:.2f} (range ×{s[0]:.2f}–"
+              f"×{s[-1]:.2f}); predicted median ×{p[len(p) // 2]:.2f}")
+    slow = [f"{r['scene']} at {r['quanta']:g}" for r in ok if r["slower_every_round"]]
+    print(f"slower than the full model in every round: {', '.join(slow) if slow else 'none'}")
+    _write(rows, {"chart": planner.savings_figure(rows)}, Path(args.json or "bench/figures/savings.json"))
 
 
 def main(argv=None) -> int:
@@ -348,14 +366,18 @@ def main(argv=None) -> int:
                             ("surfaces", run_surfaces, "noise, Gerstner, choppy: cost per frame vs physics error"),
                             ("scale", run_scale, "sharded step: overhead, memory per device, bytes per step"),
                             ("calibrate", run_calibrate, "measure the planner's cost model (writes its calibration)"),
-                            ("planner", run_planner, "the planner's proof over generated scenes")):
+                            ("planner", run_planner, "the planner's proof over generated scenes"),
+                            ("savings", run_savings, "plan against full model in interleaved rounds: built-in and generated scenes at ½ and 1 quantum")):
         s = sub.add_parser(name, help=help_)
         s.add_argument("--json", metavar="PATH")
         s.add_argument("--quick", action="store_true", help="smaller sizes (for CI smoke runs)")
         if name == "scale":
             s.add_argument("--huge", action="store_true", help="a 16384² run on 1 and on 4 devices (20 GiB, minutes)")
         if name == "calibrate":
-            s.add_argument("--only", choices=("caustics", "caustics_jacobian", "step_walls", "step_symmetric", "shade", "texture", "surface", "ship", "ship_impulses"), help="measure this table alone and update its entry")
+            from wavephys.planner.measure import TABLES
+
+            s.add_argument("--only", nargs="+", choices=TABLES, metavar="TABLE",
+                           help="measure these tables alone and update their entries: " + ", ".join(TABLES))
         if name == "propagation":
             s.add_argument("--device", choices=("cpu", "gpu", "tpu"),
                            help="time the step on this device against its own FFT floor (N = 1024–8192)")

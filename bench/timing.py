@@ -7,48 +7,11 @@ same machine load, and report the ratio of the medians.
 from __future__ import annotations
 
 import os
-import statistics
-import time
 from typing import Callable
 
-import jax
 import numpy as np
 
-
-def _once(fn) -> float:
-    t = time.perf_counter()
-    jax.block_until_ready(fn())
-    return time.perf_counter() - t
-
-
-def median_seconds(fn: Callable[[], object], repeats: int = 7, warmup: int = 1) -> float:
-    """Median wall time of ``fn()`` over ``repeats`` runs after ``warmup`` runs.
-
-    JAX results are waited for with ``block_until_ready``.
-    """
-    for _ in range(warmup):
-        jax.block_until_ready(fn())
-    return statistics.median(_once(fn) for _ in range(repeats))
-
-
-def interleaved(fns: dict[str, Callable[[], object]], repeats: int = 15, warmup: int = 2,
-                block: int = 5) -> dict[str, list[float]]:
-    """Wall times of each function, measured round-robin in the same loop.
-
-    Each round runs every function ``block`` times in a row and keeps the median of
-    that block: the first run after switching libraries can be slowed by the previous
-    library's worker threads still spinning (XLA's pool does), and the block median
-    discards it. Returns one time per round per function, in round order, so callers
-    can pair the functions of one round (same machine state).
-    """
-    for fn in fns.values():
-        for _ in range(warmup):
-            jax.block_until_ready(fn())
-    times: dict[str, list[float]] = {k: [] for k in fns}
-    for _ in range(repeats):
-        for k, fn in fns.items():
-            times[k].append(statistics.median(_once(fn) for _ in range(block)))
-    return times
+from wavephys.core.timing import interleaved, median_seconds  # noqa: F401  (the one place; re-exported)
 
 
 def paired_ratio(times: dict[str, list[float]], subject: str, baselines: list[str]):

@@ -478,6 +478,11 @@ OVERRIDES = {
                                                    "wavephys", fromlist=["Grid"]).Grid(32, 1.0)},
     "wavephys.planner.runner.decode_texture": {"stored": lambda: np.zeros((2, 32, 32), np.float32)},
     "wavephys.planner.plan.Plan.to_json": {"path": lambda: TMP / "plan.json"},
+    # one table (a second); a full calibration takes minutes, and its input checks come first
+    "wavephys.planner.measure.calibrate": {"out": lambda: TMP / "calibration.json", "only": lambda: "texture",
+                                           "base": lambda: None, "progress": lambda: (lambda line: None)},
+    "wavephys.planner.cost.load_calibration": {"path": lambda: __import__("pathlib").Path(__import__(
+        "wavephys.planner.cost", fromlist=["x"]).__file__).with_name("data") / "calibration.json"},
     "wavephys.planner.charts.plot_plan": {"p": _plan, "measured": lambda: None},
     "wavephys.planner.generate.generate_scenes": {"count": lambda: 2, "seed": lambda: 0},
     "wavephys.planner.builtin.builtin_scene": {"name": lambda: "lake"},

@@ -414,10 +414,11 @@ def _jacobian(eta, grid, depth, sun, resolution, n_water, fresnel, refine, super
     planes, det, sharpness, rough, gap, finite = _fields(
         surface, _derivatives(surface, fine.dx), d, light.floor, light.n_water, fresnel,
         shadow_steps(surface, fine, light.direction), length, light.ground, grid.n)
-    if not bool(finite):
+    finite, min_det, steepest, jump, sharpest = (float(v) for v in np.asarray(_summary(finite, det, rough, gap,
+                                                                                          sharpness)))
+    if not finite:
         raise ValueError("eta must be finite everywhere; it contains NaN or inf")
-    min_det, steepest, jump = float(jnp.min(det)), float(jnp.max(rough)), float(jnp.max(gap))
-    s = (_supersampling(float(jnp.max(sharpness)), length / m, supersample, m)
+    s = (_supersampling(sharpest, length / m, supersample, m)
          if min_det > MIN_AREA_RATIO and steepest <= 1.0 and jump <= MAX_GAP else None)
     if s is not None and m * s > 8192:
         raise ValueError(f"resolution × supersample = {m * s} must be at most 8192")
@@ -439,7 +440,7 @@ def _jacobian(eta, grid, depth, sun, resolution, n_water, fresnel, refine, super
                   f"({steepest:.3g} × the most the gather lands on: MAX_CONTRACTION, MAX_KINK)")
     else:
         reason = (f"the light varies too fast on the floor (log E changes by "
-                  f"{float(jnp.max(sharpness)) * length / m:.3g} per texel; the finest supersampling of a "
+                  f"{sharpest * length / m:.3g} per texel; the finest supersampling of a "
                   f"{m}² map, at most 8 and 8192 texels, resolves {min(8, 8192 // m) * SHARPNESS_LIMIT:.3g})")
     if fold == "windows":
         bad = np.array((det <= MIN_AREA_RATIO) | (sharpness * (length / m) > SHARPNESS_LIMIT)
@@ -453,6 +454,14 @@ def _jacobian(eta, grid, depth, sun, resolution, n_water, fresnel, refine, super
             out = jnp.where(jnp.asarray(windows), beam, _point_to_texel(point))
             return out, dict(answer="windows", windows=float(windows.mean()), supersample=1, mask=windows)
     return _not_gathered(eta, grid, depth, sun, resolution, n_water, fresnel, fold, reason)
+
+
+@jax.jit
+def _summary(finite, det, rough, gap, sharpness):
+    """The numbers the gather decides on, in one transfer to the host: all finite (1/0), the
+    smallest area ratio, the roughest ground, the largest jump, the sharpest light."""
+    return jnp.stack([jnp.asarray(finite, jnp.float32), jnp.min(det), jnp.max(rough), jnp.max(gap),
+                      jnp.max(sharpness)]).astype(jnp.float32)
 
 
 def _map_side(eta, resolution) -> int:

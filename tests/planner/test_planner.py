@@ -201,14 +201,18 @@ def test_eight_bit_image_picks_a_cheap_fresnel_form_and_sixteen_bits_do_not():
 
 # -- caustics ---------------------------------------------------------------------------------
 def test_caustics_term_on_pools_with_and_without_light_to_show():
-    """A clear pool with ripples (stones, 8-bit image) keeps the caustics (below its first fold the
-    Jacobian gather, ten times cheaper than the beam) and, traced by each option, stays within the
-    error the planner evaluated; the same pool with waves a hundred times lower drops them (E/E₀
-    within a quantum of 1); a 16-bit image keeps them too."""
+    """A clear pool with ripples (stones, 8-bit image, 64 texels) keeps the caustics (below its
+    first fold the Jacobian gather, cheaper than the beam at refine 2 or more on this size: at
+    32 texels the gather's supersampling makes it dearer than the beam at refine 3, and the
+    planner takes the beam there) and, traced by each option, stays within the error the planner
+    evaluated; the same pool with waves a hundred times lower drops them (E/E₀ within a quantum
+    of 1); a 16-bit image keeps them too."""
     from wavephys.planner.caustics import caustics_errors
+    from wavephys.planner.cost import caustics_cost
     from wavephys.planner.runner import floor_light
 
-    scene = _pool(depth=0.4, caustics=True)
+    scene = _pool(n=64, depth=0.4, caustics=True)
+    assert caustics_cost(scene, "jacobian") < caustics_cost(scene, 2)
     p = plan(scene, scene.height_quantum)
     assert p.model.choices.caustics == "jacobian", p.card()
     row = {t.term: t for t in p.terms}["caustics"]

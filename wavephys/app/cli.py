@@ -5,6 +5,7 @@
   wavephys render              render a built-in scene with the headless renderer
   wavephys textures            export a built-in scene's textures
   wavephys plan SCENE          the cheapest model that meets a tolerance (the scene planner)
+  wavephys calibrate --out F   measure the planner's costs on this machine (for plan --calibration F)
   wavephys report --out DIR    one self-contained HTML page of what is measured
   wavephys check FRAMES...     check exported frames against the physics (dispersion, energy, …)
   wavephys check --glsl FILE   check a GLSL function against the physics (Fresnel, refraction, …)
@@ -299,6 +300,14 @@ def _tolerance(text: str):
     return ("q" if quanta else "m", value)
 
 
+PLAN_SCENES = ("ripples", "ocean", "pond", "lake", "harbour", "pool", "shelf")
+"""wavephys.planner.BUILTIN_SCENES, written out so that --help imports nothing heavy (a test keeps them equal)."""
+
+CALIBRATION_TABLES = ("step", "step_walls", "step_symmetric", "ship", "ship_impulses", "frame", "optics",
+                      "run_overhead", "caustics", "caustics_jacobian", "shade", "texture", "surface", "kappa")
+"""wavephys.planner.measure.TABLES, written out for the same reason (a test keeps them equal)."""
+
+
 def cmd_plan(args, parser) -> int:
     from wavephys.core.files import output_file
 
@@ -312,11 +321,16 @@ def cmd_plan(args, parser) -> int:
         parser.error(f"{exc} (or name a built-in scene: {', '.join(BUILTIN_SCENES)})")
     except (TypeError, ValueError) as exc:
         parser.error(str(exc) if args.scene in str(exc) else f"{args.scene}: {exc}")
+    cal = None
+    if args.calibration is not None:
+        from wavephys.planner import load_calibration
+
+        cal = _checked(parser, load_calibration, args.calibration)
     unit, value = args.tolerance
     tolerance = value * scene.height_quantum if unit == "q" else value
     colour = None if args.colour_tolerance is None else args.colour_tolerance * scene.image_quantum
     try:
-        p = plan(scene, tolerance, colour, args.budget)
+        p = plan(scene, tolerance, colour, args.budget, calibration=cal)
     except Infeasible as exc:
         print(f"wavephys plan: {exc}", file=sys.stderr)
         return 1
@@ -331,6 +345,24 @@ def cmd_plan(args, parser) -> int:
         with atomic_path(chart_path) as tmp:
             plot_plan(p).savefig(tmp, dpi=110, format="png")
         print(f"wrote {chart_path}")
+    return 0
+
+
+def cmd_calibrate(args, parser) -> int:
+    from wavephys.core.files import output_file
+
+    out = _checked(parser, output_file, args.out, "--out", (".json",))
+    from wavephys.planner import calibrate, load_calibration
+
+    base = _checked(parser, load_calibration, args.base) if args.base else None
+    if base is not None and not args.only:
+        parser.error("--base is for --only (a full calibration measures every table)")
+    start = time.perf_counter()
+    data = calibrate(out, only=args.only, base=base)
+    kind = f"{', '.join(args.only)}" if args.only else "every table"
+    where = data[f"{args.only[0]}_machine"] if args.only else f"{data['machine']}, {data['device']}"
+    print(f"wrote {out}: {kind} measured on {where} in {time.perf_counter() - start:.0f} s; "
+          f"kappa {data['kappa']:.3g}. Use it: wavephys plan SCENE --calibration {out}")
     return 0
 
 
@@ -733,7 +765,7 @@ def build_parser() -> argparse.ArgumentParser:
     t.set_defaults(func=cmd_textures)
     pl = sub.add_parser("plan", help="the cheapest model that meets a tolerance (the scene planner)",
                         epilog=EXIT_CODES + "\n  1  (plan) no model meets the tolerance", formatter_class=fmt,
-                        description="Plan a scene (a TOML file, or a built-in: ripples, ocean, pond, lake, harbour): "
+                        description="Plan a scene (a TOML file, or a built-in: " + ", ".join(PLAN_SCENES) + "): "
                                     "print its model card.")
     pl.add_argument("scene", help="a scene TOML file or a built-in scene's name")
     pl.add_argument("--tolerance", type=_tolerance, default=("q", 0.5),
@@ -742,9 +774,12 @@ def build_parser() -> argparse.ArgumentParser:
                     help="largest colour error in image quanta (default 1)")
     pl.add_argument("--budget", type=_float(0.0, open_lo=True), default=None, metavar="SECONDS",
                     help="refuse plans whose predicted cost exceeds this")
+    pl.add_argument("--calibration", metavar="FILE",
+                    help="costs measured by 'wavephys calibrate --out FILE' (default: the shipped ones, a 2-core CPU)")
     pl.add_argument("--json", metavar="PATH", help="also write the model card as JSON")
     pl.add_argument("--chart", metavar="PATH", help="draw the Pareto front and error budget (a .png)")
     pl.set_defaults(func=cmd_plan)
+    _add_calibrate_parser(sub, fmt)
     rp = sub.add_parser("report", help="one self-contained HTML page of what is measured", epilog=EXIT_CODES,
                         formatter_class=fmt, description="Validation table, wake pattern and angles, ring waves, bench "
                                                          "charts, model cards, rendered frames: DIR/report.html.")
@@ -756,6 +791,21 @@ def build_parser() -> argparse.ArgumentParser:
     rp.set_defaults(func=cmd_report)
     _add_check_parser(sub, fmt)
     return parser
+
+
+def _add_calibrate_parser(sub, fmt) -> None:
+    ca = sub.add_parser("calibrate", help="measure the planner's costs on this machine", epilog=EXIT_CODES,
+                        formatter_class=fmt,
+                        description="Time every piece the planner's cost model reads (steps, frames, shading, caustics, "
+                                    "textures, float32 rounding) on this machine and its JAX device, and write them "
+                                    "to a JSON file for 'wavephys plan --calibration FILE'. All tables took 7 minutes "
+                                    "on a 2-core CPU; --only measures some.")
+    ca.add_argument("--out", required=True, metavar="FILE", help="the calibration file to write (.json)")
+    ca.add_argument("--only", nargs="+", choices=CALIBRATION_TABLES, metavar="TABLE",
+                    help="measure these tables alone, the rest from --base: " + ", ".join(CALIBRATION_TABLES))
+    ca.add_argument("--base", metavar="FILE", help="with --only: the calibration the other tables come from "
+                                                   "(default: the shipped one)")
+    ca.set_defaults(func=cmd_calibrate)
 
 
 def main(argv=None) -> int:

@@ -36,12 +36,15 @@ def angular_wavenumbers(shape: tuple[int, int], spacing, real: bool = False, xp=
     return ky[:, None], kx[None, :]
 
 
-def spectral_gradient(field, spacing):
-    """(∂f/∂x, ∂f/∂y) of a real periodic field by FFT: exact for band-limited fields, 1/m × f."""
+def spectral_gradient(field, spacing, wavenumbers=None):
+    """(∂f/∂x, ∂f/∂y) of a real periodic field by FFT: exact for band-limited fields, 1/m × f.
+    ``wavenumbers``: the half spectrum's ``(ky, kx)`` (:func:`angular_wavenumbers` with
+    ``real=True``) when the caller has them (a compiled caller whose spacing is traced passes the
+    ones formed outside, so that its slopes round exactly as an eager call's)."""
     xp = array_module(field)
     f = xp.asarray(field)
     ny, nx = f.shape[-2:]
-    ky, kx = angular_wavenumbers((ny, nx), spacing, real=True, xp=xp)
+    ky, kx = wavenumbers if wavenumbers is not None else angular_wavenumbers((ny, nx), spacing, real=True, xp=xp)
     spec = xp.fft.rfft2(f)
     both = xp.fft.irfft2(xp.stack([1j * kx * spec, 1j * ky * spec]), s=(ny, nx))
     return both[0], both[1]

@@ -27,6 +27,7 @@ from __future__ import annotations
 import itertools
 import json
 import math
+import os
 from dataclasses import dataclass, field, replace
 from functools import lru_cache
 from typing import Optional
@@ -35,7 +36,8 @@ from wavephys.core.inputs import check_instance, check_scalar
 from wavephys.planner.caustics import caustics_errors
 from wavephys.planner.colour import colour_errors
 from wavephys.planner.cost import calibration as shipped_calibration
-from wavephys.planner.cost import caustics_cost, colour_cost, height_cost, texture_cost
+from wavephys.planner.cost import (CALIBRATION_KEYS, caustics_cost, check_calibration, colour_cost,  # noqa: F401
+                                   describe_calibration, height_cost, load_calibration, texture_cost)
 from wavephys.planner.model import FULL_REFINE, TEXTURE_BYTES, Choices, SceneModel, full_choices
 from wavephys.planner.predict import HeightBounds, height_bounds, surface_bounds
 from wavephys.planner.scene import Scene
@@ -75,6 +77,11 @@ class Plan:
         for the candidates within its tolerance).
     texture_error : float
         The height texture's rounding, m (added to ``bounds.total`` in :attr:`predicted_error`).
+    calibration : str
+        Where the costs were measured (:func:`wavephys.planner.cost.describe_calibration`).
+    cost_parts : dict
+        Where ``cost`` goes, s: the run's fixed overhead, steps, ships, frames, blends,
+        refinement (or a cheap surface model's frames), shading, caustics, texture encoding.
     """
 
     scene: Scene
@@ -89,6 +96,8 @@ class Plan:
     height_cost: float = 0.0
     front: tuple = field(repr=False, default=(), compare=False)
     texture_error: float = 0.0
+    calibration: str = ""
+    cost_parts: dict = field(default_factory=dict, compare=False)
 
     def __getattribute__(self, name):
         value = object.__getattribute__(self, name)
@@ -126,7 +135,14 @@ class Plan:
                  f"{self.bounds.linear:.2g}, second order {self.bounds.second_order:.2g}, float32 "
                  f"{self.bounds.rounding:.2g}, texture {self.texture_error:.2g}), colour {self.predicted_colour_error / s.image_quantum:.3g} quanta",
                  f"predicted cost {self.cost:.3g} s against {self.full_cost:.3g} s for the full model "
-                 f"(×{self.saving:.3g} cheaper)", ""]
+                 f"(×{self.saving:.3g} cheaper)"]
+        if self.cost_parts:
+            parts = [(k, v) for k, v in self.cost_parts.items() if v > 0.005 * self.cost]
+            lines.append("time goes to " + ", ".join(f"{k} {v:.2g} s ({100 * v / self.cost:.0f} %)"
+                                                       for k, v in sorted(parts, key=lambda kv: -kv[1])))
+        if self.calibration:
+            lines.append(f"costs measured by calibration {self.calibration}")
+        lines.append("")
         head = ("term", "choice", "error alone", "saves [s]", "reason")
         rows = [(t.term, str(t.choice), f"{t.error:.2g} {t.unit}", f"{t.saving:.2g}", t.reason) for t in self.terms]
         widths = [max(len(h), *(len(r[i]) for r in rows)) for i, h in enumerate(head[:-1])]
@@ -144,7 +160,7 @@ class Plan:
                     bounds=dict(linear=self.bounds.linear, second_order=self.bounds.second_order,
                                 rounding=self.bounds.rounding, rms=self.bounds.rms, texture=self.texture_error),
                     predicted_colour_error=self.predicted_colour_error, cost=self.cost, full_cost=self.full_cost,
-                    height_cost=self.height_cost,
+                    height_cost=self.height_cost, calibration=self.calibration, cost_parts=self.cost_parts,
                     terms=[dict(term=t.term, choice=t.choice, error=t.error, unit=t.unit, saving=t.saving,
                                 reason=t.reason) for t in self.terms],
                     front=[dict(choices=c.choices.as_dict(), predicted_error=c.bounds.total, cost=c.cost)
@@ -188,8 +204,9 @@ def candidates(scene: Scene, calibration: Optional[dict] = None) -> list:
     Parameters
     ----------
     scene : Scene
-    calibration : dict, optional
-        The cost calibration (default the shipped one, :func:`wavephys.planner.cost.calibration`).
+    calibration : dict or str or os.PathLike, optional
+        The cost calibration: a dict (:func:`wavephys.planner.load_calibration`) or a file that
+        ``wavephys calibrate`` wrote (default the shipped one, measured on a 2-core CPU).
 
     Returns
     -------
@@ -206,9 +223,10 @@ def plan_context(scene: Scene, calibration: Optional[dict] = None) -> PlanContex
     Parameters
     ----------
     scene : Scene
-    calibration : dict, optional
-        The cost calibration (default the shipped one). Contexts of the shipped calibration are
-        kept, so planning a scene at several tolerances computes its bounds once.
+    calibration : dict or str or os.PathLike, optional
+        The cost calibration: a dict (:func:`wavephys.planner.load_calibration`) or a file that
+        ``wavephys calibrate`` wrote (default the shipped one). Contexts of the shipped
+        calibration are kept, so planning a scene at several tolerances computes its bounds once.
 
     Returns
     -------
@@ -218,19 +236,23 @@ def plan_context(scene: Scene, calibration: Optional[dict] = None) -> PlanContex
     check_instance("scene", scene, Scene, "wavephys.planner.Scene")
     if calibration is None:
         return _shipped_context(scene)
+    if isinstance(calibration, (str, os.PathLike)):
+        stat = os.stat(calibration) if os.path.isfile(calibration) else None
+        if stat is None:
+            load_calibration(calibration)  # raises, naming the file
+        return _file_context(scene, os.path.abspath(calibration), stat.st_mtime_ns, stat.st_size)
     if not isinstance(calibration, dict):
-        raise TypeError(f"calibration must be a dict (the shape of planner/data/calibration.json), got "
-                        f"{type(calibration).__name__}")
-    missing = sorted(CALIBRATION_KEYS - set(calibration))
-    if missing:
-        raise ValueError(f"calibration lacks {missing} (python -m bench calibrate writes every table)")
-    check_scalar("calibration['kappa']", calibration["kappa"], lo=0.0)
+        raise TypeError(f"calibration must be a dict or a calibration file's path (wavephys calibrate --out FILE "
+                        f"writes one), got {type(calibration).__name__}")
+    check_calibration(calibration)
     return _context(scene, calibration)
 
 
-CALIBRATION_KEYS = frozenset({"step", "ship", "ship_impulses", "frame", "blend", "refine", "fresnel", "absorption",
-                              "kappa", "caustics", "shade", "texture", "surface"})
-"""The tables a calibration must hold (:mod:`wavephys.planner.cost`)."""
+@lru_cache(maxsize=32)
+def _file_context(scene: Scene, path: str, mtime_ns: int, size: int) -> PlanContext:
+    """A context of a calibration file, kept while the file is unchanged (planning one scene at
+    several tolerances computes its bounds once, as with the shipped calibration)."""
+    return _context(scene, load_calibration(path))
 
 
 @lru_cache(maxsize=32)
@@ -292,8 +314,9 @@ def plan(scene: Scene, tolerance: float, colour_tolerance: Optional[float] = Non
         Largest acceptable predicted cost, s, > 0 (None: any).
     texture_slack : float
         In [0, 10]: how much more (relative) a smaller texture's model may cost.
-    calibration : dict, optional
-        The cost calibration (default the shipped one, :func:`wavephys.planner.cost.calibration`).
+    calibration : dict or str or os.PathLike, optional
+        The cost calibration: a dict (:func:`wavephys.planner.load_calibration`) or a file that
+        ``wavephys calibrate`` wrote (default the shipped one, measured on a 2-core CPU).
 
     Returns
     -------
@@ -351,12 +374,27 @@ def plan(scene: Scene, tolerance: float, colour_tolerance: Optional[float] = Non
             raise Infeasible(f"the cheapest model within {tolerance:.3g} m costs {over:.3g} s, over the budget "
                              f"{budget:.3g} s")
     cheapest = min(b[4] for b in best.values())
-    fmt = min((f for f in best if best[f][4] <= (1.0 + texture_slack) * cheapest),
-              key=lambda f: (TEXTURE_BYTES[f], best[f][4]))
+    full = full_cost(ctx)
+    # a smaller texture may cost up to the slack more, but never more than the full model
+    limit = max(min((1.0 + texture_slack) * cheapest, full), cheapest)
+    fmt = min((f for f in best if best[f][4] <= limit), key=lambda f: (TEXTURE_BYTES[f], best[f][4]))
     cand, tex_err, choices, colour_err, cost = best[fmt]
     terms = tuple(term.row(ctx, choices) for term in TERMS.values())
     return Plan(scene, tolerance, colour_tolerance, SceneModel(scene, choices), cand.bounds, colour_err, cost,
-                full_cost(ctx), terms, cand.cost, lambda: tuple(_pareto([ctx.settle(c) for c in cands])), tex_err)
+                full, terms, cand.cost, lambda: tuple(_pareto([ctx.settle(c) for c in cands])), tex_err,
+                describe_calibration(ctx.calibration), cost_parts(ctx, choices))
+
+
+def cost_parts(ctx: PlanContext, choices: Choices) -> dict:
+    """Where a configuration's predicted seconds go (:class:`Plan` ``cost_parts``); they sum to
+    its cost."""
+    scene, cal = ctx.scene, ctx.calibration
+    heights = height_cost(SceneModel(scene, choices), cal)
+    heights.pop("total")
+    heights["overhead"] = heights.pop("overhead")  # listed after the work
+    return dict(heights, shading=colour_cost(scene, choices.fresnel, choices.absorption, cal),
+                caustics=caustics_cost(scene, choices.caustics, cal),
+                texture=texture_cost(scene, choices.texture, cal))
 
 
 def full_cost(ctx: PlanContext) -> float:

@@ -281,7 +281,7 @@ class DepthModel(PlanTerm):
         if scene.floor is None or scene.floor.slope == 0:
             return "a flat floor: the spectral step is exact"
         lo, hi = scene.depth_range()
-        span = f"the floor slopes {scene.floor.slope:g} (depth {lo:.3g}–{hi:.3g} m over the simulated square)"
+        span = f"the floor slopes {scene.floor.slope:g} (depth {lo:.3g}–{hi:.3g} m over the visible square and its n/8 margin)"
         if option == "varying":
             return f"stepped over the floor (symmetric depth stepper, linear): {span}"
         return (f"constant depth {scene.depth:g} m (the spectral step, every other term open): {span}; measured "
