@@ -71,14 +71,17 @@ def test_even_table_interpolation_is_numpys():
         assert np.abs(got - want).max() <= 2e-6, size
 
 
-def test_frames_are_assembled_in_blocks_that_waste_less_than_a_frame_each():
-    """A scene's frames go through the compiled assembly in blocks of one size: at most
-    FRAME_BLOCK, and the padding of the last block under one frame per block (a 13-frame scene
-    had been padded to 64, five times the work its cost predicted)."""
-    from wavephys.planner.runner import FRAME_BLOCK, frame_block
+def test_frames_are_assembled_in_few_block_sizes_that_waste_less_than_half_a_block():
+    """A scene's frames go through the compiled assembly in blocks of one size from a short list
+    (scenes of different lengths share compiled programs): at most FRAME_BLOCK, as few blocks as
+    that allows, the padding under half the frames plus one per block (a 13-frame scene had been padded
+    to 64, five times the work its cost predicted); the cost model counts the padding."""
+    from wavephys.planner.runner import FRAME_BLOCK, FRAME_BLOCK_SIZES, assembled_frames, frame_block
 
+    assert len(FRAME_BLOCK_SIZES) <= 12 and all(b <= max(1.5 * a, a + 1) for a, b in zip(FRAME_BLOCK_SIZES, FRAME_BLOCK_SIZES[1:]))
     for frames in range(1, 400):
         size = frame_block(frames)
         blocks = -(-frames // size)
-        assert 1 <= size <= FRAME_BLOCK and blocks == -(-frames // FRAME_BLOCK), frames
-        assert 0 <= blocks * size - frames < blocks, (frames, size)
+        assert size in FRAME_BLOCK_SIZES and blocks == -(-frames // FRAME_BLOCK), frames
+        assert 0 <= blocks * size - frames < 0.5 * frames + blocks, (frames, size)
+        assert assembled_frames(frames) == blocks * size

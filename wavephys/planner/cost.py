@@ -220,10 +220,13 @@ def height_cost(model: SceneModel, cal: dict | None = None) -> dict:
         step = interpolate(cal["step_symmetric"], n) * levels * substeps
     table = cal["ship_impulses"] if c.ship_method == "impulses" else cal["ship"]
     ships = sum(interpolate(table, model.ship_patch) for _ in scene.ships)
+    from wavephys.planner.runner import assembled_frames
+
     between = scene.frames - scene.frames // c.steps_per_frame
-    frames = interpolate(cal["frame"], model.full_grid.n) * scene.frames
+    assembled = assembled_frames(scene.frames)  # the last block's padding is computed too
+    frames = interpolate(cal["frame"], model.full_grid.n) * assembled
     blend = interpolate(cal["blend"], n) * between
-    refine = interpolate(cal["refine"], model.full_grid.n) * scene.frames if c.coarsen > 1 else 0.0
+    refine = interpolate(cal["refine"], model.full_grid.n) * assembled if c.coarsen > 1 else 0.0
     parts = dict(overhead=cal.get("run_overhead", 0.0), steps=steps * step, ships=steps * ships, frames=frames,
                  blend=blend, refine=refine)
     parts["total"] = sum(parts.values())

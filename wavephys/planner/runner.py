@@ -313,15 +313,30 @@ def decode_texture(stored) -> np.ndarray:
 
 FRAME_BLOCK = 64
 """Most frames assembled per compiled call (bounds the memory of a long scene's frames); a scene's
-frames are split into blocks of one size, at most this, so that padding wastes less than a
-frame per block (a 13-frame scene once assembled 64, five times the work its cost predicted)."""
+frames are split into blocks of one size from :data:`FRAME_BLOCK_SIZES`, at most this (a 13-frame
+scene once assembled 64, five times the work its cost predicted)."""
+
+
+FRAME_BLOCK_SIZES = (1, 2, 3, 4, 6, 8, 12, 16, 24, 32, 48, 64)
+"""The block sizes frames are assembled in: few, so that scenes of different lengths share
+compiled programs, and each at most 1.5× the one below, so that padding wastes less than half
+a block."""
 
 
 def frame_block(frames: int) -> int:
-    """Frames per compiled assembly call for a scene of ``frames`` frames: blocks of one size (one
-    compile), at most :data:`FRAME_BLOCK`, the last padded by fewer frames than there are blocks."""
+    """Frames per compiled assembly call for a scene of ``frames`` frames: the smallest size of
+    :data:`FRAME_BLOCK_SIZES` that holds the frames in as few blocks as :data:`FRAME_BLOCK` allows
+    (every block that size, the last padded)."""
     blocks = -(-frames // FRAME_BLOCK)
-    return -(-frames // blocks)
+    need = -(-frames // blocks)
+    return next(size for size in FRAME_BLOCK_SIZES if size >= need)
+
+
+def assembled_frames(frames: int) -> int:
+    """Frames the assembly computes for a scene of ``frames`` frames, padding included (what
+    the cost model counts)."""
+    size = frame_block(frames)
+    return -(-frames // size) * size
 
 
 def _frames(model: SceneModel, eta, eta_dot):
