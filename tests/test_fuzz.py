@@ -32,6 +32,7 @@ OUTCOMES = collections.Counter()
 FAILURES = []
 
 
+@pytest.mark.slow  # moved to the slow run (CI runs it): the README's pytest must stay under 10 min on 2 cores
 def test_every_public_callable_has_a_valid_call():
     """New public functions are covered automatically; this fails until their parameters have
     valid examples (by name in tests/fuzz_examples.py), and every valid call must succeed

@@ -11,6 +11,7 @@ def test_bad_input_is_refused_by_name(target, param):
     _fuzz.check_case(target, param)
 
 
+@pytest.mark.slow  # moved to the slow run (CI runs it): the README's pytest must stay under 10 min on 2 cores
 def test_every_public_callable_has_a_valid_call():
     """The other half of ``tests/test_fuzz.py``'s valid calls."""
     _fuzz.check_valid_calls(_fuzz.TARGETS[1::2])

@@ -82,6 +82,7 @@ def test_resolution_through_the_command(tmp_path, capsys):
                  str(tmp_path / "bad.npz")]) == 1
 
 
+@pytest.mark.slow  # moved to the slow run (CI runs it): the README's pytest must stay under 10 min on 2 cores
 def test_the_corpus_through_the_fixture(pytester, tmp_path):
     """Every corpus record saved as a user would, then checked by `wavephys_check.record` in a user's suite
     (a fresh process with the installed plugin): correct ones pass, broken ones fail naming the cause."""

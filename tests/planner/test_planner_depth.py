@@ -82,6 +82,7 @@ def test_plans_of_generated_slopes_keep_their_promise(seed):
             assert err <= p.predicted_error <= p.tolerance, (scene.name, quanta, p.model.describe(), err)
 
 
+@pytest.mark.slow  # moved to the slow run (CI runs it): the README's pytest must stay under 10 min on 2 cores
 def test_the_cutoffs_change_with_grid_and_step_is_in_the_bound():
     """A faint open scene (η₂ 10⁴× below its heights' quanta) planned with several steps per frame
     or a coarser grid: the cutoff margin absorbs differently (it damps once per step, on the grid's

@@ -174,6 +174,7 @@ def _open_pond(frames, x=0.0):
                  stones=(StoneSpec(x, 0.0, 0.15, 0.01),), name="test-open")
 
 
+@pytest.mark.slow  # moved to the slow run (CI runs it): the README's pytest must stay under 10 min on 2 cores
 def test_short_open_scene_drops_the_margin_and_a_long_one_keeps_it():
     """Four frames after a stone lands in open water nothing that matters has reached the edges:
     the plan simulates the visible square alone (no margin), and its measured error, the margin

@@ -93,6 +93,7 @@ def test_foam_is_drawn_alike_and_switches_off(renderer):
         replace(base, foam=np.full((8, 8), 1.5))
 
 
+@pytest.mark.slow  # moved to the slow run (CI runs it): the README's pytest must stay under 10 min on 2 cores
 def test_march_is_converged(renderer):
     """The GPU's 256 steps against a reference with 4× the steps, inside the square: on a smooth swell over the
     shore's sand to 100 dB; on the built-in shore (its swell shortening and steepening in the surf zone) all but
