@@ -429,6 +429,8 @@ OVERRIDES = {
     "wavephys.harness.wake.wake_angle_darmon": {"eta": _wake_field, "radii": lambda: np.array([0.4, 0.8])},
     "wavephys.harness.wake.darmon_angle_theory": {"source": lambda: GaussianPressure(50.0, 0.05),
                                                   "radii": lambda: np.array([1.0, 2.0])},
+    "wavephys.harness.wake.wake_angle_theory": {"source": lambda: GaussianPressure(50.0, 0.05), "method": lambda: "cusp"},
+    "optics.light.attenuation.transmittance_table": {"method": lambda: "rgb", "size": lambda: 64},
     "wavephys.harness.wake.darmon_crests": {"source": lambda: GaussianPressure(50.0, 0.05),
                                             "radii": lambda: np.array([1.0, 2.0])},
     "wavephys.harness.steady.wake_check": {"eta": _wake_frame, "dx": lambda: 0.0625, "near": lambda: 2.0,

@@ -194,7 +194,7 @@ def _scene_params():
     from wavephys.app import SCENES
 
     # the shallow-water scenes run their solver for seconds; their own tests (tests/app) build them by default
-    slow = {"beach", "dambreak", "wakebeach"}
+    slow = {"beach", "dambreak", "wakebeach", "pool", "shore", "ship", "harbour"}  # 5-11 s each
     return [pytest.param(name, marks=pytest.mark.slow) if name in slow else name for name in SCENES]
 
 

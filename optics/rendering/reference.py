@@ -253,9 +253,16 @@ def march(scene: Scene, o, d, mode: int, steps: int, refine: int):
 
 
 def _transmittance(scene: Scene, length):
+    """The water's RGB transmittance over path lengths ``length`` (m): the scene's Beer–Lambert
+    coefficients, or the method ``Effects.absorption_form`` names, evaluated directly (float64)."""
     if not scene.effects.absorption:
         return np.ones(np.shape(length) + (3,))
-    return np.exp(-np.asarray(length)[..., None] * scene.absorption)
+    form = scene.effects.absorption_form
+    if form == "rgb":
+        return np.exp(-np.asarray(length)[..., None] * scene.absorption)
+    from optics.light.attenuation import WATER_TRANSMITTANCE_METHODS
+
+    return np.asarray(WATER_TRANSMITTANCE_METHODS[form](np.maximum(np.asarray(length, np.float64), 0.0)), np.float64)
 
 
 def shade_ground(scene: Scene, p):

@@ -29,6 +29,7 @@ from pathlib import Path
 
 import numpy as np
 
+from optics.light.attenuation import TABLE_SCALE, transmittance_table
 from optics.light.fresnel import normal_reflectance, reflectance
 from optics.gpu import EGL_PACKAGES, GLSL_FRESNEL_FORMS, GLSL_OPTICS, GLSL_SAMPLING, RendererUnavailable, gl_context
 from optics.rendering.scene import FAR_TILES, NEAR_TILES, SURROUNDINGS, Scene, sun_in_water, texture_sample
@@ -73,6 +74,8 @@ uniform float sun_glow, n_air, n_water, sun_t;
 uniform int steps, refine;
 uniform bool e_refraction, e_reflection, e_fresnel, e_absorption, e_caustics, e_foam;
 uniform int fresnel_id;  // the Fresnel form's index in GLSL_FRESNEL_FORMS
+uniform bool absorption_table;  // the absorption form drawn from its table (u = s/(s + scale))
+uniform sampler2D absorption_tex; uniform ivec2 absorption_size; uniform float absorption_scale;
 uniform bool under;
 uniform int surroundings;  // 0 none, 1 extend, 2 tile
 uniform bool sky_preetham;
@@ -122,7 +125,14 @@ float reflectance(float cos_i, float n1, float n2) {
     float f = (n1 - n2) / (n1 + n2);
     return f * f;
 }
-vec3 transmittance(float len) { return e_absorption ? exp(-len * absorption) : vec3(1.0); }
+vec3 transmittance(float len) {
+    if (!e_absorption) return vec3(1.0);
+    if (!absorption_table) return exp(-len * absorption);
+    float u = max(len, 0.0) / (max(len, 0.0) + absorption_scale) * float(absorption_size.x - 1);
+    int i = min(int(floor(u)), absorption_size.x - 2);
+    vec3 a = texelFetch(absorption_tex, ivec2(i, 0), 0).rgb, b = texelFetch(absorption_tex, ivec2(i + 1, 0), 0).rgb;
+    return mix(a, b, u - float(i));
+}
 
 // Preetham, Shirley & Smits (1999) daylight; the CPU reference's copy is optics/light/sky.py
 float perez(float cos_t, float g, float cos_g, float A, float B, float C, float D, float E) {
@@ -389,8 +399,11 @@ class Renderer:
         caustics = scene.caustics if scene.caustics is not None else np.ones((2, 2), np.float32)
         foam = scene.foam if scene.foam is not None else np.zeros((2, 2), np.float32)
         env = scene.environment if scene.environment is not None else np.zeros((2, 2, 3), np.float32)
+        form = scene.effects.absorption_form
+        table = (transmittance_table(form)[None] if form != "rgb" else np.ones((1, 2, 3), np.float32))
         for unit, (name, arr) in enumerate((("ground", scene.ground), ("water", scene.water), ("albedo", albedo),
-                                            ("caustic", caustics), ("env", env), ("foam", foam))):
+                                            ("caustic", caustics), ("env", env), ("foam", foam),
+                                            ("absorption", table))):
             tex = self._upload(name, arr)
             tex.use(unit)
             self.program[f"{name}_tex"] = unit
@@ -427,7 +440,8 @@ class Renderer:
                       sun_glow=scene.sun_glow, n_air=scene.n_air, n_water=scene.n_water, sun_t=sun_t,
                       steps=self.steps, refine=self.refine, e_refraction=eff.refraction,
                       e_reflection=eff.reflection, e_fresnel=eff.fresnel, e_absorption=eff.absorption,
-                      e_caustics=eff.caustics, under=under, fresnel_id=GLSL_FRESNEL_FORMS.index(eff.fresnel_form))
+                      e_caustics=eff.caustics, under=under, fresnel_id=GLSL_FRESNEL_FORMS.index(eff.fresnel_form),
+                      absorption_table=eff.absorption_form != "rgb", absorption_scale=TABLE_SCALE)
         for name, v in values.items():
             if name not in p:
                 continue  # optimized away by the compiler

@@ -202,6 +202,14 @@ class Effects:
         The Fresnel reflectance drawn: a name in :data:`optics.light.fresnel.REFLECTANCE_METHODS`
         that the GLSL has (:data:`optics.gpu.GLSL_FRESNEL_FORMS`; default ``"exact"``), so a
         shader form a plan chooses can be seen.
+    absorption_form : str
+        The water's transmittance drawn: a name in
+        :data:`optics.light.attenuation.WATER_TRANSMITTANCE_METHODS`. ``"rgb"`` (default) is
+        Beer–Lambert with the scene's three coefficients (:attr:`Scene.absorption`, by default the
+        fit to the spectral answer); any other method (``"spectral"``: pure water's absorption
+        spectrum integrated against the eye) is drawn through its
+        :func:`~optics.light.attenuation.transmittance_table`, and the scene's coefficients are not
+        used. So an absorption method a plan chooses can be seen.
     """
 
     refraction: bool = True
@@ -211,6 +219,7 @@ class Effects:
     caustics: bool = True
     foam: bool = True
     fresnel_form: str = "exact"
+    absorption_form: str = "rgb"
 
     SWITCHES = ("refraction", "reflection", "fresnel", "absorption", "caustics", "foam")
 
@@ -220,13 +229,16 @@ class Effects:
         from optics.gpu import GLSL_FRESNEL_FORMS
         from optics.light.fresnel import REFLECTANCE_METHODS
 
+        from optics.light.attenuation import WATER_TRANSMITTANCE_METHODS
+
         REFLECTANCE_METHODS.check(self.fresnel_form, "fresnel_form")
+        WATER_TRANSMITTANCE_METHODS.check(self.absorption_form, "absorption_form")
         if self.fresnel_form not in GLSL_FRESNEL_FORMS:
             raise ValueError(f"fresnel_form {self.fresnel_form!r} has no GLSL in optics.gpu (it draws "
                              f"{list(GLSL_FRESNEL_FORMS)})")
 
     def only(self, *names) -> "Effects":
-        """These effects on, every other off (the Fresnel form kept).
+        """These effects on, every other off (the Fresnel and absorption forms kept).
 
         Parameters
         ----------
@@ -240,7 +252,8 @@ class Effects:
         unknown = set(names) - set(self.SWITCHES)
         if unknown:
             raise ValueError(f"unknown effect(s) {sorted(unknown)}; choose from {list(self.SWITCHES)}")
-        return Effects(**{k: k in names for k in self.SWITCHES}, fresnel_form=self.fresnel_form)
+        return Effects(**{k: k in names for k in self.SWITCHES}, fresnel_form=self.fresnel_form,
+                       absorption_form=self.absorption_form)
 
 
 def _height(name, h, max_size=16384):

@@ -31,7 +31,8 @@ def test_registry_rows_hold(name):
     assert not loose, "tolerance more than 100x the measured error:\n" + "\n".join(loose)
 
 
-@pytest.mark.parametrize("name", DTYPE_SENSITIVE)
+@pytest.mark.parametrize("name", [pytest.param(n, marks=pytest.mark.slow) if n == "second-order-heights" else n
+                                  for n in DTYPE_SENSITIVE])
 def test_registry_rows_hold_in_float64(name, x64):
     rows = registry()[name]()
     failed = [r.report() for r in rows if not r.ok]

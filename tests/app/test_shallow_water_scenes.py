@@ -65,6 +65,7 @@ def test_caustics_are_flat_light_on_dry_land_and_bores_focus_light():
     assert np.asarray(scene.caustics).max() > 1.5  # the flood's bores focus light (measured 2.2)
 
 
+@pytest.mark.slow
 def test_the_boat_wake_reaches_the_beach_and_the_water_is_conserved():
     """``wakebeach``: the split model under a boat at 2.5 m/s; its wake (4 m waves over 2 m) has crossed to the
     shallows by the scene's t = 5 s, and the water is conserved over the run (float32, walls and periodic)."""

@@ -156,6 +156,7 @@ class TestExactCoverage:
                         out[row % m, col % m] += w[t] * a / area
         return out
 
+    @pytest.mark.slow
     @settings(max_examples=8, deadline=None, derandomize=True)
     @given(seed=st.integers(0, 2**31 - 1), size=st.floats(0.4, 3.0))
     def test_random_triangles_against_exact_clipping(self, seed, size):
@@ -406,7 +407,8 @@ class TestGL:
 
 
 @pytest.mark.parametrize("method,kw", [("photon", dict(photons_per_texel=4, filter_radius=0)),
-                                       ("reference", dict(tolerance=0.02, max_refine=8))])
+                                       pytest.param("reference", dict(tolerance=0.02, max_refine=8),
+                                                    marks=pytest.mark.slow)])
 def test_ray_methods_at_a_low_sun(method, kw):
     """Below the steepest slope a sun ray can meet the surface more than once: each photon
     lands at its first hit, so flux is conserved and nothing is negative."""

@@ -139,7 +139,8 @@ def test_a_low_sun_is_answered_as_closely_as_the_beam(spectrum, seed):
     assert error <= float(np.max(np.abs(beam - ref.irradiance))) / peak + 0.002, (info, error)
 
 
-@pytest.mark.parametrize("resolution", [128, pytest.param(256, marks=pytest.mark.slow)])
+@pytest.mark.slow
+@pytest.mark.parametrize("resolution", [128, 256])
 def test_a_finer_floor_map_over_a_flat_floor_is_still_gathered(resolution):
     """A k^-2 sea on 64² (4 samples on its shortest waves) mapped onto a 2-4× finer floor: the
     map is smooth (the jump test is the ground's), so the gather answers; refine="auto" builds

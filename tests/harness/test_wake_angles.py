@@ -34,7 +34,8 @@ def _agrees(m, t, froude, source=None):
         assert min(abs(a - e), near) <= max(1.0, 0.1 * e), (froude, r, a, e, cs)
 
 
-@pytest.mark.parametrize("froude", [pytest.param(0.5, marks=pytest.mark.slow), 1.0, pytest.param(3.0, marks=pytest.mark.slow)])
+@pytest.mark.slow
+@pytest.mark.parametrize("froude", [0.5, 1.0, 3.0])
 def test_darmon_angle_is_their_integral_at_the_same_distances(froude):
     """Measured on the FFT steady wake: within max(1°, 10 %) of the direction integral (undamped, as they
     compute it) on arcs 10, 20 and 40 b behind the source (measured: within 0.05° at Fr 0.5-3)."""
@@ -56,6 +57,7 @@ def test_darmon_angle_over_random_froude_numbers():
                 source)
 
 
+@pytest.mark.slow
 def test_darmon_theory_has_the_published_shape():
     """Far behind (40 b): about Kelvin's angle for Fr 0.5-0.7, and ≈ 0.2243/Fr rad above (their eq. 4.11);
     measured 19.1° and 17.9° at Fr 0.5 and 0.7; 8.56°, 6.0° and 4.34° at Fr 1.5, 2 and 3."""
@@ -106,7 +108,8 @@ def test_engine_wakes_get_the_right_verdict_and_cause(engine_wakes):
     assert not row.ok and "narrower" in row.note
 
 
-@pytest.mark.parametrize("froude, lengths", [pytest.param(0.5, 20, marks=pytest.mark.slow), (1.2, 30), (3.0, 20)])
+@pytest.mark.parametrize("froude, lengths", [pytest.param(0.5, 20, marks=pytest.mark.slow),
+                                                  pytest.param(1.2, 30, marks=pytest.mark.slow), (3.0, 20)])
 def test_correct_wakes_pass_the_published_angle(froude, lengths):
     """Engine-written periodic steady wakes on grids of 20-30 source lengths, default arcs (8 b to 0.45 L):
     a correct simulator passes (measured: within 0.2° of a crest theory puts within 10 % of its largest, over

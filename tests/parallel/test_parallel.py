@@ -32,25 +32,37 @@ def _env(devices=None):
     return env
 
 
-@pytest.fixture(scope="module")
-def checks(tmp_path_factory):
-    """One fresh interpreter with 4 host devices runs every multi-device check (JSON out), and
-    examples/sharded_ocean.py as the one-process reference of the two-process test."""
+def _sharded_checks(tmp_path_factory, what):
     env = _env()
     env["WAVEPHYS_EXAMPLE_OUT"] = str(tmp_path_factory.mktemp("sharded") / "one.npz")
-    out = subprocess.run([sys.executable, str(ROOT / "tests" / "sharded_checks.py")], env=env, cwd=ROOT,
+    out = subprocess.run([sys.executable, str(ROOT / "tests" / "sharded_checks.py"), *what], env=env, cwd=ROOT,
                          capture_output=True, text=True, timeout=600)
     assert out.returncode == 0, out.stderr[-3000:]
     return json.loads(out.stdout.strip().splitlines()[-1])
 
 
-def test_sharded_step_equals_one_device_over_a_family(checks):
+@pytest.fixture(scope="module")
+def checks(tmp_path_factory):
+    """One fresh interpreter with 4 host devices runs the multi-device checks (JSON out), and
+    examples/sharded_ocean.py as the one-process reference of the two-process test."""
+    return _sharded_checks(tmp_path_factory, ["loop", "programs", "sweeps", "errors", "example"])
+
+
+@pytest.fixture(scope="module")
+def family_checks(tmp_path_factory):
+    """The sharded step against the one-device step over the seeded family, in its own interpreter
+    (the slow run's: about 30 s)."""
+    return _sharded_checks(tmp_path_factory, ["family"])
+
+
+@pytest.mark.slow
+def test_sharded_step_equals_one_device_over_a_family(family_checks):
     """Random scenes (grid 64–128, 2 or 4 devices, deep and finite depth, σ on/off, cutoff
     on/off, second order on/off; wind sea, a stone every step, a moving pressure, ships):
     the state is the one-device state to ≤ 1e-6 (L2, float32) and ≤ 2e-15 (float64), and
     the sharded surface is as close to float64 as the one-device surface is (within 2×;
     η̇ amplifies float32 rounding at high k: both runs are ~1e-5 from float64 there)."""
-    rows = checks["family"]
+    rows = family_checks["family"]
     assert len(rows) >= 3 and {r["devices"] for r in rows} == {2, 4} and any(r["ships"] for r in rows)
     assert {r["dtype"] for r in rows} == {"float32", "float64"}
     for r in rows:

@@ -127,7 +127,8 @@ def _ids(c):
 
 
 @pytest.mark.parametrize("scene,choices",
-                         [(s, c) for s in ("test-pool", "test-shore") for c in VARIANTS]
+                         [("test-pool", c) for c in VARIANTS]
+                         + [pytest.param("test-shore", c, marks=pytest.mark.slow) for c in VARIANTS]
                          + [pytest.param("test-ship", c, marks=pytest.mark.slow) for c in VARIANTS + SHIP_VARIANTS],
                          ids=_ids)
 def test_predicted_height_error_bounds_the_measured_one(measured_pool, scene, choices):
@@ -200,7 +201,30 @@ def test_eight_bit_image_picks_a_cheap_fresnel_form_and_sixteen_bits_do_not():
     assert _choices("lake", view_elevation=25.0).fresnel == "exact"
 
 
+def test_a_plan_is_drawn_with_its_shading_choices():
+    """Plan.drawn gives the renderer the plan's Fresnel form and absorption (RGB: the coefficients fitted
+    over the scene's paths, as the plan's shading has them); the picture differs from the full model's."""
+    from optics.light.attenuation import fit_rgb_coefficients
+    from optics.rendering.reference import psnr, trace
+    from wavephys.app.scenes import builtin_scene as render_scene
+    from wavephys.planner.runner import path_range
+
+    scene = replace(builtin_scene("lake"), view_elevation=75.0)
+    p = plan(scene, 0.5 * scene.height_quantum)
+    full = render_scene("storm", n=64)
+    drawn = p.drawn(full)
+    assert drawn.effects.fresnel_form == p.model.choices.fresnel not in ("exact", "lut")
+    assert drawn.effects.absorption_form == p.model.choices.absorption
+    rgb = replace(p, model=SceneModel(scene, replace(p.model.choices, absorption="rgb"))).drawn(full)
+    assert rgb.effects.absorption_form == "rgb"
+    assert np.allclose(rgb.absorption, fit_rgb_coefficients(path_range(scene)[1]), rtol=1e-12)
+    assert psnr(trace(drawn, 24, 16), trace(full, 24, 16)) < 100.0
+    with pytest.raises(TypeError, match="render_scene"):
+        p.drawn(scene)
+
+
 # -- caustics ---------------------------------------------------------------------------------
+@pytest.mark.slow
 def test_caustics_term_on_pools_with_and_without_light_to_show():
     """A clear pool with ripples (stones, 8-bit image, 64 texels) keeps the caustics (below its
     first fold the Jacobian gather, cheaper than the beam at refine 2 or more on this size: at
@@ -276,6 +300,7 @@ def test_past_the_first_fold_the_jacobian_is_not_offered():
     assert "traced frames fold" in {t.term: t for t in p.terms}["caustics"].reason
 
 
+@pytest.mark.slow
 def test_an_old_calibration_without_the_gather_offers_only_the_beam():
     from wavephys.planner.cost import calibration
     from wavephys.planner.terms import TERMS

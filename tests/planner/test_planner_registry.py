@@ -181,3 +181,30 @@ def test_the_old_absorption_methods_name_warns():
 
     with pytest.warns(DeprecationWarning, match="WATER_TRANSMITTANCE_METHODS"):
         assert set(model.ABSORPTION_METHODS) == {"spectral", "rgb"}
+
+
+def test_every_caustics_method_of_the_family_is_offered_or_declined_with_a_reason():
+    """The caustics term is driven by optics' family: each method is offered (the beam's refinements, the
+    Jacobian gather) or declined with its measured reason on the card; a new method is a decision."""
+    from optics.caustics import FLOOR_IRRADIANCE_METHODS
+    from wavephys.planner.model import CAUSTICS_JACOBIAN, CAUSTICS_OPTIONS
+    from wavephys.planner.terms import CAUSTICS_METHODS_NOTE, CAUSTICS_NOT_PLANNED, CAUSTICS_PLANNED
+
+    assert set(CAUSTICS_PLANNED) | set(CAUSTICS_NOT_PLANNED) == set(FLOOR_IRRADIANCE_METHODS)
+    assert not set(CAUSTICS_PLANNED) & set(CAUSTICS_NOT_PLANNED)
+    assert CAUSTICS_JACOBIAN in CAUSTICS_PLANNED and CAUSTICS_JACOBIAN in CAUSTICS_OPTIONS
+    for name, why in CAUSTICS_NOT_PLANNED.items():
+        assert name == "reference" or why in CAUSTICS_METHODS_NOTE
+
+
+def test_every_sea_model_of_the_surfaces_package_is_offered_or_declined():
+    """The surface term is driven by wavephys.surfaces: each sea model it ships is offered (its options
+    in SURFACES, after the spectral step) or declined with a reason; a new model is a decision."""
+    from wavephys.planner.model import SURFACE_OPTIONS, SURFACES, SURFACES_NOT_PLANNED
+    from wavephys.surfaces import SEA_MODELS
+
+    assert set(SURFACE_OPTIONS) | set(SURFACES_NOT_PLANNED) == set(SEA_MODELS)
+    assert not set(SURFACE_OPTIONS) & set(SURFACES_NOT_PLANNED)
+    assert SURFACES[0] == "spectral"
+    assert list(SURFACES[1:]) == [o for options in SURFACE_OPTIONS.values() for o in options]
+    assert all(o.split("-")[0] in SEA_MODELS for o in SURFACES[1:])

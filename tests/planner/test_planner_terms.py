@@ -118,6 +118,7 @@ def measured_seas():
     return out
 
 
+@pytest.mark.slow
 def test_every_surface_model_stays_within_its_bound_on_generated_seas(measured_seas):
     """Each alternative surface model, run on three generated seas, errs (max norm and RMS) less
     than its bound; the bound on the waves a Gerstner sum leaves out (a Gaussian field, bounded
@@ -194,6 +195,7 @@ def test_short_open_scene_drops_the_margin_and_a_long_one_keeps_it():
     assert "n/8" in row.reason or "texels a side" in row.reason
 
 
+@pytest.mark.slow
 def test_margin_errors_match_runs_on_generated_open_scenes():
     """For open-water scenes nobody picked (a stone at a random place, 4–24 frames), the
     evaluated margin term (1.25× the linear model's change on the visible square) covers the

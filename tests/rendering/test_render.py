@@ -66,6 +66,35 @@ def test_every_fresnel_form_of_the_family_has_glsl():
     assert Effects(fresnel_form="lut").only("fresnel").fresnel_form == "lut"
 
 
+@pytest.mark.parametrize("form", ["spectral"])
+def test_gpu_draws_every_absorption_form_the_planner_can_choose(form):
+    """The renderer draws each water-transmittance method a plan may choose (other than the scene's own
+    RGB coefficients) through its table, matching the CPU reference, which calls the method itself
+    (≥ 100 dB), in the pool (short paths) and a wide pool seen from below (long ones); and the form is
+    visible."""
+
+    pool = _scene("pool", 64)
+    below = underwater_view(70.0).with_effects(absorption=True)  # a 40 m pool seen past Snell's window
+    with Renderer(W // 2, H // 2) as small:
+        for s in (pool, below):
+            drawn = s.with_effects(absorption_form=form)
+            image = small.render(drawn)
+            assert psnr(image, trace(drawn, W // 2, H // 2)) >= 100.0, form
+            assert psnr(image, small.render(s)) < 100.0, form  # not the RGB coefficients' picture
+
+
+def test_every_absorption_form_of_the_family_can_be_drawn():
+    """Every method of the water-transmittance family is an Effects choice (the RGB one by the scene's
+    uniform, the others by their tables); a name outside the family is refused by name."""
+    from optics.light.attenuation import WATER_TRANSMITTANCE_METHODS
+    from optics.rendering import Effects
+
+    for form in WATER_TRANSMITTANCE_METHODS:
+        assert Effects(absorption_form=form).only("absorption").absorption_form == form
+    with pytest.raises(ValueError, match="absorption_form must be one of"):
+        Effects(absorption_form="beer")
+
+
 def test_each_effect_changes_the_pool(renderer):
     """Every switch does something measurable on the pool (so the PSNR tests compare real effects)."""
     s = builtin_scene("pool", n=128)
@@ -125,6 +154,7 @@ def test_the_march_reference_is_converged_on_the_shore():
     assert int((np.abs(trace(shore, W, H, steps=1024) - fine).max(-1) > 1 / 255).sum()) <= 2
 
 
+@pytest.mark.slow
 def test_march_to_the_horizon_is_near_converged():
     """With surroundings the same 256 steps cover four scene sides from the eye (growing
     quadratically). Against 2048 steps, measured at 160×120: 56.8 dB (storm), 76.7 dB (pool); at

@@ -121,7 +121,8 @@ def _seiche(kh, amp, x64=False):
     return omega / w - 1, a / amp
 
 
-@pytest.mark.parametrize("kh", [pytest.param(0.3, marks=pytest.mark.slow), 3.0])
+@pytest.mark.slow
+@pytest.mark.parametrize("kh", [0.3, 3.0])
 def test_seiches_between_walls_have_the_exact_frequency(kh):
     """A 2-D mode of a walled tank, 1 mm on 1 m: ω off by 5e-4 at kh = 0.3 (the wave is all bulk: the shallow-water
     solver's own error at 64 cells per wavelength) and 1.8e-4 at kh = 3 (measured)."""
@@ -149,7 +150,8 @@ def _beach(n=96, dx=0.25):
     return bed, dx  # a bump and a dry island
 
 
-@pytest.mark.parametrize("x64", [pytest.param(True, marks=pytest.mark.slow), False])
+@pytest.mark.slow
+@pytest.mark.parametrize("x64", [True, False])
 def test_a_lake_at_rest_stays_at_rest(x64):
     """Over a beach, a bump and a dry island: 200 steps move nothing beyond rounding (measured 6e-15 m in
     float64, 3.3e-6 m in float32, not growing)."""

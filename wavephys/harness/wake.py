@@ -36,7 +36,8 @@ from wavephys.physics.dispersion import group_speed, phase_speed
 from wavephys.physics.wake import CuspLine, GaussianPressure, cusp_line, wake_envelope
 
 __all__ = ["WakeAngle", "wake_angle", "wake_angle_max", "wake_angle_cusp", "wake_angle_darmon", "WAKE_ANGLE_METHODS",
-           "track_wavelength", "max_amplitude_angle_theory", "darmon_angle_theory", "darmon_crests"]
+           "track_wavelength", "max_amplitude_angle_theory", "darmon_angle_theory", "darmon_crests", "cusp_angle_theory",
+           "WAKE_ANGLE_THEORIES", "wake_angle_theory"]
 
 
 @dataclass(frozen=True)
@@ -755,7 +756,82 @@ def darmon_crests(speed, source: GaussianPressure, *, radii, water: Water = Wate
 
 
 WAKE_ANGLE_METHODS = Methods("wake angle", max=wake_angle_max, cusp=wake_angle_cusp, darmon=wake_angle_darmon)
-"""Wake-angle estimators by name."""
+"""Wake-angle estimators by name. Each measures a different published quantity; linear theory's
+value of it is :data:`WAKE_ANGLE_THEORIES` under the same name (a new estimator registers both)."""
+
+
+def cusp_angle_theory(speed, source: GaussianPressure | None = None, *, water: Water = Water(sigma=0.0)) -> WakeAngle:
+    """The cusp line's half-angle that :func:`wake_angle_cusp` measures: Kelvin's 19.47° in deep water,
+    wider in finite depth (Havelock), for a source of any size (degrees; uncertainty 0).
+
+    Parameters
+    ----------
+    speed : float
+        Source speed U, m/s, > 0 (above c_min with surface tension).
+    source : GaussianPressure, optional
+        Not used: the cusp line does not depend on the source (taken so that every entry of
+        :data:`WAKE_ANGLE_THEORIES` has one signature).
+    water : Water, optional, keyword-only
+        The water (default gravity waves in deep water).
+
+    Returns
+    -------
+    WakeAngle
+        ``method="cusp (linear theory)"``.
+
+    Raises
+    ------
+    ValueError
+        Below c_min (no stationary wave, no wake).
+
+    References
+    ----------
+    Lord Kelvin (1887). On ship waves. *Proc. Inst. Mech. Eng.* 38, 409–434; T. H. Havelock (1908).
+    The propagation of groups of waves in dispersive media, with application to waves on water produced
+    by a travelling disturbance. *Proc. R. Soc. A* 81, 398–430.
+    """
+    if source is not None:
+        check_instance("source", source, GaussianPressure, "wavephys.physics.wake.GaussianPressure")
+    check_instance("water", water, Water, "wavephys.Water")
+    return WakeAngle(float(cusp_line(speed, water).angle), 0.0, "cusp (linear theory)", 0)
+
+
+WAKE_ANGLE_THEORIES = Methods("wake angle (linear theory)", max=max_amplitude_angle_theory, cusp=cusp_angle_theory,
+                              darmon=darmon_angle_theory)
+"""Linear theory's value of the quantity each estimator of :data:`WAKE_ANGLE_METHODS` measures, under the
+same name: the angle of maximum amplitude through the same sections (``max``), the cusp line (``cusp``),
+Darmon, Benzaquen & Raphaël's angle of maximum amplitude on the same arcs (``darmon``). The problem set
+``tests/test_families.py`` measures every estimator against its entry here on steady wakes."""
+
+
+def wake_angle_theory(speed, source: GaussianPressure, *, method: str = "max", **options) -> WakeAngle:
+    """Linear theory's value of the quantity that ``method`` of :data:`WAKE_ANGLE_METHODS` measures, for a
+    Gaussian pressure source at ``speed``, by :data:`WAKE_ANGLE_THEORIES`.
+
+    Parameters
+    ----------
+    speed : float
+        Source speed U, m/s, > 0.
+    source : GaussianPressure
+        The Gaussian pressure source.
+    method : str, optional, keyword-only
+        A name in :data:`WAKE_ANGLE_THEORIES` (default ``"max"``).
+    **options
+        The measurement's own options, passed to the theory that takes them: ``near``, ``far``,
+        ``exclude``, ``spacing`` (the field's grid spacing), ``tolerance`` for ``"max"``; ``radii``,
+        ``span``, ``tolerance`` for ``"darmon"``; ``water`` for all.
+
+    Returns
+    -------
+    WakeAngle
+
+    Examples
+    --------
+    >>> round(wake_angle_theory(1.0, GaussianPressure(1.0, 0.05), method="cusp").angle, 2)   # Kelvin
+    19.47
+    """
+    check_instance("source", source, GaussianPressure, "wavephys.physics.wake.GaussianPressure")
+    return WAKE_ANGLE_THEORIES(method, speed, source, **options)
 
 
 def wake_angle(eta, grid: Grid, *, method: str = "max", **options) -> WakeAngle:

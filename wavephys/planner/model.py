@@ -27,7 +27,7 @@ from wavephys.core.water import Water
 from wavephys.planner.scene import Scene
 
 __all__ = ["Choices", "SceneModel", "TERMS", "COARSEN", "STEPS_PER_FRAME",
-           "CAUSTICS_REFINE", "CAUSTICS_JACOBIAN", "CAUSTICS_OPTIONS", "FULL_REFINE", "TEXTURES", "TEXTURE_BYTES", "SURFACES", "SHIP_METHODS", "SHIP_PATCHES", "MARGINS", "BOUNDARIES", "DEPTH_MODELS", "full_choices"]
+           "CAUSTICS_REFINE", "CAUSTICS_JACOBIAN", "CAUSTICS_OPTIONS", "FULL_REFINE", "TEXTURES", "TEXTURE_BYTES", "SURFACES", "SURFACE_OPTIONS", "SURFACES_NOT_PLANNED", "SHIP_METHODS", "SHIP_PATCHES", "MARGINS", "BOUNDARIES", "DEPTH_MODELS", "full_choices"]
 
 COARSEN = (1, 2, 4)
 """Simulation grid spacings the planner considers, in output texels."""
@@ -43,7 +43,14 @@ CAUSTICS_OPTIONS = CAUSTICS_REFINE + (CAUSTICS_JACOBIAN,)
 """Every value of :attr:`Choices.caustics`."""
 FULL_REFINE = 4
 """The full model's caustics refinement."""
-SURFACES = ("spectral", "gerstner-16", "gerstner-64", "gerstner-256", "choppy", "noise")
+SURFACE_OPTIONS = {"gerstner": ("gerstner-16", "gerstner-64", "gerstner-256"), "choppy": ("choppy",),
+                   "noise": ("noise",)}
+"""The planner's options for each sea model of :data:`wavephys.surfaces.SEA_MODELS` it offers (a
+Gerstner sum of the K strongest waves for K = 16, 64, 256)."""
+SURFACES_NOT_PLANNED: dict = {}
+"""Sea models of :data:`wavephys.surfaces.SEA_MODELS` the planner does not offer, with the reason
+(none: every model is offered)."""
+SURFACES = ("spectral",) + tuple(o for options in SURFACE_OPTIONS.values() for o in options)
 """Surface models the planner considers for a wind sea (a scene whose only source is the wind):
 the spectral step (the full model); the K strongest of the sea's own waves summed directly at
 every frame (:class:`wavephys.surfaces.gerstner.GerstnerWaves`, steepness 0: no horizontal

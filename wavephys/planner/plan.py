@@ -122,6 +122,37 @@ class Plan:
         """Predicted cost of the full model over the plan's."""
         return self.full_cost / self.cost
 
+    def drawn(self, render_scene):
+        """``render_scene`` (an :class:`optics.rendering.Scene`) with this plan's shading choices, so the
+        renderer draws what the plan modelled: its Fresnel form, its absorption method (``"rgb"``: three
+        coefficients fitted over the scene's own paths, as the plan's shading has them; any other method
+        through its table) and caustics switched off where the plan leaves them off. The caustics map
+        itself, the surface and the camera are the render scene's.
+
+        Parameters
+        ----------
+        render_scene : optics.rendering.Scene
+            The scene to draw.
+
+        Returns
+        -------
+        optics.rendering.Scene
+        """
+        from dataclasses import replace
+
+        from optics.light.attenuation import fit_rgb_coefficients
+        from optics.rendering.scene import Scene as RenderScene
+        from wavephys.core.inputs import check_instance
+        from wavephys.planner.runner import path_range
+
+        check_instance("render_scene", render_scene, RenderScene, "optics.rendering.Scene")
+        choices = self.model.choices
+        out = render_scene.with_effects(fresnel_form=choices.fresnel, absorption_form=choices.absorption,
+                                        caustics=render_scene.effects.caustics and bool(choices.caustics))
+        if choices.absorption == "rgb":
+            out = replace(out, absorption=tuple(float(a) for a in fit_rgb_coefficients(path_range(self.scene)[1])))
+        return out
+
     def card(self) -> str:
         """The model card as a text table."""
         s = self.scene

@@ -48,7 +48,8 @@ from wavephys.planner.scene import Scene
 from wavephys.planner.spectrum import scene_spectrum
 
 __all__ = ["PlanTerm", "PlanContext", "Candidate", "Term", "TERMS", "HEIGHT_TERMS", "COLOUR_TERMS",
-           "fresnel_forms", "absorption_methods", "colour_total", "caustics_delta", "CAUSTICS_METHODS_NOTE"]
+           "fresnel_forms", "absorption_methods", "colour_total", "caustics_delta", "CAUSTICS_METHODS_NOTE",
+           "CAUSTICS_PLANNED", "CAUSTICS_NOT_PLANNED"]
 
 
 @dataclass(frozen=True)
@@ -527,10 +528,22 @@ class Absorption(PlanTerm):
                 f"{ctx.scene.depth * 2:.3g} m and longer{note}")
 
 
-CAUSTICS_METHODS_NOTE = ("photons (3–17 % of the peak at 37× a step), GL beams (53× on llvmpipe) and Blinn–Phong "
-                         "(34–95 %) are dominated by the beam (python -m bench optics)")
-"""Why the other caustics methods are not choices: measured by the optics bench on 9 generated
-surfaces at 128² and at 512² against a step (docs/planner.md §3)."""
+CAUSTICS_PLANNED = {"beam": "refine 1–4", "jacobian": "where the traced frames stay below their first fold"}
+"""The methods of :data:`optics.caustics.FLOOR_IRRADIANCE_METHODS` the caustics term offers."""
+
+CAUSTICS_NOT_PLANNED = {
+    "photon": "photons: 3–17 % of the peak at 37× a step",
+    "gl": "GL beams: 53× a step on llvmpipe",
+    "blinn_phong": "Blinn–Phong: 34–95 % of the peak (a shading trick, not a flux)",
+    "reference": "the reference: the beam refined until converged, the planner's yardstick",
+}
+"""Why the other methods of the caustics family are not choices: measured by the optics bench on 9
+generated surfaces at 128² and at 512² against a step (docs/planner.md §3). Every method of the family
+is in this mapping or in :data:`CAUSTICS_PLANNED` (a test keeps it so: a new method is a decision)."""
+
+CAUSTICS_METHODS_NOTE = ("not offered, dominated by the beam (python -m bench optics): "
+                         + "; ".join(v for k, v in CAUSTICS_NOT_PLANNED.items() if k != "reference"))
+"""The card's note on the caustics methods it does not offer (from :data:`CAUSTICS_NOT_PLANNED`)."""
 
 
 class Caustics(PlanTerm):

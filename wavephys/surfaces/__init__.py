@@ -15,5 +15,11 @@ from wavephys.surfaces.gerstner import GerstnerWaves, crest_comparison
 from wavephys.surfaces.noise import NoiseSea, fbm, gradient_noise, value_noise
 from wavephys.surfaces.resample import map_jacobian, resample_heights
 
-__all__ = ["GerstnerWaves", "NoiseSea", "accumulate_foam", "crest_comparison", "displacement", "fbm", "foam",
+__all__ = ["SEA_MODELS", "GerstnerWaves", "NoiseSea", "accumulate_foam", "crest_comparison", "displacement", "fbm", "foam",
            "gradient_noise", "jacobian", "map_jacobian", "resample_heights", "value_noise"]
+
+SEA_MODELS = {"gerstner": GerstnerWaves, "choppy": displacement, "noise": NoiseSea}
+"""The cheap sea models this package ships, by name (a sum of Gerstner waves, Tessendorf's choppy
+displacement of a spectral sea, procedural fBm): what consumers offer or decline. The planner's
+surface term offers each (:data:`wavephys.planner.model.SURFACE_OPTIONS`) or names why not
+(:data:`wavephys.planner.model.SURFACES_NOT_PLANNED`); a test keeps every model in one of them."""
