@@ -188,7 +188,7 @@ def test_every_wake_angle_estimator_names_its_published_quantity():
 @functools.lru_cache(maxsize=2)
 def _steady_wake_problem(froude: float):
     """The steady wake of a Gaussian pressure source at ``froude`` (U = 1 m/s, deep water, lightly damped:
-    ε = 2U/L), on a grid wide enough and fine enough for every estimator: 100 source lengths b or 60
+    ε = 2U/L, which the theories are given too), on a grid wide enough and fine enough for every estimator: 100 source lengths b or 60
     cusp wavelengths λc wide, whichever is wider, at least 8 samples per b and 10 per λc."""
     speed, size = 1.0, gaussian_size(froude, 1.0)
     b = math.pi * math.sqrt(2) * size
@@ -220,19 +220,21 @@ def _wake_options(method, grid, b, lam_c):
 @pytest.mark.parametrize("method", list(WAKE_ANGLE_METHODS))
 def test_wake_angle_problems(method, froude):
     """Every estimator on steady wakes of Gaussian sources (Fr 0.5: all three near Kelvin's angle; Fr 1:
-    the angles of maximum amplitude fall inside the cusp line, so each quantity is told apart) against
-    linear theory's value of its own published quantity at the same sections or arcs
-    (:data:`WAKE_ANGLE_THEORIES`): within max(1°, 10 %), or within the two uncertainties together where
-    the maximum jumps between ridges. Measured: Fr 0.5 max 19.28° (theory 19.27°), cusp 19.25° (19.47°),
-    darmon 18.55° (18.28°); Fr 1 max 12.97° (13.90° ± 0.97°), cusp 19.24° (19.47°), darmon 13.69° (13.69°)."""
+    the angles of maximum amplitude fall 5–6° inside the cusp line, so the cusp is told apart from them;
+    the two maximum-amplitude definitions, 0.2° apart here, are told apart at Fr 0.7 by
+    tests/harness/test_wake_angles.py) against linear theory's value of its own published quantity at
+    the same sections or arcs and the same damping (:data:`WAKE_ANGLE_THEORIES`): within max(1°, 10 %),
+    or, where the maximum jumps between ridges, within the two uncertainties together as long as the
+    measurement's own is at most 1°. Measured (estimator, theory): Fr 0.5 max 19.28°/19.27°, cusp
+    19.25°/19.47°, darmon 18.55°/18.56°; Fr 1 max 12.97°/12.63°, cusp 19.24°/19.47°, darmon 13.69°/13.69°."""
     grid, eta, source, b, lam_c = _steady_wake_problem(froude)
     options = _wake_options(method, grid, b, lam_c)
     measured = wake_angle(eta, grid, method=method, **options)
-    theory = wake_angle_theory(1.0, source, method=method, spacing=float(grid.dx),
+    theory = wake_angle_theory(1.0, source, method=method, spacing=float(grid.dx), damping=2.0 / float(grid.length),
                                **{k: v for k, v in options.items() if k != "speed"})
     diff = abs(measured.angle - theory.angle)
-    assert diff <= max(1.0, 0.1 * theory.angle) or diff <= math.hypot(measured.uncertainty, theory.uncertainty), \
-        (method, froude, measured, theory)
+    jump = measured.uncertainty <= 1.0 and diff <= math.hypot(measured.uncertainty, theory.uncertainty)
+    assert diff <= max(1.0, 0.1 * theory.angle) or jump, (method, froude, measured, theory)
 
 
 # -- the problem sets can fail ----------------------------------------------------------------------

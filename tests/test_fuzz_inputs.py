@@ -193,7 +193,8 @@ def test_commands_refuse_bad_files_and_counts_in_one_line(argv, words, tmp_path,
 def _scene_params():
     from wavephys.app import SCENES
 
-    # the shallow-water scenes run their solver for seconds; their own tests (tests/app) build them by default
+    # the shallow-water scenes run their solver for seconds, the caustics scenes trace for seconds: their own
+    # tests (tests/app, tests/rendering) build them
     slow = {"beach", "dambreak", "wakebeach", "pool", "shore", "ship", "harbour"}  # 5-11 s each
     return [pytest.param(name, marks=pytest.mark.slow) if name in slow else name for name in SCENES]
 

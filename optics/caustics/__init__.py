@@ -54,7 +54,7 @@ FLOOR_IRRADIANCE_METHODS = Methods("floor irradiance", beam=floor_irradiance_bea
 
 
 def floor_irradiance(eta, grid, depth, sun=(0.0, 0.0, 1.0), method: str = "beam", *, resolution=None,
-                     n_water: float = N_WATER, **options):
+                     n_water: float = N_WATER, walls=None, **options):
     """Irradiance on the floor, relative to the sun's horizontal irradiance above water.
 
     Parameters
@@ -73,6 +73,12 @@ def floor_irradiance(eta, grid, depth, sun=(0.0, 0.0, 1.0), method: str = "beam"
         Floor map side m (default n): the map covers the same periodic square.
     n_water : float
         Refractive index of water, ≥ 1.
+    walls : str or None
+        The square is a tank with opaque vertical walls on these sides (``"all"``, ``"x"``,
+        ``"y"``, or both side names of an axis; default None: periodic): ``beam``, ``jacobian``
+        and ``reference`` trace the surface's even extension (the tank's cosine modes), lose the
+        light that reaches a wall and leave the floor in a wall's shadow dark; the other methods
+        refuse walls by name.
     options
         The method's own options (each method takes only its own): ``fresnel``;
         ``refine``, ``blur``, ``normals`` (beam); ``refine``, ``supersample``, ``iterations``, ``fold``, ``explain``
@@ -98,4 +104,12 @@ def floor_irradiance(eta, grid, depth, sun=(0.0, 0.0, 1.0), method: str = "beam"
     from wavephys.core.aliases import renamed_options
 
     options = renamed_options("floor_irradiance", options, {"samples": "refine"}, since="0.2")
+    if walls is not None:
+        import inspect
+
+        if "walls" not in inspect.signature(FLOOR_IRRADIANCE_METHODS.check(method)).parameters:
+            takes = [k for k, f in FLOOR_IRRADIANCE_METHODS.items() if "walls" in inspect.signature(f).parameters]
+            raise ValueError(f"walls: the {method!r} caustics method traces a periodic square only; "
+                             f"{', '.join(takes)} trace a walled tank")
+        options["walls"] = walls
     return FLOOR_IRRADIANCE_METHODS(method, eta, grid, depth, sun, resolution=resolution, n_water=n_water, **options)

@@ -22,7 +22,8 @@ import jax
 import jax.numpy as jnp
 import numpy as np
 
-from optics.caustics.common import blur_121, land, prepare, shadow_steps, sunlit
+from optics.caustics.common import (CELL, blur_121, clip_cells, land, prepare, shadow_steps, sunlit, tank_cells, tank_clip,
+                                    walled_tank)
 from optics.light.fresnel import N_WATER
 from wavephys.core.grid import Grid
 from wavephys.core.inputs import check_bool, check_choice, check_int
@@ -31,7 +32,7 @@ from wavephys.core.spectral import central_gradient, spectral_gradient
 
 __all__ = ["floor_irradiance_beam"]
 
-_CELL = ((0, 0), (0, 1), (1, 1), (1, 0))  # (row = y, column = x) offsets of a cell's corners, counter-clockwise
+_CELL = CELL  # (row = y, column = x) offsets of a cell's corners, counter-clockwise
 _TRIANGLES = ((0, 1, 2), (0, 2, 3))
 
 
@@ -46,12 +47,13 @@ def _corners(field, a, b):
     return jnp.roll(field, (-a, -b), (0, 1))
 
 
-@partial(jax.jit, static_argnames=("m", "fresnel", "ground", "shadow", "coarse"))
-def _vertices(eta, gx, gy, length, d, floor, n_water, m, fresnel, ground, shadow, coarse):
+@partial(jax.jit, static_argnames=("m", "fresnel", "ground", "shadow", "coarse", "clip"))
+def _vertices(eta, gx, gy, length, d, floor, n_water, m, fresnel, ground, shadow, coarse, clip=None):
     """Landed triangle vertices in floor texel units, ``(3, 2, n, n)`` (vertex, the two
     triangles of each cell) relative to each cell's integer texel ``origin``, and each
     triangle's flux E0·T·A₀ (m²), ``(2, n, n)``; ``eta``, ``gx``, ``gy`` on the (refined)
-    tracing grid."""
+    tracing grid. ``clip`` (:func:`~optics.caustics.common.tank_clip`): a tank's extension, whose
+    cells past its walls carry nothing and whose cells across a wall are cut at it."""
     n = eta.shape[-1]
     grid, floor_map = Grid(n, length), Grid(m, length)
     xv, yv = grid.mesh()
@@ -77,6 +79,8 @@ def _vertices(eta, gx, gy, length, d, floor, n_water, m, fresnel, ground, shadow
         cu.append(b * h + _corners(cross_dx, a, b))
         cv.append(a * h + _corners(cross_dy, a, b))
         t.append(_corners(T, a, b))
+    if clip is not None:
+        u, v, cu, cv, t = (clip_cells(c, clip, n) for c in (u, v, cu, cv, t))
     tri_u, tri_v, flux = [], [], []
     for i, j, k in _TRIANGLES:
         tri_u.append(jnp.stack([u[i], u[j], u[k]]))
@@ -85,7 +89,8 @@ def _vertices(eta, gx, gy, length, d, floor, n_water, m, fresnel, ground, shadow
         flux.append(source * (t[i] + t[j] + t[k]) / 3.0)
     finite = jnp.isfinite(eta).all()  # checked here, raised by the caller: no extra pass
     # the two triangles of a cell are one group (one window, one scatter)
-    return jnp.stack(tri_u, 1), jnp.stack(tri_v, 1), jnp.stack(flux), origin, finite
+    flux = jnp.stack(flux) * (tank_cells(clip, n) if clip is not None else 1.0)
+    return jnp.stack(tri_u, 1), jnp.stack(tri_v, 1), flux, origin, finite
 
 
 @partial(jax.jit, static_argnames=("blur",))
@@ -96,7 +101,7 @@ def _irradiance(deposited, texel, blur):
 
 def floor_irradiance_beam(eta, grid: Grid, depth, sun=(0.0, 0.0, 1.0), *, resolution: int | None = None,
                           n_water: float = N_WATER, fresnel: bool = True, refine: int = 3, blur: bool = False,
-                          normals: str = "spectral"):
+                          normals: str = "spectral", walls=None):
     """Floor irradiance E/E0 by exact beam rasterization (module doc), shape (m, m) on ``Grid(m, L)``.
 
     Parameters
@@ -114,6 +119,12 @@ def floor_irradiance_beam(eta, grid: Grid, depth, sun=(0.0, 0.0, 1.0), *, resolu
         Apply Loviscach's 1-2-1 blur afterwards (not needed: the footprints are exact).
     normals : {"spectral", "central"}
         Surface slopes exact (FFT) or by central differences (second order, no transforms).
+    walls : str or None
+        The square is a tank with opaque vertical walls on these sides (``"all"``, ``"x"``, ``"y"``,
+        or both side names of an axis; default None: periodic): the surface is even across a wall
+        (the tank's cosine modes), light that reaches a wall is lost, and the floor by a wall lies
+        in its shadow where the light arrives slanted (docs/physics.md §2.4). Traced on the even
+        extension, 2n·refine at most 8192.
 
     Returns
     -------
@@ -126,16 +137,34 @@ def floor_irradiance_beam(eta, grid: Grid, depth, sun=(0.0, 0.0, 1.0), *, resolu
         raise ValueError(f"refine {refine} traces {grid.n * refine}² cells: n·refine must be at most 8192")
     check_bool("blur", blur)
     check_choice("normals", normals, ("spectral", "central"))
+    tank = walled_tank(light, walls)
+    if tank is not None:
+        if 2 * grid.n * refine > 8192:
+            raise ValueError(f"refine {refine} traces the tank's even extension on {2 * grid.n * refine}² cells: "
+                             f"2·n·refine must be at most 8192")
+        return _tank_irradiance(tank, refine, fresnel, normals, blur)
     tri_u, tri_v, flux, origin = beam_triangles(light, refine, fresnel, normals)
     m = light.resolution
     return _irradiance(rasterize_triangles(tri_u, tri_v, flux, (m, m), origin), float(grid.length) / m, blur)
 
 
-def beam_triangles(light, refine: int, fresnel: bool, normals: str = "spectral"):
+def _tank_irradiance(tank, refine: int, fresnel: bool, normals: str, blur: bool):
+    """The beam in a walled tank: the extension traced, only the tank's cells deposited, the tank's
+    floor kept (the texel size is the tank's: the extension is twice as long with twice the texels)."""
+    light = tank.light
+    tri_u, tri_v, flux, origin = beam_triangles(light, refine, fresnel, normals, tank)
+    big = light.resolution
+    out = _irradiance(rasterize_triangles(tri_u, tri_v, flux, (big, big), origin), float(light.grid.length) / big, False)
+    out = out[:tank.m, :tank.m]
+    return blur_121(out) if blur else out
+
+
+def beam_triangles(light, refine: int, fresnel: bool, normals: str = "spectral", tank=None):
     """The landed triangles of a checked :class:`~optics.caustics.common.Lighting` traced ``refine``
     times finer: ``(tri_u, tri_v, flux, origin)`` as :func:`wavephys.core.sampling.rasterize_triangles`
     takes them (vertices ``(3, 2, n', n')`` in floor texels relative to ``origin``, fluxes ``(2, n', n')``,
-    m²). Refuses a non-finite surface by name."""
+    m²). Refuses a non-finite surface by name. ``tank`` (:func:`~optics.caustics.common.walled_tank`,
+    whose ``light`` this is): only the tank's cells carry light, cut at its walls."""
     grid = light.grid
     length = float(grid.length)
     fine = Grid(grid.n * refine, grid.length)
@@ -147,7 +176,8 @@ def beam_triangles(light, refine: int, fresnel: bool, normals: str = "spectral")
     d = light.direction
     tri_u, tri_v, flux, origin, finite = _vertices(surface, gx, gy, length, jnp.asarray(d, jnp.float32), light.floor,
                                                    light.n_water, light.resolution, fresnel, light.ground,
-                                                   shadow_steps(surface, fine, d), grid.n)
+                                                   shadow_steps(surface, fine, d), grid.n,
+                                                   tank_clip(tank, grid.n * refine))
     if not bool(finite):
         raise ValueError("eta must be finite everywhere; it contains NaN or inf")
     return tri_u, tri_v, flux, origin

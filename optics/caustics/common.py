@@ -20,7 +20,7 @@ from wavephys.core.inputs import (Array, Int, Real, _real_kind, check_array, che
 from wavephys.core.spectral import central_gradient
 
 __internal__ = True  # tooling for the library's own modules: not fuzzed as public API
-__all__ = ["Lighting", "prepare", "surface_fields", "land", "blur_121", "bilateral_filter"]
+__all__ = ["Lighting", "prepare", "surface_fields", "land", "blur_121", "bilateral_filter", "Tank", "walled_tank", "tank_clip", "tank_cells", "clip_cells", "CELL"]
 
 
 MAX_DEPTH = 1e4
@@ -69,6 +69,101 @@ def prepare(eta, grid: Grid, depth, sun, resolution, n_water, fresnel, check_val
     m = n if resolution is None else check_int("resolution", resolution, lo=2)
     return Lighting(jnp.asarray(eta, jnp.float32), grid, floor, ground, -sun / np.linalg.norm(sun), m,
                     float(n_water))
+
+
+class Tank(NamedTuple):
+    """A tank's caustics problem on its even extension (:func:`walled_tank`).
+
+    The surface (and a ground) mirrored across each walled axis and repeated across each periodic one,
+    on ``Grid(2n, 2L)``: periodic there, with the derivatives of the tank's cosine modes. The tank is the
+    first n samples (and the first m floor texels) along each axis.
+    """
+
+    light: Lighting         # the extended problem (2n samples, a 2m floor map)
+    walls: tuple            # (x walled, y walled)
+    n: int                  # the tank's samples a side
+    m: int                  # the tank's floor texels a side
+
+
+def walled_tank(light: Lighting, walls) -> Tank | None:
+    """The even extension of a checked caustics problem whose square is a tank with opaque walls on
+    ``walls`` (``None``/``"none"``: no walls, returns None). An axis is walled on both ends or not at
+    all (``"x"``, ``"y"``, ``"all"``, or both side names of an axis). Refused where the sun stands lower
+    than the steepest slope (a crest's shadow across a wall is not modelled) and where 2·n·refine would
+    pass 8192 (checked by the methods)."""
+    if walls is None:
+        return None
+    from wavephys.physics.walls import check_walls, wall_axes
+
+    sides = check_walls(walls)  # a lone wall needs an open side: refused by name (margin 0)
+    if not sides:
+        return None
+    wx, wy = wall_axes(sides)
+    n, m = light.grid.n, light.resolution
+    if not bool(jnp.isfinite(light.eta).all()):
+        raise ValueError("eta must be finite everywhere; it contains NaN or inf")
+
+    def extend(field):
+        field = jnp.concatenate([field, field[:, ::-1] if wx else field], axis=1)
+        return jnp.concatenate([field, field[::-1, :] if wy else field], axis=0)
+
+    eta, grid = extend(light.eta), Grid(2 * n, 2 * float(light.grid.length))
+    if shadow_steps(eta, grid, light.direction) > 0:  # on the extension: the tank's surface is not periodic
+        raise ValueError("walls: the sun stands lower than the surface's steepest slope, so crests shade the water; "
+                         "a shadow cast across a tank's wall is not modelled (raise the sun or drop walls)")
+    floor = extend(light.floor) if light.ground else light.floor
+    return Tank(light._replace(eta=eta, grid=grid, floor=floor, resolution=2 * m), (wx, wy), n, m)
+
+
+def tank_clip(tank: Tank | None, samples: int):
+    """What the beam's :func:`_vertices` needs to trace a tank on its extension traced with ``samples``
+    a side: ``(x walled, y walled, the tank's samples a side)`` (static), or None without a tank."""
+    if tank is None:
+        return None
+    return (bool(tank.walls[0]), bool(tank.walls[1]), samples // (2 * tank.n) * tank.n)
+
+
+def tank_cells(clip, samples: int):
+    """1 for the traced cells that carry the tank's light, 0 for its mirror image's, ``(samples,
+    samples)``: along a walled axis the cells between the tank's samples and the two that straddle its
+    walls (cut at the wall by :func:`clip_cells`); every cell along a periodic axis (its copy is real)."""
+    wx, wy, inside = clip
+    line = np.zeros(samples)
+    line[:inside] = 1.0
+    line[samples - 1] = 1.0
+    x = line if wx else np.ones(samples)
+    y = line if wy else np.ones(samples)
+    return jnp.asarray(y[:, None] * x[None, :], jnp.float32)
+
+
+def clip_cells(corners, clip, samples: int):
+    """Cut the cells that straddle a tank's walls at the wall: ``corners`` is a list over the cell's
+    corners (:data:`CELL` order, (row offset a, column offset b)) of per-cell fields (landed positions,
+    crossing points); the corner past the wall moves to the midpoint of the cell's edge, which is where
+    the beam's linear map puts the wall. Returns the new list."""
+    wx, wy, inside = clip
+    out = list(corners)
+    for walled, axis in ((wx, 1), (wy, 0)):
+        if not walled:
+            continue
+        index = jnp.arange(samples)
+        # the cell from sample inside−1 to inside: its far corner (offset 1) is the mirror's; the cell
+        # from the last sample to sample 0 (across the periodic seam): its near corner (offset 0) is
+        shape = (1, samples) if axis == 1 else (samples, 1)
+        far = (index == inside - 1).reshape(shape)
+        near = (index == samples - 1).reshape(shape)
+        for k, (a, b) in enumerate(CELL):
+            offset = b if axis == 1 else a
+            partner = next(j for j, (a2, b2) in enumerate(CELL)
+                           if (a2 == a if axis == 1 else b2 == b) and (b2 if axis == 1 else a2) != offset)
+            mid = 0.5 * (corners[k] + corners[partner])
+            out[k] = jnp.where(far if offset == 1 else near, mid, out[k])
+        corners = list(out)
+    return out
+
+
+CELL = ((0, 0), (0, 1), (1, 1), (1, 0))
+"""(row = y, column = x) offsets of a surface cell's corners, counter-clockwise."""
 
 
 def surface_fields(eta, grid: Grid, oversample: int = 1):

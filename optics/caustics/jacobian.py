@@ -54,7 +54,7 @@ import jax
 import jax.numpy as jnp
 import numpy as np
 
-from optics.caustics.common import land, prepare, shadow_steps, sunlit
+from optics.caustics.common import land, prepare, shadow_steps, sunlit, walled_tank
 from optics.light.fresnel import N_WATER
 from wavephys.core.grid import Grid
 from wavephys.core.inputs import check_bool, check_choice, check_int
@@ -182,8 +182,9 @@ def _coefficients(planes):
 
 @partial(jax.jit, static_argnames=("m", "iterations"))
 def _gather(coefficients, length, m, iterations):
-    """Newton per floor point of Grid(m, L): E at the preimage, and the residual |X(x) − X| (floor
-    texels; inf where the spline's own area ratio there is at most :data:`MIN_AREA_RATIO`)."""
+    """Newton per floor point of Grid(m, L): E at the preimage, the residual |X(x) − X| (floor
+    texels; inf where the spline's own area ratio there is at most :data:`MIN_AREA_RATIO`), and the
+    preimage x, y (m, not wrapped into the square)."""
     n = coefficients.shape[0]
     h = length / n
     X, Y = Grid(m, length).mesh()
@@ -205,7 +206,8 @@ def _gather(coefficients, length, m, iterations):
     det = (1.0 + du[:, 0] / h) * (1.0 + dv[:, 1] / h) - (dv[:, 0] / h) * (du[:, 1] / h)
     residual = jnp.hypot(x + value[:, 0] - X, y + value[:, 1] - Y) / (length / m)
     irradiance = jnp.maximum(value[:, 2], 0.0) / det  # a spline of a shadow edge may undershoot 0
-    return irradiance.reshape(m, m), jnp.where(det > MIN_AREA_RATIO, residual, jnp.inf).reshape(m, m)
+    return (irradiance.reshape(m, m), jnp.where(det > MIN_AREA_RATIO, residual, jnp.inf).reshape(m, m),
+            x.reshape(m, m), y.reshape(m, m))
 
 
 @partial(jax.jit, static_argnames=("s",))
@@ -315,13 +317,14 @@ def _groups_near(tri_u, tri_v, origin, near):
     return near[first_v % m, first_u % m] | wide
 
 
-def _beam_windows(light, fresnel, windows, refine: int = 3):
+def _beam_windows(light, fresnel, windows, refine: int = 3, tank=None):
     """The exact beam rasterization (refine ``refine``) of every triangle that can reach a texel
-    of ``windows``: right on those texels, partial elsewhere (E/E0, (m, m))."""
+    of ``windows``: right on those texels, partial elsewhere (E/E0, (m, m)); in a ``tank`` (its
+    extension's light), only the tank's cells carry light."""
     from optics.caustics.beam import beam_triangles
 
     m, length = light.resolution, float(light.grid.length)
-    tri_u, tri_v, flux, origin = beam_triangles(light, refine, fresnel)
+    tri_u, tri_v, flux, origin = beam_triangles(light, refine, fresnel, tank=tank)
     index = np.flatnonzero(np.asarray(_groups_near(tri_u, tri_v, origin, jnp.asarray(_grow(windows, 2)))))
     if index.size == 0:
         return jnp.zeros((m, m), jnp.float32)
@@ -337,7 +340,7 @@ def _beam_windows(light, fresnel, windows, refine: int = 3):
 
 def floor_irradiance_jacobian(eta, grid: Grid, depth, sun=(0.0, 0.0, 1.0), *, resolution: int | None = None,
                               n_water: float = N_WATER, fresnel: bool = True, refine="auto", supersample="auto",
-                              iterations: int = 4, fold: str = "windows", explain: bool = False):
+                              iterations: int = 4, fold: str = "windows", explain: bool = False, walls=None):
     """Floor irradiance E/E0 from the Jacobian of the landing map (module doc), shape (m, m).
 
     Parameters
@@ -372,6 +375,13 @@ def floor_irradiance_jacobian(eta, grid: Grid, depth, sun=(0.0, 0.0, 1.0), *, re
 
     explain : bool
         Also return how the map was answered (below).
+    walls : str or None
+        The square is a tank with opaque vertical walls on these sides (``"all"``, ``"x"``, ``"y"``,
+        or both side names of an axis; default None: periodic), as
+        :func:`~optics.caustics.floor_irradiance_beam` has it: the fields come from the surface's even
+        extension (its cosine modes: exact derivatives up to the walls), floor texels whose light would
+        have come through a wall are dark, and the texels around the edge of that shadow (the landed
+        cells by the walls) are the beam's windows, so the answer is always ``"windows"`` or ``"beam"``.
 
     Returns
     -------
@@ -383,11 +393,12 @@ def floor_irradiance_jacobian(eta, grid: Grid, depth, sun=(0.0, 0.0, 1.0), *, re
         (m, m): the texels the beam drew).
     """
     check_bool("explain", explain)
-    out, info = _jacobian(eta, grid, depth, sun, resolution, n_water, fresnel, refine, supersample, iterations, fold)
+    out, info = _jacobian(eta, grid, depth, sun, resolution, n_water, fresnel, refine, supersample, iterations, fold,
+                          walls)
     return (out, info) if explain else out
 
 
-def _jacobian(eta, grid, depth, sun, resolution, n_water, fresnel, refine, supersample, iterations, fold):
+def _jacobian(eta, grid, depth, sun, resolution, n_water, fresnel, refine, supersample, iterations, fold, walls=None):
     """:func:`floor_irradiance_jacobian`, and how it answered: ``{"answer": "gather" | "windows" |
     "beam", "windows": fraction of the floor rasterized, "supersample": s}``."""
     light = prepare(eta, grid, depth, sun, resolution, n_water, fresnel, check_values=False)
@@ -395,6 +406,12 @@ def _jacobian(eta, grid, depth, sun, resolution, n_water, fresnel, refine, super
         supersample = check_int("supersample", supersample, lo=1, hi=8)
     iterations = check_int("iterations", iterations, lo=1, hi=16)
     check_choice("fold", fold, FOLD_CHOICES)
+    if refine != "auto":
+        refine = check_int("refine", refine, lo=1, hi=8)
+    tank = walled_tank(light, walls)
+    if tank is not None:
+        return _tank_jacobian(tank, (eta, grid, depth, sun, resolution, n_water, fresnel, walls), refine, iterations,
+                              fold)
     length, m, d = float(grid.length), light.resolution, jnp.asarray(light.direction, jnp.float32)
     if refine == "auto":
         r, fine_content = _auto_refine(light.eta, m)
@@ -423,7 +440,7 @@ def _jacobian(eta, grid, depth, sun, resolution, n_water, fresnel, refine, super
     if s is not None and m * s > 8192:
         raise ValueError(f"resolution × supersample = {m * s} must be at most 8192")
     if s is not None:
-        point, residual = _gather(_coefficients(planes), length, m * s, iterations)
+        point, residual, _, _ = _gather(_coefficients(planes), length, m * s, iterations)
         worst = float(jnp.max(residual))
         if worst <= NEWTON_TOLERANCE:
             return _texel_average(point, length, s), dict(answer="gather", windows=0.0, supersample=s,
@@ -448,7 +465,7 @@ def _jacobian(eta, grid, depth, sun, resolution, n_water, fresnel, refine, super
         bad |= _grow(np.asarray(gap > MAX_GAP), JUMP_REACH)  # the spline rings around a jump
         folded = _cell_footprints(planes[:2], bad, m, length)
         if _grow(folded).mean() <= MAX_WINDOWS:
-            point, residual = _gather(_coefficients(planes), length, m, iterations)
+            point, residual, _, _ = _gather(_coefficients(planes), length, m, iterations)
             windows = _grow(folded | np.asarray(residual > NEWTON_TOLERANCE))
             beam = _beam_windows(light, fresnel, windows, _beam_refine(grid.n))
             out = jnp.where(jnp.asarray(windows), beam, _point_to_texel(point))
@@ -469,7 +486,7 @@ def _map_side(eta, resolution) -> int:
     return int(resolution) if resolution is not None else int(np.shape(eta)[-1])
 
 
-def _not_gathered(eta, grid, depth, sun, resolution, n_water, fresnel, fold, reason):
+def _not_gathered(eta, grid, depth, sun, resolution, n_water, fresnel, fold, reason, walls=None):
     """The beam everywhere for a map the gather does not answer (a warning with ``fold="beam"``),
     or :class:`CausticsFold` with ``fold="raise"``."""
     if fold == "raise":
@@ -480,7 +497,77 @@ def _not_gathered(eta, grid, depth, sun, resolution, n_water, fresnel, fold, rea
 
     if fold == "beam":
         warnings.warn(f"jacobian caustics: {reason}; the exact beam rasterization is used instead", stacklevel=4)
+    refine = _beam_refine(grid.n if walls is None else 2 * grid.n)
     return (floor_irradiance_beam(eta, grid, depth, sun, resolution=resolution, n_water=n_water, fresnel=fresnel,
-                                  refine=_beam_refine(grid.n)),
+                                  refine=refine, walls=walls),
             dict(answer="beam", windows=1.0, supersample=None,
                  mask=np.ones((_map_side(eta, resolution),) * 2, bool)))
+
+
+def _tank_jacobian(tank, call, refine, iterations, fold):
+    """:func:`_jacobian` in a walled tank (``walls``): the gather on the tank's even extension, dark where
+    the preimage lies past a wall, the beam (the tank's cells only) on the windows: the folded parts'
+    footprints and the landed cells by the walls, where the shadow of a wall begins."""
+    light, (wx, wy) = tank.light, tank.walls
+    big_n, big_m, length = light.grid.n, light.resolution, float(light.grid.length)
+    d = jnp.asarray(light.direction, jnp.float32)
+    if refine == "auto":
+        r, fine_content = _auto_refine(light.eta, big_m)
+        if light.ground and r > 1:
+            reason = (f"on a ground height field the gather needs refine 1, but the surface wants {r} "
+                      f"({fine_content:.1%} of its curvature above half the Nyquist wavenumber)")
+            return _not_gathered(*call[:7], fold, reason, walls=call[7])
+    else:
+        r = refine
+        if light.ground and r > 1:
+            raise ValueError("refine must be 1 on a ground height field (the ground lives on the surface's grid)")
+    if big_n * r > 8192:
+        raise ValueError(f"refine {r} traces the tank's even extension on {big_n * r}² samples: 2·n·refine must "
+                         f"be at most 8192")
+    fine = Grid(big_n * r, length)
+    surface = light.grid.refine(light.eta, r) if r > 1 else light.eta
+    planes, det, sharpness, rough, gap, finite = _fields(
+        surface, _derivatives(surface, fine.dx), d, light.floor, light.n_water, call[6],
+        shadow_steps(surface, fine, light.direction), length, light.ground, big_n)
+    if not bool(finite):
+        raise ValueError("eta must be finite everywhere; it contains NaN or inf")
+    inside = r * tank.n  # the tank's samples a side on the traced extension
+    own = np.zeros((big_n * r,) * 2, bool)
+    own[:inside if wy else None, :inside if wx else None] = True
+    folds = own & np.asarray((det <= MIN_AREA_RATIO) | (sharpness * (length / big_m) > SHARPNESS_LIMIT) | (rough > 1.0))
+    folds |= own & _grow(np.asarray(gap > MAX_GAP), JUMP_REACH)
+    if folds.any() and fold != "windows":
+        reason = (f"the landing map of the tank's surface folds, nearly folds or is not resolved at "
+                  f"{int(folds.sum())} of its samples")
+        return _not_gathered(*call[:7], fold, reason, walls=call[7])
+    edge = np.zeros_like(own)  # the samples by each wall: the cells across it carry half their light
+    if wx:
+        edge[:, [0, inside - 1, inside, big_n * r - 1]] = True
+    if wy:
+        edge[[0, inside - 1, inside, big_n * r - 1], :] = True
+    folded = _cell_footprints(planes[:2], folds | edge, big_m, length)
+    crop = (slice(0, tank.m), slice(0, tank.m))
+    if _grow(folded)[crop].mean() > MAX_WINDOWS:
+        return _tank_beam(call)
+    point, residual, x, y = _gather(_coefficients(planes), length, big_m, iterations)
+    windows = _grow(folded | np.asarray(residual > NEWTON_TOLERANCE))
+    beam = _beam_windows(light, call[6], windows, _beam_refine(big_n), tank=tank)
+    lit = jnp.ones_like(point, bool)
+    half = 0.5 * length  # the extension spans [-L_ext/2, L_ext/2); the tank its first half along a walled axis
+    if wx:
+        lit &= jnp.mod(x + half, length) < 0.5 * length
+    if wy:
+        lit &= jnp.mod(y + half, length) < 0.5 * length
+    out = jnp.where(jnp.asarray(windows), beam, jnp.where(lit, _point_to_texel(point), 0.0))[crop]
+    return out, dict(answer="windows", windows=float(windows[crop].mean()), supersample=1, mask=windows[crop])
+
+
+def _tank_beam(call):
+    """The beam everywhere in a tank whose windows would cover most of its floor (no warning: it is as
+    right as the windows)."""
+    from optics.caustics.beam import floor_irradiance_beam
+
+    eta, grid, depth, sun, resolution, n_water, fresnel, walls = call
+    out = floor_irradiance_beam(eta, grid, depth, sun, resolution=resolution, n_water=n_water, fresnel=fresnel,
+                                refine=_beam_refine(2 * grid.n), walls=walls)
+    return out, dict(answer="beam", windows=1.0, supersample=None, mask=np.ones((_map_side(eta, resolution),) * 2, bool))

@@ -18,7 +18,7 @@ from typing import NamedTuple
 import numpy as np
 
 from optics.caustics.beam import floor_irradiance_beam
-from optics.caustics.common import prepare
+from optics.caustics.common import prepare, walled_tank
 from optics.light.fresnel import N_WATER
 from wavephys.core.grid import Grid
 from wavephys.core.inputs import check_int, check_scalar
@@ -49,7 +49,7 @@ class ConvergedIrradiance(NamedTuple):
 
 def converged_floor_irradiance(eta, grid: Grid, depth, sun=(0.0, 0.0, 1.0), *, resolution: int | None = None,
                                n_water: float = N_WATER, fresnel: bool = True, tolerance: float = 1e-3,
-                               start: int = 4, max_refine: int = 16) -> ConvergedIrradiance:
+                               start: int = 4, max_refine: int = 16, walls=None) -> ConvergedIrradiance:
     """The reference map with its error bound (module doc).
 
     Parameters
@@ -63,6 +63,9 @@ def converged_floor_irradiance(eta, grid: Grid, depth, sun=(0.0, 0.0, 1.0), *, r
         The first level r, 1 to 8.
     max_refine : int
         The finest level 2r allowed, 2 to 32 (each doubling costs four times the last).
+    walls : str or None
+        A tank with opaque walls on these sides, as :func:`~optics.caustics.floor_irradiance_beam`
+        (default None: periodic).
 
     Returns
     -------
@@ -70,14 +73,14 @@ def converged_floor_irradiance(eta, grid: Grid, depth, sun=(0.0, 0.0, 1.0), *, r
         The last level reached, with ``converged`` False when the bound stayed above
         ``tolerance`` (e.g. past a fold).
     """
-    prepare(eta, grid, depth, sun, resolution, n_water, fresnel)  # every argument checked before any work
+    walled_tank(prepare(eta, grid, depth, sun, resolution, n_water, fresnel), walls)  # every argument checked first
     check_scalar("tolerance", tolerance, lo=0.0, hi=0.1, lo_open=True)
     start = check_int("start", start, lo=1, hi=8)
     max_refine = check_int("max_refine", max_refine, lo=2, hi=32)
     if max_refine < 2 * start:
         raise ValueError(f"max_refine must be at least 2 × start = {2 * start}, got {max_refine}")
     trace = lambda r: np.asarray(floor_irradiance_beam(eta, grid, depth, sun, resolution=resolution, n_water=n_water,
-                                                        fresnel=fresnel, refine=r), np.float64)
+                                                        fresnel=fresnel, refine=r, walls=walls), np.float64)
     r, coarse = start, trace(start)
     while True:
         fine = trace(2 * r)
@@ -90,7 +93,7 @@ def converged_floor_irradiance(eta, grid: Grid, depth, sun=(0.0, 0.0, 1.0), *, r
 
 def floor_irradiance_reference(eta, grid: Grid, depth, sun=(0.0, 0.0, 1.0), *, resolution: int | None = None,
                                n_water: float = N_WATER, fresnel: bool = True, tolerance: float = 1e-3,
-                               max_refine: int = 16):
+                               max_refine: int = 16, walls=None):
     """Floor irradiance E/E0 converged to ``tolerance`` of the peak.
 
     Parameters
@@ -102,6 +105,8 @@ def floor_irradiance_reference(eta, grid: Grid, depth, sun=(0.0, 0.0, 1.0), *, r
         The bound to reach, relative to the peak, in (0, 0.1].
     max_refine : int
         The finest refinement allowed, 2 to 32.
+    walls : str or None
+        A tank with opaque walls on these sides (default None: periodic).
 
     Returns
     -------
@@ -109,4 +114,4 @@ def floor_irradiance_reference(eta, grid: Grid, depth, sun=(0.0, 0.0, 1.0), *, r
         The map of :func:`converged_floor_irradiance` (which also returns its bound).
     """
     return converged_floor_irradiance(eta, grid, depth, sun, resolution=resolution, n_water=n_water, fresnel=fresnel,
-                                      tolerance=tolerance, max_refine=max_refine).irradiance
+                                      tolerance=tolerance, max_refine=max_refine, walls=walls).irradiance

@@ -256,8 +256,10 @@ def water_srgb(distance, illuminant: str = "D65", gamut: str = "clip", step: flo
     shape, cmfs, ill, absorption = _colorimetry(illuminant, float(step))
     d = np.asarray(distance, float)
     trans = np.exp(-np.multiply.outer(d.ravel(), absorption.values))  # (m, λ)
-    xyz = np.stack([colour.sd_to_XYZ(colour.SpectralDistribution(t, shape.wavelengths), cmfs, ill,
-                                     method="Integration") for t in np.vstack([np.ones(len(shape.wavelengths)), trans])])
+    # every path in one call (colour-science's integration over an array of spectra; sd_to_XYZ per path
+    # was a Python loop, seconds for a render's rays)
+    xyz = np.atleast_2d(colour.colorimetry.msds_to_XYZ_integration(
+        np.vstack([np.ones(len(shape.wavelengths)), trans]), cmfs, ill, shape=shape))
     rgb = colour.XYZ_to_sRGB(xyz / 100.0, apply_cctf_encoding=False)
     rgb = rgb[1:] / rgb[0]
     if gamut == "clip":  # a transmittance: never negative, never a gain (module doc)

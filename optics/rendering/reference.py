@@ -262,7 +262,10 @@ def _transmittance(scene: Scene, length):
         return np.exp(-np.asarray(length)[..., None] * scene.absorption)
     from optics.light.attenuation import WATER_TRANSMITTANCE_METHODS
 
-    return np.asarray(WATER_TRANSMITTANCE_METHODS[form](np.maximum(np.asarray(length, np.float64), 0.0)), np.float64)
+    length = np.maximum(np.asarray(length, np.float64), 0.0)
+    far = ~np.isfinite(length)  # a ray that never lands: no light comes back through water (as e^(-inf·a) = 0)
+    out = np.asarray(WATER_TRANSMITTANCE_METHODS[form](np.where(far, 0.0, length)), np.float64)
+    return np.where(far[..., None], 0.0, out)
 
 
 def shade_ground(scene: Scene, p):

@@ -30,6 +30,9 @@ from pathlib import Path
 import numpy as np
 
 from optics.light.attenuation import TABLE_SCALE, transmittance_table
+
+TABLE_ROW = 1024
+"""Entries a row of the absorption texture holds (GL 3.3 guarantees textures 1024 texels a side)."""
 from optics.light.fresnel import normal_reflectance, reflectance
 from optics.gpu import EGL_PACKAGES, GLSL_FRESNEL_FORMS, GLSL_OPTICS, GLSL_SAMPLING, RendererUnavailable, gl_context
 from optics.rendering.scene import FAR_TILES, NEAR_TILES, SURROUNDINGS, Scene, sun_in_water, texture_sample
@@ -75,7 +78,7 @@ uniform int steps, refine;
 uniform bool e_refraction, e_reflection, e_fresnel, e_absorption, e_caustics, e_foam;
 uniform int fresnel_id;  // the Fresnel form's index in GLSL_FRESNEL_FORMS
 uniform bool absorption_table;  // the absorption form drawn from its table (u = s/(s + scale))
-uniform sampler2D absorption_tex; uniform ivec2 absorption_size; uniform float absorption_scale;
+uniform sampler2D absorption_tex; uniform ivec2 absorption_size; uniform float absorption_scale;  // rows of TABLE_ROW
 uniform bool under;
 uniform int surroundings;  // 0 none, 1 extend, 2 tile
 uniform bool sky_preetham;
@@ -128,10 +131,15 @@ float reflectance(float cos_i, float n1, float n2) {
 vec3 transmittance(float len) {
     if (!e_absorption) return vec3(1.0);
     if (!absorption_table) return exp(-len * absorption);
-    float u = max(len, 0.0) / (max(len, 0.0) + absorption_scale) * float(absorption_size.x - 1);
-    int i = min(int(floor(u)), absorption_size.x - 2);
-    vec3 a = texelFetch(absorption_tex, ivec2(i, 0), 0).rgb, b = texelFetch(absorption_tex, ivec2(i + 1, 0), 0).rgb;
-    return mix(a, b, u - float(i));
+    // u = s/(s + scale) written so that s = inf gives u = 1 (the last entry, 0); the table's rows
+    // hold TABLE_ROW entries each (a texture GL 3.3 guarantees: 1024 texels a side)
+    int last = absorption_size.x * absorption_size.y - 1;
+    float u = (1.0 - absorption_scale / (max(len, 0.0) + absorption_scale)) * float(last);
+    int i = clamp(int(floor(u)), 0, last - 1);
+    int w = absorption_size.x;
+    vec3 a = texelFetch(absorption_tex, ivec2(i % w, i / w), 0).rgb;
+    vec3 b = texelFetch(absorption_tex, ivec2((i + 1) % w, (i + 1) / w), 0).rgb;
+    return mix(a, b, clamp(u - float(i), 0.0, 1.0));
 }
 
 // Preetham, Shirley & Smits (1999) daylight; the CPU reference's copy is optics/light/sky.py
@@ -400,7 +408,7 @@ class Renderer:
         foam = scene.foam if scene.foam is not None else np.zeros((2, 2), np.float32)
         env = scene.environment if scene.environment is not None else np.zeros((2, 2, 3), np.float32)
         form = scene.effects.absorption_form
-        table = (transmittance_table(form)[None] if form != "rgb" else np.ones((1, 2, 3), np.float32))
+        table = (transmittance_table(form).reshape(-1, TABLE_ROW, 3) if form != "rgb" else np.ones((1, 2, 3), np.float32))
         for unit, (name, arr) in enumerate((("ground", scene.ground), ("water", scene.water), ("albedo", albedo),
                                             ("caustic", caustics), ("env", env), ("foam", foam),
                                             ("absorption", table))):

@@ -9,7 +9,7 @@ from wavephys.app.scenes import (SHALLOW_WATER_CYCLES, _ground, _shallow_water_s
                                  scene_frames, scene_water)
 
 
-_SLOW_SCENES = {"wakebeach"}  # the split: 5–15 s a run at n = 64; in the slow set (its own test below stays)
+_SLOW_SCENES = {"wakebeach"}  # the split: 5–15 s a run at n = 64; its tests here are in the slow run
 SCENE_PARAMS = [pytest.param(name, marks=pytest.mark.slow) if name in _SLOW_SCENES else name
                 for name in sorted(SHALLOW_WATER_CYCLES)]
 

@@ -300,7 +300,6 @@ def test_past_the_first_fold_the_jacobian_is_not_offered():
     assert "traced frames fold" in {t.term: t for t in p.terms}["caustics"].reason
 
 
-@pytest.mark.slow
 def test_an_old_calibration_without_the_gather_offers_only_the_beam():
     from wavephys.planner.cost import calibration
     from wavephys.planner.terms import TERMS
@@ -308,6 +307,15 @@ def test_an_old_calibration_without_the_gather_offers_only_the_beam():
     scene = _pool(depth=0.4, caustics=True)
     old = {k: v for k, v in calibration().items() if k != "caustics_jacobian"}
     assert "jacobian" not in TERMS["caustics"].options(scene, old)
+    assert "jacobian" in TERMS["caustics"].options(scene, calibration())
+
+
+@pytest.mark.slow
+def test_an_old_calibration_plans_the_beam():
+    from wavephys.planner.cost import calibration
+
+    scene = _pool(depth=0.4, caustics=True)
+    old = {k: v for k, v in calibration().items() if k != "caustics_jacobian"}
     assert plan(scene, scene.height_quantum, calibration=old).model.choices.caustics in (1, 2, 3, 4)
 
 

@@ -5,7 +5,7 @@ import math
 import numpy as np
 import pytest
 
-from optics.light.attenuation import fit_rgb_coefficients
+from optics.light.attenuation import WATER_TRANSMITTANCE_METHODS, fit_rgb_coefficients
 from optics.checks import flat_pool, flat_pool_colour, underwater_view
 from optics.light.fresnel import N_AIR, N_WATER
 from optics.rendering.reference import psnr, ray_directions, trace
@@ -66,7 +66,7 @@ def test_every_fresnel_form_of_the_family_has_glsl():
     assert Effects(fresnel_form="lut").only("fresnel").fresnel_form == "lut"
 
 
-@pytest.mark.parametrize("form", ["spectral"])
+@pytest.mark.parametrize("form", [m for m in WATER_TRANSMITTANCE_METHODS if m != "rgb"])
 def test_gpu_draws_every_absorption_form_the_planner_can_choose(form):
     """The renderer draws each water-transmittance method a plan may choose (other than the scene's own
     RGB coefficients) through its table, matching the CPU reference, which calls the method itself
@@ -86,7 +86,6 @@ def test_gpu_draws_every_absorption_form_the_planner_can_choose(form):
 def test_every_absorption_form_of_the_family_can_be_drawn():
     """Every method of the water-transmittance family is an Effects choice (the RGB one by the scene's
     uniform, the others by their tables); a name outside the family is refused by name."""
-    from optics.light.attenuation import WATER_TRANSMITTANCE_METHODS
     from optics.rendering import Effects
 
     for form in WATER_TRANSMITTANCE_METHODS:

@@ -52,7 +52,8 @@ class WakeAngle:
         Its uncertainty, degrees, >= 0 (the fit's standard error or half the disagreement of the two sides,
         whichever is larger).
     method : str
-        The estimator: ``"max"``, ``"cusp"`` or ``"max (linear theory)"``.
+        The estimator: ``"max"``, ``"cusp"``, ``"darmon"``, or a theory's ``"max (linear theory)"``,
+        ``"cusp (linear theory)"``, ``"darmon (linear theory)"``.
     points : int
         Number of sections used by the fits, both sides together (``"darmon"``: arcs, both sides together).
     radii : tuple of float
@@ -818,12 +819,20 @@ def wake_angle_theory(speed, source: GaussianPressure, *, method: str = "max", *
         A name in :data:`WAKE_ANGLE_THEORIES` (default ``"max"``).
     **options
         The measurement's own options, passed to the theory that takes them: ``near``, ``far``,
-        ``exclude``, ``spacing`` (the field's grid spacing), ``tolerance`` for ``"max"``; ``radii``,
-        ``span``, ``tolerance`` for ``"darmon"``; ``water`` for all.
+        ``exclude``, ``spacing`` (the field's grid spacing), ``sections``, ``tolerance`` for ``"max"``;
+        ``radii``, ``span``, ``step``, ``tolerance`` for ``"darmon"``; ``damping`` (Rayleigh's ε of a
+        damped field, 1/s) for both; ``water`` for all.
 
     Returns
     -------
     WakeAngle
+
+    Raises
+    ------
+    TypeError
+        For a ``source`` that is not a GaussianPressure, or an option no theory takes.
+    ValueError
+        For an unknown ``method`` or an option out of its theory's range.
 
     Examples
     --------
