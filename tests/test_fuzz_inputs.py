@@ -195,7 +195,7 @@ def _scene_params():
 
     # the shallow-water scenes run their solver for seconds, the caustics scenes trace for seconds: their own
     # tests (tests/app, tests/rendering) build them
-    slow = {"beach", "dambreak", "wakebeach", "pool", "shore", "ship", "harbour"}  # 5-11 s each
+    slow = {"beach", "dambreak", "wakebeach", "pool", "shore", "ship", "harbour", "storm", "calm"}  # 5-11 s each
     return [pytest.param(name, marks=pytest.mark.slow) if name in slow else name for name in SCENES]
 
 

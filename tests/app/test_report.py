@@ -21,6 +21,7 @@ def report(tmp_path_factory):
     return out / "report.html"
 
 
+@pytest.mark.slow
 def test_report_is_one_self_contained_page(report):
     text = report.read_text(encoding="utf-8")
     for section in ("Validation", "Wake pattern", "Ring waves", "Bench", "Model cards", "Rendered frames"):
@@ -33,6 +34,7 @@ def test_report_is_one_self_contained_page(report):
 
 @pytest.mark.skipif(CHROMIUM is None and not os.environ.get("CI"), reason="Chromium is not installed "
                     "(.ci/run installs it: apt-get install chromium)")
+@pytest.mark.slow
 def test_report_loads_in_headless_chromium_without_errors_and_shows_its_images(report, tmp_path):
     assert CHROMIUM is not None, "CI must have Chromium (.ci/run installs it)"
     r = subprocess.run([CHROMIUM, "--headless=new", "--no-sandbox", "--disable-gpu", f"--user-data-dir={tmp_path}",

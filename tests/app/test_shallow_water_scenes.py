@@ -52,6 +52,7 @@ def test_the_dam_break_conserves_its_water():
     assert np.asarray(out.h).min() >= 0
 
 
+@pytest.mark.slow
 def test_caustics_are_flat_light_on_dry_land_and_bores_focus_light():
     n = 64
     water = scene_water("beach", n, 1.0)
@@ -85,6 +86,7 @@ def test_the_boat_wake_reaches_the_beach_and_the_water_is_conserved():
     assert np.abs(eta[shallows]).max() > 0.01  # the wake on the beach (measured 3–6 cm)
 
 
+@pytest.mark.slow
 def test_harbour_wake_reaches_the_quay_and_frames_match_single_times(monkeypatch):
     """``harbour``: the boat's wake has reached the quay by t = 8 s (the rows along it move 10× more than at 1 s,
     before it arrives) and is reflected there (1.5× more than with the quay's side open), the band under the quay

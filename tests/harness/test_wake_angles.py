@@ -74,6 +74,7 @@ def test_darmon_theory_has_the_published_shape():
         assert abs(t.angle / law - 1) < 0.1, (froude, t.angle, law)
 
 
+@pytest.mark.slow
 def test_the_two_maximum_amplitude_definitions_differ():
     """The section-envelope angle ("max") is another quantity: at Fr 0.7 it is 1.7° above the arcs' angle."""
     grid, eta, _, b = _froude_wake(0.7)
@@ -109,7 +110,8 @@ def test_engine_wakes_get_the_right_verdict_and_cause(engine_wakes):
 
 
 @pytest.mark.parametrize("froude, lengths", [pytest.param(0.5, 20, marks=pytest.mark.slow),
-                                                  pytest.param(1.2, 30, marks=pytest.mark.slow), (3.0, 20)])
+                                                  pytest.param(1.2, 30, marks=pytest.mark.slow),
+                                                  pytest.param(3.0, 20, marks=pytest.mark.slow)])
 def test_correct_wakes_pass_the_published_angle(froude, lengths):
     """Engine-written periodic steady wakes on grids of 20-30 source lengths, default arcs (8 b to 0.45 L):
     a correct simulator passes (measured: within 0.2° of a crest theory puts within 10 % of its largest, over

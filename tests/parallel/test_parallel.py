@@ -77,6 +77,7 @@ def test_sharded_step_equals_one_device_over_a_family(family_checks):
             assert r["rounding_sharded"][field] <= 2.0 * r["rounding"][field] + 1e-7, (field, r)
 
 
+@pytest.mark.slow
 def test_sharded_run_loop_and_wrapper(checks):
     """Simulation(..., devices=4 host devices): drop, add_height, run (scan) and energy equal
     one device (the states to ≤ 1e-6)."""
@@ -87,6 +88,7 @@ def test_sharded_run_loop_and_wrapper(checks):
     assert loop["energy"] <= 1e-5
 
 
+@pytest.mark.slow
 def test_memory_per_device_falls_as_one_over_devices(checks):
     """The compiled step's arguments + outputs + temporaries per device (memory analysis),
     N = 128: within 20 % of (one device)/P, and halving from 2 to 4 devices."""
@@ -97,6 +99,7 @@ def test_memory_per_device_falls_as_one_over_devices(checks):
     assert rows[4]["bytes_per_device"] <= 0.55 * rows[2]["bytes_per_device"]
 
 
+@pytest.mark.slow
 def test_collectives_are_the_slab_transposes(checks):
     """Each step sends exactly what three slab transposes of two planes send (forward state,
     inverse state, inverse surface), and nothing else: no gather of the whole field."""
@@ -108,6 +111,7 @@ def test_collectives_are_the_slab_transposes(checks):
             assert r["sent"]["all-to-all"] == r["expected_sent"], r
 
 
+@pytest.mark.slow
 def test_sweeps_equal_the_loop(checks):
     """sweep() over 7 models of two grid sizes on 4 devices (one padded batch) and on 2
     devices × 2 per device equals [jax.jit(fn)(m) for m in models] to float32 rounding
@@ -119,6 +123,7 @@ def test_sweeps_equal_the_loop(checks):
     assert s["depth_spread"] > 1e-5
 
 
+@pytest.mark.slow
 def test_bad_inputs_needing_several_devices(checks):
     kind, message = checks["errors"]["indivisible"]
     assert kind == "ValueError" and "n = 66" in message and "divisible" in message
@@ -132,6 +137,7 @@ def _free_port():
         return s.getsockname()[1]
 
 
+@pytest.mark.slow
 def test_two_processes_equal_one(tmp_path, checks):
     """examples/sharded_ocean.py as two processes on 127.0.0.1 (2 host devices each, one
     coordinator port) gives the surface and the depth sweep of one process with 4 devices

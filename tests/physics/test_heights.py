@@ -37,6 +37,7 @@ class TestSecondOrder:
         got = np.asarray(second_order_height(jnp.asarray(psi, jnp.complex64), grid, water))[0]
         np.testing.assert_allclose(got, eq3, atol=1e-5 * a * k / omega)
 
+    @pytest.mark.slow
     def test_error_grows_with_steepness(self):
         errs = [second_order_error(s)["second"] for s in (0.05, 0.1, 0.2, 0.3)]
         assert all(b > a for a, b in zip(errs, errs[1:]))

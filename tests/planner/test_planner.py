@@ -3,6 +3,7 @@ choices on scenes built for them, and the proof on generated scenes nobody picke
 
 from __future__ import annotations
 
+import functools
 import json
 import math
 import subprocess
@@ -173,10 +174,16 @@ def test_pareto_front_is_monotone():
 
 # -- named cases ----------------------------------------------------------------------------
 def _choices(name, quanta=0.5, **changes):
+    return _plan(name, quanta, tuple(sorted(changes.items()))).model.choices
+
+
+@functools.lru_cache(maxsize=8)
+def _plan(name, quanta, changes):
+    """A built-in scene's plan (cached: several tests ask for the same one)."""
     scene = builtin_scene(name)
     if changes:
-        scene = replace(scene, **changes)
-    return plan(scene, quanta * scene.height_quantum).model.choices
+        scene = replace(scene, **dict(changes))
+    return plan(scene, quanta * scene.height_quantum)
 
 
 def test_capillary_scene_keeps_surface_tension():
@@ -193,10 +200,14 @@ def test_deep_lake_drops_finite_depth_and_shallow_pond_keeps_it():
     assert _choices("pond").finite_depth
 
 
-def test_eight_bit_image_picks_a_cheap_fresnel_form_and_sixteen_bits_do_not():
-    """Seen from above (incidence ≤ 35°), the cheap forms stay within one 8-bit quantum; a
-    16-bit image needs the exact form; at a grazing view (60–70°) even 8 bits need it."""
+def test_eight_bit_image_picks_a_cheap_fresnel_form():
+    """Seen from above (incidence ≤ 35°), the cheap forms stay within one 8-bit quantum."""
     assert _choices("lake", view_elevation=75.0).fresnel not in ("exact", "lut")
+
+
+@pytest.mark.slow
+def test_sixteen_bits_and_a_grazing_view_need_the_exact_fresnel_form():
+    """A 16-bit image needs the exact form; at a grazing view (60–70°) even 8 bits need it."""
     assert _choices("lake", view_elevation=75.0, image_bits=16).fresnel == "exact"
     assert _choices("lake", view_elevation=25.0).fresnel == "exact"
 
@@ -210,7 +221,7 @@ def test_a_plan_is_drawn_with_its_shading_choices():
     from wavephys.planner.runner import path_range
 
     scene = replace(builtin_scene("lake"), view_elevation=75.0)
-    p = plan(scene, 0.5 * scene.height_quantum)
+    p = _plan("lake", 0.5, (("view_elevation", 75.0),))
     full = render_scene("storm", n=64)
     drawn = p.drawn(full)
     assert drawn.effects.fresnel_form == p.model.choices.fresnel not in ("exact", "lut")

@@ -33,6 +33,7 @@ def test_a_flat_floor_is_the_spectral_step_and_has_no_depth_choice():
     assert plan(flat, tol).model.choices == plan(none, tol).model.choices
 
 
+@pytest.mark.slow
 def test_the_constant_depth_error_is_the_steppers_floor_then_the_slopes():
     """The evaluated difference between the spectral step at the centre's depth and the waves over
     the floor, on one scene (a 0.01 m crater): 1.34e-5, 1.31e-5, 9.7e-6 m at slopes 0.0003, 0.003,

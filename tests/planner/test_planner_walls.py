@@ -62,6 +62,7 @@ def test_coarse_walled_frames_are_refined_by_cosine_interpolation():
     assert np.abs(np.asarray(fourier_refine(f, 2)) - exact).max() > 0.1
 
 
+@pytest.mark.slow
 def test_short_pool_drops_the_walls_and_a_long_one_keeps_them():
     """Three frames after a stone lands in the middle of a pool nothing has reached a wall: the
     periodic square (cheaper: no cosine transforms) changes nothing and the plan takes it, its

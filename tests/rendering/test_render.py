@@ -94,6 +94,7 @@ def test_every_absorption_form_of_the_family_can_be_drawn():
         Effects(absorption_form="beer")
 
 
+@pytest.mark.slow
 def test_each_effect_changes_the_pool(renderer):
     """Every switch does something measurable on the pool (so the PSNR tests compare real effects)."""
     s = builtin_scene("pool", n=128)
@@ -197,6 +198,7 @@ def test_total_internal_reflection_seen_from_below(renderer):
                 assert img[H // 2, W // 2, 1] > 0.05  # the floor, reflected
 
 
+@pytest.mark.slow
 def test_ship_wake_frame_shows_the_wake(renderer):
     """The wake region's mean image gradient against the same frame without the ship."""
     ship, calm = builtin_scene("ship", n=128), builtin_scene("ship", n=128, ship=False)
@@ -303,6 +305,7 @@ def test_effects_only():
         Effects().only("bloom")
 
 
+@pytest.mark.slow
 def test_environment_map_matches_reference(renderer):
     """A smooth equirectangular environment (reflected sky) through the GPU and the reference."""
     h, w = 32, 64

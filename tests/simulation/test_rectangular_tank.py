@@ -59,6 +59,7 @@ def test_a_rectangular_tank_steps_its_own_modes_exactly(mx, my, m, p, depth):
     assert abs(float(energy(model, end)) / e0 - 1) < 1e-11
 
 
+@pytest.mark.slow
 def test_a_tank_the_size_of_the_grid_is_the_walled_model():
     grid = Grid(32, 2.0)
     square = Model(grid, Water(sigma=0.0, depth=0.3), dt=0.02, walls="all", dtype="float64")

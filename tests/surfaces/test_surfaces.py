@@ -297,6 +297,7 @@ def test_foam_coverage_and_accumulation():
         choppy.displacement(jnp.full((8, 8), jnp.nan), Grid(8, 1.0))
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("seed", range(2))
 def test_resampling_error_falls_with_refinement(seed, x64):
     sea, grid = random_sea(n=64, length=32.0, seed=seed)
