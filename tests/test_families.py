@@ -93,7 +93,8 @@ def _sinusoid_texel_means(depth):
     return np.diff(x) / h  # E/E_flat per texel column
 
 
-@pytest.mark.parametrize("method", list(FLOOR_IRRADIANCE_METHODS))
+@pytest.mark.parametrize("method", [pytest.param(m, marks=pytest.mark.slow) if m == "reference" else m
+                                    for m in FLOOR_IRRADIANCE_METHODS])
 def test_floor_irradiance_problems(method):
     """Flat water lights the floor uniformly, at E₀ = 1 − R(sun) (flux methods; Blinn–Phong is
     normalized to 1). Under a sinusoid at half its focal depth the light, relative to flat water,
@@ -216,8 +217,14 @@ def _wake_options(method, grid, b, lam_c):
     return options
 
 
-@pytest.mark.parametrize("froude", [0.5, pytest.param(1.0, marks=pytest.mark.slow)])
-@pytest.mark.parametrize("method", list(WAKE_ANGLE_METHODS))
+def _wake_problems():
+    """(method, Fr) pairs: Fr 0.5 and 1 for every estimator; in the default run only the cusp at 0.5
+    (the others read the same field for seconds each: the slow run)."""
+    return [pytest.param(m, fr, marks=() if (m, fr) == ("cusp", 0.5) else pytest.mark.slow)
+            for fr in (0.5, 1.0) for m in WAKE_ANGLE_METHODS]
+
+
+@pytest.mark.parametrize("method, froude", _wake_problems())
 def test_wake_angle_problems(method, froude):
     """Every estimator on steady wakes of Gaussian sources (Fr 0.5: all three near Kelvin's angle; Fr 1:
     the angles of maximum amplitude fall 5–6° inside the cusp line, so the cusp is told apart from them;

@@ -103,6 +103,7 @@ def _exact_box_averages(n_pixels, depth, fine=1 << 18):
     return np.bincount(index, minlength=n_pixels) * (L / fine) / p
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("normals", ["spectral", "central"])
 def test_beam_converges_at_second_order(normals):
     depth, m = ZF / 2, 32
@@ -395,6 +396,7 @@ class TestGL:
         jac = np.asarray(floor_irradiance(eta, grid, depth, sun, method="jacobian", fold="raise"), np.float64)
         assert np.max(np.abs(gl - jac)) <= 0.02 * jac.max()
 
+    @pytest.mark.slow
     def test_ground_field_and_low_sun(self):
         grid = Grid(32, 2.0)
         x, _ = grid.mesh()
@@ -409,6 +411,7 @@ class TestGL:
 @pytest.mark.parametrize("method,kw", [("photon", dict(photons_per_texel=4, filter_radius=0)),
                                        pytest.param("reference", dict(tolerance=0.02, max_refine=8),
                                                     marks=pytest.mark.slow)])
+@pytest.mark.slow
 def test_ray_methods_at_a_low_sun(method, kw):
     """Below the steepest slope a sun ray can meet the surface more than once: each photon
     lands at its first hit, so flux is conserved and nothing is negative."""

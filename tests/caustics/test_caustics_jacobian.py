@@ -48,6 +48,7 @@ def test_within_one_percent_of_the_reference_below_the_first_fold(case):  # case
     assert error <= 0.01 and l2 <= 0.005, (label, error, l2)  # measured over the bench family: <= 0.5 % of the peak
 
 
+@pytest.mark.slow
 def test_most_generated_cases_are_answered_by_the_gather_itself():
     from optics.caustics.jacobian import _jacobian
 
@@ -85,7 +86,8 @@ def _past_fold_cases(count=4, seed=23):
     return tuple(cases)
 
 
-@pytest.mark.parametrize("case", [0] + [pytest.param(c, marks=pytest.mark.slow) for c in (1, 2, 3)])
+@pytest.mark.slow
+@pytest.mark.parametrize("case", [0, 1, 2, 3])
 def test_past_the_fold_the_folded_windows_are_the_beam_and_the_rest_is_gathered(case):
     """fold='windows' (the default): the texels the folded sheets reach are the exact beam's, the
     rest the gather's; the whole map is as close to the converged reference as the beam itself."""

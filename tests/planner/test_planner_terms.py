@@ -227,7 +227,8 @@ def test_margin_choice_is_checked_and_periodic_scenes_have_none():
 
 
 # -- ships ---------------------------------------------------------------------------------------
-@pytest.mark.parametrize("method", [pytest.param("kernels", marks=pytest.mark.slow), "impulses"])
+@pytest.mark.slow
+@pytest.mark.parametrize("method", ["kernels", "impulses"])
 def test_per_mode_closed_form_reproduces_the_step_for_both_ship_methods(method):
     """The planner's closed form per mode (the kernels' t·φ₁(iat), the impulses' Dirichlet sum)
     gives the simulation's own linear heights of a ship to 1 % of their peak (measured 0.5 %:

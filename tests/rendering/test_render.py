@@ -280,6 +280,7 @@ def test_bad_renderer_arguments():
         Renderer(0, 10)
 
 
+@pytest.mark.slow
 def test_render_sequence_writes_frames_with_progress(tmp_path, capsys):
     from wavephys.app.scenes import scene_frames
 
@@ -386,6 +387,7 @@ class TestHorizon:
             assert bool(same.any()) == expect_backdrop, (scene.surroundings, int(same.sum()))
             assert psnr(img, trace(scene, W, H)) >= 100.0
 
+    @pytest.mark.slow
     @pytest.mark.parametrize("sun", [(0.35, -0.45, 0.82), (0.9, 0.1, 0.15), (-0.2, 0.6, 0.4)])
     def test_horizon_modes_match_the_reference_for_any_sun(self, sun):
         from dataclasses import replace
