@@ -133,8 +133,8 @@ def run_jacobian(args) -> None:
     from bench import jacobian
 
     rows = jacobian.boundary_rows(_say, seeds=(1,), n=64 if args.quick else 128)
-    rows += jacobian.size_rows(_say, sizes=(64,) if args.quick else (64, 256, 512))
-    rows += jacobian.speed_rows(_say, sizes=(256,) if args.quick else (256, 512))
+    rows += jacobian.size_rows(_say, sizes=(64,) if args.quick else (64, 256, 512, 1024))  # 1024²: 7 min, 12 GB
+    rows += jacobian.speed_rows(_say, sizes=(256,) if args.quick else (256, 512, 1024))
     rows += jacobian.scene_rows(_say, n=128 if args.quick else 256, times=(1.0,))
     for fraction in jacobian.FRACTIONS:
         sel = [r for r in rows if r["family"] == "jacobian boundary" and r["fraction"] == fraction]

@@ -534,6 +534,8 @@ OVERRIDES = {
     "wavephys.app.pytest_plugin.Checker.glsl": {"source": lambda: _GLSL_FRESNEL, "function": lambda: "f",
                                                 "against": lambda: "fresnel", "tolerance": lambda: 2e-4},
     "optics.light.directions.refract": {"n": lambda: np.array([0.0, 0.0, 1.0])},
+    "optics.light.directions.refract_components": {"d": lambda: (0.1, 0.2, -1.0), "n": lambda: (0.0, 0.0, 1.0)},
+    "optics.rendering.reference.effect_change": {"effect": lambda: "caustics", "width": lambda: 8, "height": lambda: 6},
     "optics.light.directions.normalize": {"v": lambda: np.array([1.0, 2.0, 2.0])},
     "wavephys.core.grid.Grid.deposit": {"x": lambda: np.zeros(5), "y": lambda: np.zeros(5)},
     "wavephys.core.grid.Grid.sample": {"x": lambda: np.zeros(5), "y": lambda: np.zeros(5)},

@@ -12,7 +12,7 @@ import jax
 import jax.numpy as jnp
 import numpy as np
 
-from optics.light.directions import refract
+from optics.light.directions import refract_components
 from optics.light.fresnel import MAX_INDEX, N_AIR, N_WATER, reflectance_exact
 from wavephys.core.grid import Grid
 from wavephys.core.inputs import (Array, Int, Real, _real_kind, check_array, check_bool, check_instance, check_int, check_scalar,
@@ -223,20 +223,20 @@ def land(xs, ys, eta, gx, gy, d, floor, n_water, fresnel, iterations: int = 5):
     intersected by fixed-point iteration). Returns landing X, Y (m) and the Fresnel
     transmittance (1 with ``fresnel=False``).
     """
-    normal = jnp.stack([-gx, -gy, jnp.ones_like(gx)], axis=-1)
-    normal = normal / jnp.linalg.norm(normal, axis=-1, keepdims=True)
-    d = jnp.broadcast_to(jnp.asarray(d, normal.dtype), normal.shape)
-    t, _ = refract(d, normal, N_AIR, n_water)  # air into water: never total internal reflection
-    cos_i = jnp.clip(-jnp.sum(d * normal, axis=-1), 0.0, 1.0)
+    d = tuple(jnp.asarray(d, gx.dtype))  # unit
+    (tx, ty, tz), _, _ = refract_components(d, (-gx, -gy, jnp.ones_like(gx)), N_AIR,
+                                            n_water)  # air into water: never total internal reflection
+    # against the upward normal: a facet the sun reaches from below (cos ≤ 0) transmits nothing
+    cos_i = jnp.clip((d[0] * gx + d[1] * gy - d[2]) / jnp.sqrt(1.0 + gx * gx + gy * gy), 0.0, 1.0)
     trans = 1.0 - reflectance_exact(cos_i, N_AIR, n_water) if fresnel else jnp.ones_like(cos_i)
-    down = -t[..., 2]
+    down = -tz
     if callable(floor):
         s = (eta - floor(xs, ys)) / down
         for _ in range(iterations):
-            s = (eta - floor(xs + s * t[..., 0], ys + s * t[..., 1])) / down
+            s = (eta - floor(xs + s * tx, ys + s * ty)) / down
     else:
         s = (eta + floor) / down
-    return xs + s * t[..., 0], ys + s * t[..., 1], trans
+    return xs + s * tx, ys + s * ty, trans
 
 
 _IMAGE = Array(ndim=2)

@@ -107,6 +107,11 @@ FOLD_CHOICES = ("windows", "beam", "raise")
 NEWTON_TOLERANCE = 1e-3
 """Largest Newton residual |X(x) − X| accepted, in floor texels (converged ones reach 1e-5–1e-4)."""
 
+NEWTON_STOP = 1e-3
+"""Newton stops after the step from points whose residuals (each component, floor texels) are all
+below this: the step squares the error, reaching the float32 floor (about 1e-5 texel; measured
+on the surface families, docs/physics.md §2.4)."""
+
 
 class CausticsFold(ValueError):
     """The surface's landing map folds (or comes too close to folding) for the Jacobian method."""
@@ -184,30 +189,46 @@ def _coefficients(planes):
 def _gather(coefficients, length, m, iterations):
     """Newton per floor point of Grid(m, L): E at the preimage, the residual |X(x) − X| (floor
     texels; inf where the spline's own area ratio there is at most :data:`MIN_AREA_RATIO`), and the
-    preimage x, y (m, not wrapped into the square)."""
+    preimage x, y (m, not wrapped into the square).
+
+    The first guess is X − D(X − D̄), D̄ the mean displacement (a slanted sun's shift), so its error
+    is that of a vertical sun's; the steps stop once every point's residual is below
+    :data:`NEWTON_STOP` (the next step then reaches the float32 floor, 1e-5 texel: quadratic
+    convergence), after at most ``iterations``. The points are one (P, 2) array and the steps a
+    loop: written with separate x and y arrays, XLA's CPU backend fuses the spline's gathers into
+    each consumer (63 against 45 ms for 4 steps on 512², measured)."""
     n = coefficients.shape[0]
     h = length / n
     X, Y = Grid(m, length).mesh()
-    X, Y = X.ravel(), Y.ravel()
+    target = jnp.stack([X.ravel(), Y.ravel()], 1)
 
-    def tex(x):
-        return (x + 0.5 * length) / h - 0.5
+    def tex(p):
+        q = (p + 0.5 * length) / h - 0.5
+        return q[:, 0], q[:, 1]
 
     disp = coefficients[..., :2]
-    first = bspline(disp, tex(X), tex(Y))
-    x, y = X - first[:, 0], Y - first[:, 1]
-    for _ in range(iterations):
-        value, du, dv = bspline(disp, tex(x), tex(y), derivatives=True)
+    mean = jnp.mean(disp, axis=(0, 1))  # the spline's mean is the field's (its filter passes 0 unchanged)
+
+    def newton(state):
+        k, p, _ = state
+        value, du, dv = bspline(disp, *tex(p), derivatives=True)
         a, b, c, e = 1.0 + du[:, 0] / h, dv[:, 0] / h, du[:, 1] / h, 1.0 + dv[:, 1] / h
-        rx, ry = x + value[:, 0] - X, y + value[:, 1] - Y
-        det = a * e - b * c
-        x, y = x - (e * rx - b * ry) / det, y - (a * ry - c * rx) / det
-    value, du, dv = bspline(coefficients, tex(x), tex(y), derivatives=True)
+        r = p + value - target
+        step = jnp.stack([e * r[:, 0] - b * r[:, 1], a * r[:, 1] - c * r[:, 0]], 1)
+        return k + 1, p - step / (a * e - b * c)[:, None], jnp.max(jnp.abs(r)) / (length / m)
+
+    def more(state):
+        k, _, worst = state
+        return (k < iterations) & (worst > NEWTON_STOP)
+
+    first = target - bspline(disp, *tex(target - mean))
+    _, p, _ = jax.lax.while_loop(more, newton, (0, first, jnp.asarray(jnp.inf, first.dtype)))
+    value, du, dv = bspline(coefficients, *tex(p), derivatives=True)
     det = (1.0 + du[:, 0] / h) * (1.0 + dv[:, 1] / h) - (dv[:, 0] / h) * (du[:, 1] / h)
-    residual = jnp.hypot(x + value[:, 0] - X, y + value[:, 1] - Y) / (length / m)
+    residual = jnp.hypot(p[:, 0] + value[:, 0] - target[:, 0], p[:, 1] + value[:, 1] - target[:, 1]) / (length / m)
     irradiance = jnp.maximum(value[:, 2], 0.0) / det  # a spline of a shadow edge may undershoot 0
     return (irradiance.reshape(m, m), jnp.where(det > MIN_AREA_RATIO, residual, jnp.inf).reshape(m, m),
-            x.reshape(m, m), y.reshape(m, m))
+            p[:, 0].reshape(m, m), p[:, 1].reshape(m, m))
 
 
 @partial(jax.jit, static_argnames=("s",))

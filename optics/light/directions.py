@@ -26,7 +26,7 @@ import numpy as np
 from wavephys.core.inputs import check_array, check_scalar, is_traced
 from wavephys.core.sampling import array_module
 
-__all__ = ["normalize", "reflect", "refract", "transmissive_half_vector", "sun_direction"]
+__all__ = ["normalize", "reflect", "refract", "refract_components", "transmissive_half_vector", "sun_direction"]
 
 
 def _check_vectors(name, v):
@@ -126,14 +126,60 @@ def refract(d, n, n1, n2):
     check_array("n1", n1, lo=1.0)
     check_array("n2", n2, lo=1.0)
     xp = array_module(d, n, n1, n2)
-    d, n, cos_i = _facing(d, n)
+    d, n = xp.asarray(d), xp.asarray(n)
+    t, _, tir = refract_components(tuple(d[..., i] for i in range(3)), tuple(n[..., i] for i in range(3)), n1, n2)
+    return xp.stack(xp.broadcast_arrays(*t), axis=-1), tir
+
+
+def refract_components(d, n, n1, n2):
+    """:func:`refract` on vectors given as their three components (traceable; values are checked
+    only when concrete, and a zero-length vector gives NaN): the one place the refraction formula
+    is written.
+
+    Component arrays vectorize where (..., 3) stacks do not: under XLA on CPU the two forward
+    derivatives of the landing map through this form took 4.1 ms on 512² points, through
+    stacked vectors 19.4 ms (docs/physics.md §2.4).
+
+    Parameters
+    ----------
+    d, n : tuple of three array_like
+        Components of the incoming ray's direction of travel and of a surface normal (either
+        orientation, flipped to face ``d``); any nonzero length, broadcastable against each other.
+    n1, n2 : float or array_like
+        Refractive indices of the incident and transmitting media, ≥ 1.
+
+    Returns
+    -------
+    (t, cos_i, tir)
+        ``t`` the three components of the unit transmitted direction (the reflected one where
+        ``tir``), ``cos_i`` = −d̂·n̂ ≥ 0 (the normal facing the ray), ``tir`` the
+        total-internal-reflection mask.
+    """
+    for name, v in (("d", d), ("n", n)):
+        if not isinstance(v, (tuple, list)):  # an array would be ambiguous with refract's (..., 3) layout
+            raise TypeError(f"{name} must be a tuple of three components (arrays), got {type(v).__name__}; "
+                            f"for vectors on the last axis use refract")
+        if len(v) != 3:
+            raise ValueError(f"{name} must have three components, got {len(v)}")
+        for i, c in enumerate(v):
+            check_array(f"{name}[{i}]", c)
+    check_array("n1", n1, lo=1.0)
+    check_array("n2", n2, lo=1.0)
+    xp = array_module(*d, *n, n1, n2)
+    dl = xp.sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2])
+    nl = xp.sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2])
+    d = tuple(c / dl for c in d)
+    n = tuple(c / nl for c in n)
+    dn = d[0] * n[0] + d[1] * n[1] + d[2] * n[2]
+    n = tuple(xp.where(dn > 0, -c, c) for c in n)  # facing the incoming ray
+    cos_i = xp.abs(dn)
     eta = xp.asarray(n1) / xp.asarray(n2)
-    eta = eta[..., None] if eta.ndim else eta  # indices per ray broadcast over components
     k = 1.0 - eta * eta * (1.0 - cos_i * cos_i)
     tir = k < 0
-    t = eta * d + (eta * cos_i - xp.sqrt(xp.where(tir, 0.0, k))) * n
-    r = d + 2.0 * cos_i * n
-    return normalize(xp.where(tir, r, t)), tir[..., 0]
+    f = eta * cos_i - xp.sqrt(xp.where(tir, 0.0, k))
+    t = tuple(xp.where(tir, dc + 2.0 * cos_i * nc, eta * dc + f * nc) for dc, nc in zip(d, n))
+    tl = xp.sqrt(t[0] * t[0] + t[1] * t[1] + t[2] * t[2])
+    return tuple(c / tl for c in t), cos_i, tir
 
 
 def transmissive_half_vector(light, view, n_ratio):

@@ -234,6 +234,56 @@ def test_a_plan_is_drawn_with_its_shading_choices():
         p.drawn(scene)
 
 
+def test_the_reflected_rays_are_dropped_only_where_they_show_nothing():
+    """Plan.reflection draws each frame with and without the renderer's reflected rays: over open water
+    (the pool's waves with its walls sunk to a deep flat floor) they meet only sky and the frames are
+    identical, so they go; in the pool they show the walls, many quanta, so they stay; drawn(reflection=
+    "measure") applies the decision, and two frames are measured together (the pool in one keeps them)."""
+    from wavephys.app.scenes import builtin_scene as render_scene
+
+    p = _plan("lake", 0.5, (("view_elevation", 75.0),))
+    pool = render_scene("pool", n=64)
+    sea = replace(pool, ground=np.full_like(pool.ground, float(pool.water.min()) - 5.0))
+    off = p.reflection(sea, width=48, height=36)
+    assert off.choice is False and off.error == 0.0 and off.unit == "colour"
+    assert "no pixel" in off.reason and "48×36" in off.reason
+    kept = p.reflection(pool, width=48, height=36)
+    assert kept.choice is True and kept.error == 0.0
+    change = float(kept.reason.split("up to ")[1].split(" image")[0])
+    assert change > 5.0  # quanta: the walls' reflection
+    assert p.drawn(sea, reflection="measure").effects.reflection is False
+    assert p.drawn(pool, reflection="measure").effects.reflection is True
+    assert p.drawn(sea).effects.reflection is True  # "keep": the render scene's own switch
+    assert p.reflection([sea, pool], width=48, height=36).choice is True
+    already = p.reflection(sea.with_effects(reflection=False), width=8, height=6)
+    assert already.choice is False and "has the reflected rays off" in already.reason
+    with pytest.raises(ValueError, match="reflection"):
+        p.drawn(sea, reflection="off")
+    with pytest.raises(TypeError, match="render_scenes"):
+        p.reflection(p.scene)
+    with pytest.raises(ValueError, match="render_scenes"):
+        p.reflection([])
+    with pytest.raises(ValueError, match="width"):
+        p.reflection(sea, width=0)
+
+
+def test_effect_change_measures_what_an_effect_shows():
+    """The CPU reference drawn with and without an effect: caustics change the pool's floor, an effect
+    already off changes nothing, and an unknown effect is refused by name."""
+    from optics.rendering.reference import effect_change
+    from wavephys.app.scenes import builtin_scene as render_scene
+
+    pool = render_scene("pool", n=64)
+    out = effect_change(pool, "caustics", 32, 24)
+    assert out["change"] > 0.01 and math.isfinite(out["psnr"]) and out["seconds_on"] > 0
+    same = effect_change(pool.with_effects(caustics=False), "caustics", 16, 12)
+    assert same["change"] == 0.0 and same["psnr"] == math.inf
+    with pytest.raises(ValueError, match="effect"):
+        effect_change(pool, "bloom", 8, 6)
+    with pytest.raises(TypeError, match="effect"):
+        effect_change(pool, 3, 8, 6)
+
+
 # -- caustics ---------------------------------------------------------------------------------
 @pytest.mark.slow
 def test_caustics_term_on_pools_with_and_without_light_to_show():
