@@ -223,7 +223,10 @@ def land(xs, ys, eta, gx, gy, d, floor, n_water, fresnel, iterations: int = 5):
     intersected by fixed-point iteration). Returns landing X, Y (m) and the Fresnel
     transmittance (1 with ``fresnel=False``).
     """
-    d = tuple(jnp.asarray(d, gx.dtype))  # unit
+    d = jnp.asarray(d, gx.dtype)
+    if d.shape != (3,):
+        raise ValueError(f"d must be one direction (3,), got shape {d.shape}")
+    d = tuple(d)  # unit
     (tx, ty, tz), _, _ = refract_components(d, (-gx, -gy, jnp.ones_like(gx)), N_AIR,
                                             n_water)  # air into water: never total internal reflection
     # against the upward normal: a facet the sun reaches from below (cos ≤ 0) transmits nothing

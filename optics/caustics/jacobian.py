@@ -207,7 +207,7 @@ def _gather(coefficients, length, m, iterations):
         return q[:, 0], q[:, 1]
 
     disp = coefficients[..., :2]
-    mean = jnp.mean(disp, axis=(0, 1))  # the spline's mean is the field's (its filter passes 0 unchanged)
+    mean = jnp.nanmean(disp, axis=(0, 1))  # the spline's mean is the field's (its filter passes 0 unchanged)
 
     def newton(state):
         k, p, _ = state
@@ -217,9 +217,9 @@ def _gather(coefficients, length, m, iterations):
         step = jnp.stack([e * r[:, 0] - b * r[:, 1], a * r[:, 1] - c * r[:, 0]], 1)
         return k + 1, p - step / (a * e - b * c)[:, None], jnp.max(jnp.abs(r)) / (length / m)
 
-    def more(state):
+    def more(state):  # a NaN residual (a hopeless point) keeps the steps going, as fixed steps would
         k, _, worst = state
-        return (k < iterations) & (worst > NEWTON_STOP)
+        return (k < iterations) & ~(worst <= NEWTON_STOP)
 
     first = target - bspline(disp, *tex(target - mean))
     _, p, _ = jax.lax.while_loop(more, newton, (0, first, jnp.asarray(jnp.inf, first.dtype)))

@@ -47,6 +47,14 @@ class DispersionSamples:
     resolution: float
     spectra: np.ndarray | None = None
 
+    def __post_init__(self):
+        if self.spectra is not None:
+            spectra = np.asarray(self.spectra, dtype=np.float64)
+            if spectra.ndim != 2 or spectra.shape[0] != np.size(self.k):
+                raise ValueError(f"spectra must have one row per shell, shape ({np.size(self.k)}, bins), got "
+                                 f"{spectra.shape}")
+            object.__setattr__(self, "spectra", spectra)
+
     def select(self, k_min: float = 0.0, k_max: float = math.inf) -> "DispersionSamples":
         """The samples with k_min ≤ k ≤ k_max."""
         m = (self.k >= k_min) & (self.k <= k_max)
@@ -285,14 +293,15 @@ the bound-wave cause is named only when all of them obey the relation (a wrong s
 
 
 def _free_peak(samples, j, at) -> float:
-    """The share of shell ``j``'s strongest power in a local peak within a bin of frequency bin ``at`` (0 when there
-    is none, or it is weak or not prominent)."""
+    """The share of shell ``j``'s strongest power in a local peak within a bin of frequency bin ``at`` (the caller
+    takes shells whose ridge lies more than 2 bins away, so the ridge's own bin is outside that window): 0 when
+    there is none, or it is weak or not prominent."""
     col = samples.spectra[j]
     bins = col.size
-    if not 1.0 <= at <= bins - 2:
+    centre = int(round(at))
+    if not 2 <= centre <= bins - 3:
         return 0.0
-    lo, hi = max(int(math.floor(at)) - 1, 1), min(int(math.ceil(at)) + 1, bins - 2)
-    i = lo + int(np.argmax(col[lo:hi + 1]))
+    i = centre - 1 + int(np.argmax(col[centre - 1:centre + 2]))
     peak = col[i] >= col[i - 1] and col[i] >= col[i + 1]
     if peak and col[i] >= BOUND_SHARE * col.max() and col[i] >= BOUND_PROMINENCE * np.median(col):
         return float(col[i] / col.max())
@@ -317,8 +326,8 @@ def _bound_components(samples, theory, err, rtol) -> str:
         return ""
     below = samples.k[failing].min()
     passing = samples.k[samples.k < below]
-    band = (f"; the shells below k = {below:.4g} rad/m all pass (k_range=(0, {passing.max():.4g}))"
-            if passing.size else "")
+    band = (f"; the {passing.size} shells below k = {below:.6g} rad/m all pass "
+            f"(k_range=(0, {0.5 * (passing.max() + below):.6g}))" if passing.size >= 3 else "")
     return (f"components that do not obey the linear dispersion relation, in weak shells: the energetic waves obey "
             f"it, and at k = {samples.k[worst]:.4g} rad/m the strongest component is at omega = "
             f"{samples.omega[worst]:.4g} rad/s while a peak sits at theory's {theory[worst]:.4g} rad/s "
@@ -402,10 +411,10 @@ def _likely_cause(samples: DispersionSamples, water: Water, dt: float, err: np.n
     """A guess, in words, at why measured ω(k) departs from theory (empty when none fits)."""
     theory = samples.omega / (1.0 + err)
     tolerance = 0.25 * float(np.max(np.abs(err)))
-    for cause in (lambda: _aliasing(samples, dt, theory), lambda: _bound_components(samples, theory, err, rtol),
-                  lambda: _frequency_floor(samples, theory),
+    for cause in (lambda: _aliasing(samples, dt, theory), lambda: _frequency_floor(samples, theory),
                   lambda: _scale_fit(samples, water, err, tolerance), lambda: _depth_fit(samples, water, tolerance),
-                  lambda: _sigma_fit(samples, water, tolerance), lambda: _non_dispersive(samples, theory)):
+                  lambda: _sigma_fit(samples, water, tolerance), lambda: _bound_components(samples, theory, err, rtol),
+                  lambda: _non_dispersive(samples, theory)):
         found = cause()
         if found:
             return found
