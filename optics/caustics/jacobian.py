@@ -24,7 +24,10 @@ value, which differs by Δx²∇²E/24 to leading order. The map is corrected by
 box filter in Fourier space (sinc(k_xΔx/2)·sinc(k_yΔx/2)), exact for its band-limited part;
 towards the first fold E has peaks narrower than a texel, so the gather is made on a floor
 grid ``supersample`` times finer and averaged down (``"auto"`` chooses from how fast log E
-changes across a floor texel, :data:`SHARPNESS_LIMIT`, measured over surface families).
+changes across a floor texel, :data:`SHARPNESS_LIMIT`, measured over surface families, and
+gathers at least as many points a side as the surface fields have samples: where the
+surface is refined for its fine waves, E has their wavenumbers, above the floor map's
+Nyquist when the map is no finer than the surface).
 
 On a ground height field the rays land on the ground by the beam's own fixed point (bilinear
 ground, 5 steps), and the forward-mode derivatives go through it.
@@ -67,8 +70,10 @@ __all__ = ["floor_irradiance_jacobian", "CausticsFold", "SHARPNESS_LIMIT", "MIN_
 SHARPNESS_LIMIT = 0.4
 """``supersample="auto"`` gathers s = 1, 2, 4 or 8 points per floor texel side, the fewest with
 β/s ≤ this, β = Δx·max|∇_X log E| (how much log E changes across one floor texel, from the
-surface's own fields). Measured over the surface families (docs/physics.md §2.4): at
-β/s ≤ 0.4 the map stays within 0.5 % of the peak; past s = 8 the map counts as folded."""
+surface's own fields) and at least as many points a side as the fields have samples (waves at
+the grid scale give E wavenumbers past the map's Nyquist). Measured over the surface families
+(docs/physics.md §2.4): at β/s ≤ 0.4 the map stays within 0.5 % of the peak; past s = 8 the
+map counts as folded."""
 
 MIN_AREA_RATIO = 0.02
 """Smallest det ∂X/∂x (E up to 50 E0) the method answers; below it the map counts as folded."""
@@ -244,12 +249,15 @@ def _texel_average(point, length, s):
     return averaged.reshape(m, s, m, s).mean(axis=(1, 3))
 
 
-def _supersampling(sharpness: float, texel: float, supersample, m: int):
-    """The floor supersampling that resolves E (1, 2, 4 or 8, and m·s ≤ 8192), or None when none does."""
+def _supersampling(sharpness: float, texel: float, supersample, m: int, samples: int = 0):
+    """The floor supersampling that resolves E (1, 2, 4 or 8, and m·s ≤ 8192), or None when none does:
+    with ``"auto"``, the fewest that keep β/s within :data:`SHARPNESS_LIMIT` and gather at least as
+    many points a side as the fields have ``samples`` (the light has their wavenumbers: fewer
+    points alias them, past what the texel's box filter can take out)."""
     if supersample != "auto":
         return supersample
     for s in (1, 2, 4, 8):
-        if m * s <= 8192 and sharpness * texel <= SHARPNESS_LIMIT * s:
+        if m * s <= 8192 and sharpness * texel <= SHARPNESS_LIMIT * s and m * s >= min(samples, 8192):
             return s
     return None
 
@@ -287,6 +295,32 @@ def _grow(mask, steps: int = 1):
         mask = mask | np.roll(mask, 1, 0) | np.roll(mask, -1, 0)
         mask = mask | np.roll(mask, 1, 1) | np.roll(mask, -1, 1)
     return mask
+
+
+def _field_supersampling(m: int, samples: int) -> int:
+    """Points a floor texel side that the folded-window and tank paths gather: enough for as many
+    points a side as the fields have ``samples`` (their light has those wavenumbers), at most
+    8192 in all."""
+    return max(1, min(-(-samples // m), 8192 // m))
+
+
+@partial(jax.jit, static_argnames=("s",))
+def _local_texels(point, s: int, lit=None):
+    """Texel averages of a floor map from its values at s × s points per texel: each point's
+    own fine texel by :func:`_point_to_texel` (local), 0 where ``lit`` is False, then the mean
+    of the s × s (local too, so values outside the gathered region never enter)."""
+    fine = _point_to_texel(point)
+    if lit is not None:
+        fine = jnp.where(lit, fine, 0.0)
+    m = point.shape[-1] // s
+    return fine.reshape(m, s, m, s).mean(axis=(1, 3))
+
+
+def _block_max(values, s: int):
+    """The largest of each s × s block (numpy, host)."""
+    values = np.asarray(values)
+    m = values.shape[-1] // s
+    return values.reshape(m, s, m, s).max(axis=(1, 3))
 
 
 @jax.jit
@@ -381,8 +415,9 @@ def floor_irradiance_jacobian(eta, grid: Grid, depth, sun=(0.0, 0.0, 1.0), *, re
     supersample : "auto" or int
         Gather on a floor grid this many times finer (1 to 8, resolution × supersample ≤ 8192)
         and average down; ``"auto"`` takes the fewest of 1, 2, 4, 8 that resolve E
-        (:data:`SHARPNESS_LIMIT`). The folded-window path gathers at 1 (what it cannot resolve
-        is a window).
+        (:data:`SHARPNESS_LIMIT`) and gather at least as many points a side as the surface
+        fields have samples. The folded-window path gathers as many points as the fields have
+        samples (what it cannot resolve is a window).
     iterations : int
         Newton steps per floor point (1 to 16); a residual above 1e-3 texel counts as a fold.
     fold : {"windows", "beam", "raise"}
@@ -456,7 +491,7 @@ def _jacobian(eta, grid, depth, sun, resolution, n_water, fresnel, refine, super
                                                                                           sharpness)))
     if not finite:
         raise ValueError("eta must be finite everywhere; it contains NaN or inf")
-    s = (_supersampling(sharpest, length / m, supersample, m)
+    s = (_supersampling(sharpest, length / m, supersample, m, fine.n)
          if min_det > MIN_AREA_RATIO and steepest <= 1.0 and jump <= MAX_GAP else None)
     if s is not None and m * s > 8192:
         raise ValueError(f"resolution × supersample = {m * s} must be at most 8192")
@@ -486,11 +521,12 @@ def _jacobian(eta, grid, depth, sun, resolution, n_water, fresnel, refine, super
         bad |= _grow(np.asarray(gap > MAX_GAP), JUMP_REACH)  # the spline rings around a jump
         folded = _cell_footprints(planes[:2], bad, m, length)
         if _grow(folded).mean() <= MAX_WINDOWS:
-            point, residual, _, _ = _gather(_coefficients(planes), length, m, iterations)
-            windows = _grow(folded | np.asarray(residual > NEWTON_TOLERANCE))
+            s = _field_supersampling(m, fine.n)
+            point, residual, _, _ = _gather(_coefficients(planes), length, m * s, iterations)
+            windows = _grow(folded | (_block_max(residual, s) > NEWTON_TOLERANCE))
             beam = _beam_windows(light, fresnel, windows, _beam_refine(grid.n))
-            out = jnp.where(jnp.asarray(windows), beam, _point_to_texel(point))
-            return out, dict(answer="windows", windows=float(windows.mean()), supersample=1, mask=windows)
+            out = jnp.where(jnp.asarray(windows), beam, _local_texels(point, s))
+            return out, dict(answer="windows", windows=float(windows.mean()), supersample=s, mask=windows)
     return _not_gathered(eta, grid, depth, sun, resolution, n_water, fresnel, fold, reason)
 
 
@@ -570,8 +606,9 @@ def _tank_jacobian(tank, call, refine, iterations, fold):
     crop = (slice(0, tank.m), slice(0, tank.m))
     if _grow(folded)[crop].mean() > MAX_WINDOWS:
         return _tank_beam(call)
-    point, residual, x, y = _gather(_coefficients(planes), length, big_m, iterations)
-    windows = _grow(folded | np.asarray(residual > NEWTON_TOLERANCE))
+    s = _field_supersampling(big_m, fine.n)
+    point, residual, x, y = _gather(_coefficients(planes), length, big_m * s, iterations)
+    windows = _grow(folded | (_block_max(residual, s) > NEWTON_TOLERANCE))
     beam = _beam_windows(light, call[6], windows, _beam_refine(big_n), tank=tank)
     lit = jnp.ones_like(point, bool)
     half = 0.5 * length  # the extension spans [-L_ext/2, L_ext/2); the tank its first half along a walled axis
@@ -579,8 +616,8 @@ def _tank_jacobian(tank, call, refine, iterations, fold):
         lit &= jnp.mod(x + half, length) < 0.5 * length
     if wy:
         lit &= jnp.mod(y + half, length) < 0.5 * length
-    out = jnp.where(jnp.asarray(windows), beam, jnp.where(lit, _point_to_texel(point), 0.0))[crop]
-    return out, dict(answer="windows", windows=float(windows[crop].mean()), supersample=1, mask=windows[crop])
+    out = jnp.where(jnp.asarray(windows), beam, _local_texels(point, s, lit))[crop]
+    return out, dict(answer="windows", windows=float(windows[crop].mean()), supersample=s, mask=windows[crop])
 
 
 def _tank_beam(call):

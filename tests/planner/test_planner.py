@@ -305,17 +305,21 @@ def test_caustics_term_on_pools_with_and_without_light_to_show():
     assert row.error <= p.colour_tolerance and "Jacobian" in row.reason
     errors = caustics_errors(scene)
     ref = run(scene, full_model(scene))
-    light = {r: floor_light(scene, SceneModel(scene, replace(full_model(scene).choices, caustics=r)),
-                            ref.heights[-1]) for r in (0, 1, 2, 3, 4, "jacobian")}
-    for r in (0, 1, 2, 3):  # the run's last frame against the traces of the closed-form surface
-        measured = float(np.abs(light[r] - light[4]).max())
+    beams = {r: SceneModel(scene, replace(full_model(scene).choices, caustics=r)) for r in (0, 1, 2, 3, 4)}
+    worst = dict.fromkeys((0, 1, 2, 3), 0.0)
+    for h in ref.heights:  # every frame of the run against the evaluation on the closed-form surface
+        light = {r: floor_light(scene, model, h) for r, model in beams.items()}
+        for r in worst:
+            worst[r] = max(worst[r], float(np.abs(light[r] - light[4]).max()))
+    for r, measured in worst.items():
         assert measured <= errors.delta[r], (r, measured, errors.delta[r])
         assert measured >= 0.3 * errors.delta[r] or r == 0, (r, measured, errors.delta[r])  # a close estimate
     # the gather at the frames the planner traced (frame k is the run's frame k - 1): the run agrees
     models = {r: SceneModel(scene, replace(full_model(scene).choices, caustics=r)) for r in (4, "jacobian")}
     measured = max(float(np.abs(floor_light(scene, models["jacobian"], ref.heights[k - 1])
                                 - floor_light(scene, models[4], ref.heights[k - 1])).max()) for k in errors.frames)
-    assert 0.7 * errors.delta["jacobian"] <= MARGIN * measured <= 1.01 * errors.delta["jacobian"], (measured, errors.delta)
+    assert 0.7 * errors.traced["jacobian"] <= measured <= 1.01 * errors.traced["jacobian"], (measured, errors.traced)
+    assert errors.delta["jacobian"] >= MARGIN * errors.traced["jacobian"]
     assert errors.delta[1] > errors.delta[2] > errors.delta[3] > 0  # finer traces err less
     assert errors.delta["jacobian"] < errors.delta[2]  # the gather: closer than a beam refined twice
     err = compare(run(scene, p.model), ref)
@@ -328,23 +332,51 @@ def test_caustics_term_on_pools_with_and_without_light_to_show():
 
 
 @pytest.mark.slow  # moved to the slow run (CI runs it): the README's pytest must stay under 10 min on 2 cores
-@pytest.mark.xfail(strict=True, reason="known planner defect (issue 33): the caustics term traces 5 frames and "
-                   "multiplies by MARGIN = 1.25, but focusing peaks between them: over the frames of a run "
-                   "the differences reach 2.0-2.3 x the evaluated bound (generated pools, every option)")
-def test_the_caustics_bound_holds_over_every_frame_of_a_run():
+@pytest.mark.parametrize("seed, index", [(5, 2), (808, 0), (808, 1), (909, 2), (909, 3)])
+def test_the_caustics_bound_holds_over_every_frame_of_a_run(seed, index):
+    """Every frame of the full model's run, traced at every option, stays within the evaluated
+    difference: generated pools and shores (pool-2 of seed 5 is the case where five evenly
+    sampled frames missed its focusing peak by 2.3 ×; the other seeds were not used to choose
+    the screen)."""
     from wavephys.planner import generate_scenes
     from wavephys.planner.caustics import caustics_errors
     from wavephys.planner.runner import floor_light
 
-    scene = generate_scenes(3, seed=5, kinds=("pool", "shore"), texels=(32, 48, 64))[2]  # pool-2: 54 frames
+    scene = generate_scenes(index + 1, seed=seed, kinds=("pool", "shore"), texels=(32, 48, 64))[index]
     errors = caustics_errors(scene)
     full = full_model(scene)
     frames = run(scene, full).heights
-    models = {r: SceneModel(scene, replace(full.choices, caustics=r)) for r in (1, 2, 3, 4)}
-    for r in (1, 2, 3):
-        worst = max(float(np.abs(floor_light(scene, models[r], h) - floor_light(scene, models[4], h)).max())
-                    for h in frames)
-        assert worst <= errors.delta[r], (r, worst, errors.delta[r])
+    options = [r for r in (1, 2, 3, "jacobian") if math.isfinite(errors.delta[r])]
+    models = {r: SceneModel(scene, replace(full.choices, caustics=r)) for r in (*options, 4)}
+    worst = dict.fromkeys(options, 0.0)
+    for h in frames:
+        ref = floor_light(scene, models[4], h)
+        for r in options:
+            worst[r] = max(worst[r], float(np.abs(floor_light(scene, models[r], h) - ref).max()))
+    for r in options:
+        assert worst[r] <= errors.delta[r], (scene.name, r, worst[r], errors.delta[r], errors.frames)
+    assert len(errors.screen) == scene.frames and 1 <= len(errors.frames) <= 6
+
+
+def test_the_screen_picks_separate_peaks_and_the_brightest_focus():
+    from wavephys.planner.caustics import SAMPLED_FRAMES, SCREEN_SPACING, _evaluated, _traced_frames
+
+    screen = np.array([0.1, 0.9, 1.0, 0.95, 0.2, 0.1, 0.6, 0.7, 0.1, 0.05, 0.3, 0.1])
+    peak = np.ones(12)
+    peak[9] = 3.0
+    picked = _traced_frames(screen, peak)
+    assert 2 in picked and 9 in picked  # the screen's top and the brightest focus
+    taken = [i for i in picked if i != 9]
+    assert len(taken) == SAMPLED_FRAMES and all(b - a >= SCREEN_SPACING for a, b in zip(taken, taken[1:]))
+    assert 7 in picked and 10 in picked  # a second and third event, not the first one's neighbours
+    screen[5] = np.nan  # a frame the screen could not measure is traced first
+    assert 5 in _traced_frames(screen, peak)
+    assert _traced_frames(np.array([0.5, 0.1]), np.array([1.0, 1.0])) == (0, 1)  # short scenes: every frame
+    # an option twice the screen on a traced frame: the untraced maximum of the screen, twice
+    d = np.zeros(12)
+    d[[2, 7]] = [1.0, 1.4]
+    assert _evaluated(d, np.array([0.1] * 2 + [1.0] + [0.1] * 4 + [0.7] + [1.2] + [0.1] * 3), (2, 7)) == pytest.approx(2.4)
+    assert _evaluated(np.zeros(3), np.zeros(3), (0, 1, 2)) == 0.0  # flat water: nothing to scale
 
 
 @pytest.mark.slow  # moved to the slow run (CI runs it): the README's pytest must stay under 10 min on 2 cores
@@ -358,7 +390,7 @@ def test_past_the_first_fold_the_jacobian_is_not_offered():
     assert math.isinf(errors.delta["jacobian"])
     p = plan(scene, scene.height_quantum)
     assert p.model.choices.caustics in (1, 2, 3, 4), p.card()
-    assert "traced frames fold" in {t.term: t for t in p.terms}["caustics"].reason
+    assert "screened frames fold" in {t.term: t for t in p.terms}["caustics"].reason
 
 
 def test_an_old_calibration_without_the_gather_offers_only_the_beam():

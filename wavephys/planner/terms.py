@@ -528,7 +528,7 @@ class Absorption(PlanTerm):
                 f"{ctx.scene.depth * 2:.3g} m and longer{note}")
 
 
-CAUSTICS_PLANNED = {"beam": "refine 1–4", "jacobian": "where the traced frames stay below their first fold"}
+CAUSTICS_PLANNED = {"beam": "refine 1–4", "jacobian": "where every frame stays below its first fold"}
 """The methods of :data:`optics.caustics.FLOOR_IRRADIANCE_METHODS` the caustics term offers."""
 
 CAUSTICS_NOT_PLANNED = {
@@ -548,7 +548,7 @@ CAUSTICS_METHODS_NOTE = ("not offered, dominated by the beam (python -m bench op
 
 class Caustics(PlanTerm):
     """The floor's caustics by beam rasterization refined r times, by the Jacobian gather (where
-    the traced frames stay below their first fold and the calibration has its cost), or off
+    every frame stays below its first fold and the calibration has its cost), or off
     (flat-water light)."""
 
     name = "caustics"
@@ -581,14 +581,14 @@ class Caustics(PlanTerm):
             return "the scene shows no caustics"
         q = ctx.scene.image_quantum
         light = (f"E/E₀ up to {caustics.e_max[FULL_REFINE] / MARGIN:.3g} at the traced frames "
-                 f"{', '.join(map(str, caustics.frames))}")
+                 f"{', '.join(map(str, caustics.frames))} (of {len(caustics.screen)} screened)")
         if option == 0:
             return f"off: {light}; ≤ {error / q:.2g} image quanta"
         jacobian = caustics.delta.get(CAUSTICS_JACOBIAN, math.inf)
         if option == CAUSTICS_JACOBIAN:
             return (f"the Jacobian gather: {light}; ≤ {error / q:.2g} image quanta against the beam refined "
                     f"{FULL_REFINE}; {CAUSTICS_METHODS_NOTE}")
-        why = ("the Jacobian gather: the traced frames fold (past the first fold it is not offered)"
+        why = ("the Jacobian gather: the screened frames fold (past the first fold it is not offered)"
                if not math.isfinite(jacobian) else "")
         return (f"beam, refine {option}: {light}; tracing ≤ {error / q:.2g} image quanta; {CAUSTICS_METHODS_NOTE}"
                 + (f"; {why}" if why else ""))
