@@ -190,11 +190,13 @@ def _coefficients(planes):
     return jnp.moveaxis(bspline_coefficients(planes), 0, -1)
 
 
-@partial(jax.jit, static_argnames=("m", "iterations"))
-def _gather(coefficients, length, m, iterations):
+@partial(jax.jit, static_argnames=("m", "iterations", "side"))
+def _gather(coefficients, length, m, iterations, side=None):
     """Newton per floor point of Grid(m, L): E at the preimage, the residual |X(x) − X| (floor
     texels; inf where the spline's own area ratio there is at most :data:`MIN_AREA_RATIO`), and the
-    preimage x, y (m, not wrapped into the square).
+    preimage x, y (m, not wrapped into the square). ``side``: only the map's rows and columns
+    −1 … side − 2 (periodic; a tank's own floor on its extension with a ring of one point around
+    it), arrays (side, side).
 
     The first guess is X − D(X − D̄), D̄ the mean displacement (a slanted sun's shift), so its error
     is that of a vertical sun's; the steps stop once every point's residual is below
@@ -205,6 +207,9 @@ def _gather(coefficients, length, m, iterations):
     n = coefficients.shape[0]
     h = length / n
     X, Y = Grid(m, length).mesh()
+    k = m if side is None else side
+    if side is not None:
+        X, Y = (jnp.roll(a, (1, 1), (0, 1))[:k, :k] for a in jnp.broadcast_arrays(X, Y))
     target = jnp.stack([X.ravel(), Y.ravel()], 1)
 
     def tex(p):
@@ -232,8 +237,8 @@ def _gather(coefficients, length, m, iterations):
     det = (1.0 + du[:, 0] / h) * (1.0 + dv[:, 1] / h) - (dv[:, 0] / h) * (du[:, 1] / h)
     residual = jnp.hypot(p[:, 0] + value[:, 0] - target[:, 0], p[:, 1] + value[:, 1] - target[:, 1]) / (length / m)
     irradiance = jnp.maximum(value[:, 2], 0.0) / det  # a spline of a shadow edge may undershoot 0
-    return (irradiance.reshape(m, m), jnp.where(det > MIN_AREA_RATIO, residual, jnp.inf).reshape(m, m),
-            p[:, 0].reshape(m, m), p[:, 1].reshape(m, m))
+    return (irradiance.reshape(k, k), jnp.where(det > MIN_AREA_RATIO, residual, jnp.inf).reshape(k, k),
+            p[:, 0].reshape(k, k), p[:, 1].reshape(k, k))
 
 
 @partial(jax.jit, static_argnames=("s",))
@@ -304,16 +309,19 @@ def _field_supersampling(m: int, samples: int) -> int:
     return max(1, min(-(-samples // m), 8192 // m))
 
 
-@partial(jax.jit, static_argnames=("s",))
-def _local_texels(point, s: int, lit=None):
+@partial(jax.jit, static_argnames=("s", "ring"))
+def _local_texels(point, s: int, lit=None, ring: bool = False):
     """Texel averages of a floor map from its values at s × s points per texel: each point's
     own fine texel by :func:`_point_to_texel` (local), 0 where ``lit`` is False, then the mean
-    of the s × s (local too, so values outside the gathered region never enter)."""
+    of the s × s (local too, so values outside the gathered region never enter). ``ring``: the
+    points have a ring of one point around the map, its neighbours there, dropped after."""
     fine = _point_to_texel(point)
     if lit is not None:
         fine = jnp.where(lit, fine, 0.0)
-    m = point.shape[-1] // s
-    return fine.reshape(m, s, m, s).mean(axis=(1, 3))
+    if ring:
+        fine = fine[1:-1, 1:-1]
+    rows, cols = fine.shape[0] // s, fine.shape[1] // s
+    return fine.reshape(rows, s, cols, s).mean(axis=(1, 3))
 
 
 def _block_max(values, s: int):
@@ -607,8 +615,12 @@ def _tank_jacobian(tank, call, refine, iterations, fold):
     if _grow(folded)[crop].mean() > MAX_WINDOWS:
         return _tank_beam(call)
     s = _field_supersampling(big_m, fine.n)
-    point, residual, x, y = _gather(_coefficients(planes), length, big_m * s, iterations)
-    windows = _grow(folded | (_block_max(residual, s) > NEWTON_TOLERANCE))
+    # the tank's own floor only (a quarter of the extension's; the rest mirrors it)
+    point, residual, x, y = _gather(_coefficients(planes), length, big_m * s, iterations, tank.m * s + 2)
+    unconverged = np.zeros_like(folded)
+    unconverged[crop] = _block_max(np.asarray(residual)[1:-1, 1:-1], s) > NEWTON_TOLERANCE
+    windows = _grow(folded | unconverged)
+    windows[tank.m:, :] = windows[:, tank.m:] = False  # nothing past the tank is drawn
     beam = _beam_windows(light, call[6], windows, _beam_refine(big_n), tank=tank)
     lit = jnp.ones_like(point, bool)
     half = 0.5 * length  # the extension spans [-L_ext/2, L_ext/2); the tank its first half along a walled axis
@@ -616,7 +628,7 @@ def _tank_jacobian(tank, call, refine, iterations, fold):
         lit &= jnp.mod(x + half, length) < 0.5 * length
     if wy:
         lit &= jnp.mod(y + half, length) < 0.5 * length
-    out = jnp.where(jnp.asarray(windows), beam, _local_texels(point, s, lit))[crop]
+    out = jnp.where(jnp.asarray(windows[crop]), beam[crop], _local_texels(point, s, lit, ring=True))
     return out, dict(answer="windows", windows=float(windows[crop].mean()), supersample=s, mask=windows[crop])
 
 

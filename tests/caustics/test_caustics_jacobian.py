@@ -163,7 +163,8 @@ def test_a_finer_floor_map_over_a_flat_floor_is_still_gathered(resolution):
     assert errors["auto"] <= 0.01 < errors[1], errors
 
 
-@pytest.mark.parametrize("kx, ky", [(20, 3), (19, 7), (21, 0)])
+@pytest.mark.parametrize("kx, ky", [(20, 3), pytest.param(19, 7, marks=pytest.mark.slow),
+                                    pytest.param(21, 0, marks=pytest.mark.slow)])  # the README's pytest: one case
 def test_waves_at_the_grid_scale_are_gathered_at_the_fields_resolution(kx, ky):
     """Two crossed waves of about 3 samples on 64² (a light breeze on a coarse shore grid, as the
     planner's generated scenes have them): the fields are refined twice, and the light has
