@@ -258,11 +258,12 @@ def _supersampling(sharpness: float, texel: float, supersample, m: int, samples:
     """The floor supersampling that resolves E (1, 2, 4 or 8, and m·s ≤ 8192), or None when none does:
     with ``"auto"``, the fewest that keep β/s within :data:`SHARPNESS_LIMIT` and gather at least as
     many points a side as the fields have ``samples`` (the light has their wavenumbers: fewer
-    points alias them, past what the texel's box filter can take out)."""
+    points alias them, past what the texel's box filter can take out), or 8 a texel where the
+    fields have more than that."""
     if supersample != "auto":
         return supersample
     for s in (1, 2, 4, 8):
-        if m * s <= 8192 and sharpness * texel <= SHARPNESS_LIMIT * s and m * s >= min(samples, 8192):
+        if m * s <= 8192 and sharpness * texel <= SHARPNESS_LIMIT * s and m * s >= min(samples, 8 * m, 8192):
             return s
     return None
 
@@ -617,8 +618,9 @@ def _tank_jacobian(tank, call, refine, iterations, fold):
     s = _field_supersampling(big_m, fine.n)
     # the tank's own floor only (a quarter of the extension's; the rest mirrors it)
     point, residual, x, y = _gather(_coefficients(planes), length, big_m * s, iterations, tank.m * s + 2)
-    unconverged = np.zeros_like(folded)
-    unconverged[crop] = _block_max(np.asarray(residual)[1:-1, 1:-1], s) > NEWTON_TOLERANCE
+    unconverged = _block_max(np.asarray(residual)[1:-1, 1:-1], s) > NEWTON_TOLERANCE
+    unconverged = np.concatenate([unconverged, unconverged[:, ::-1] if wx else unconverged], 1)  # as the extension
+    unconverged = np.concatenate([unconverged, unconverged[::-1] if wy else unconverged], 0)  # mirrors or repeats it
     windows = _grow(folded | unconverged)
     windows[tank.m:, :] = windows[:, tank.m:] = False  # nothing past the tank is drawn
     beam = _beam_windows(light, call[6], windows, _beam_refine(big_n), tank=tank)

@@ -217,6 +217,19 @@ def test_past_the_fold_the_gathered_texels_take_the_grid_scale_waves_too():
     assert outside.mean() > 0.5 and error <= 2e-4, (outside.mean(), error)
 
 
+def test_a_coarse_floor_map_of_a_fine_surface_is_still_gathered():
+    """Fields of 256 samples a side on a 16-texel floor map: 8 points a texel (the most) gather it;
+    the rule of as many points as the fields have samples cannot hold and does not refuse it."""
+    grid = Grid(256, 4.0)
+    x, y = (np.asarray(a) for a in grid.mesh())
+    eta = jnp.asarray(0.002 * np.cos(2 * np.pi * (x + 2 * y) / 4.0), jnp.float32)
+    depth = 0.3 * first_fold_depth(eta, grid)
+    out, info = floor_irradiance(eta, grid, depth, method="jacobian", resolution=16, fold="raise", explain=True)
+    beam = np.asarray(floor_irradiance_beam(eta, grid, depth, resolution=16))
+    assert info["answer"] == "gather" and info["supersample"] == 8, info
+    assert np.abs(np.asarray(out) - beam).max() <= 0.01 * beam.max()
+
+
 def test_automatic_supersampling_stays_within_the_largest_map():
     from optics.caustics.jacobian import _supersampling
 

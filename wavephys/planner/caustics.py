@@ -17,9 +17,10 @@ refinement and by the Jacobian gather (:data:`CAUSTICS_JACOBIAN`, ``fold="raise"
 frame of the screen past its first fold makes that choice unavailable). Each option's
 difference from the full model's refinement, :data:`FULL_REFINE`, is the larger of the
 traced differences and the screen's largest value times the largest ratio of difference to
-screen on the traced frames, times :data:`MARGIN`. Five frames sampled evenly instead (as
-this term did before) missed focusing peaks between them by up to 4.3 × on the scenes that
-chose the screen and 9.7 × on others (docs/planner.md §3). Screening a frame costs about a tenth of tracing it at every option;
+screen on the traced frames, times :data:`MARGIN`. With five frames sampled evenly instead (as
+this term did before), the largest difference of a frame reached 4.25 × the traced maximum on
+the scenes that chose the screen and 9.7 × on others (docs/planner.md §3). Screening a frame
+costs 5–9 % of tracing it at every option;
 the plan saves the tracing on every frame it renders. Scenes with caustics are planned up
 to :data:`MAX_CAUSTICS_TEXELS` texels per side (the planner traces 4× finer).
 """
@@ -88,9 +89,17 @@ def _surface_maker(scene):
 
 def full_surfaces(scene, frames=None) -> tuple:
     """(frame numbers, heights (F, n, n) float64 m): the full model's surface on the output
-    texels at ``frames`` (1-based; default every frame of the scene), from its closed form
-    (linear modes at time t, then η + ½ Re(η_c Λη_c) on the grid). Needs a periodic scene (no margin)."""
-    frames = tuple(range(1, scene.frames + 1)) if frames is None else tuple(int(f) for f in frames)
+    texels at ``frames`` (1-based), from its closed form (linear modes at time t, then
+    η + ½ Re(η_c Λη_c) on the grid). Needs a periodic scene (no margin). Without ``frames``:
+    the first, the last and three evenly between, as the term traced them before its screen
+    (deprecated: pass the frames)."""
+    if frames is None:
+        import warnings
+
+        warnings.warn("full_surfaces(scene) without frames is deprecated (the caustics term no longer traces five "
+                      "evenly spaced frames); pass frames=", DeprecationWarning, stacklevel=2)
+        frames = sorted({int(round(v)) for v in np.linspace(1, scene.frames, min(SAMPLED_FRAMES, scene.frames))})
+    frames = tuple(int(f) for f in frames)
     surface = _surface_maker(scene)
     return frames, np.stack([surface(f) for f in frames])
 
@@ -147,8 +156,13 @@ def caustics_errors(scene) -> CausticsErrors | None:
 def _evaluated(d, screen, traced) -> float:
     """One option's difference over every frame from its traced ones (module doc): the largest
     traced difference, and the screen's largest value times the largest ratio of difference to
-    screen over the traced frames (the frames not traced differ as their screen says)."""
+    screen over the traced frames (the frames not traced differ as their screen says); ∞ where a
+    frame not traced has no finite screen value."""
     worst = max(float(d[i]) for i in traced)
+    untraced = np.ones(screen.size, bool)
+    untraced[list(traced)] = False
+    if not np.isfinite(screen[untraced]).all():  # a frame the screen could not measure and nobody traced
+        return math.inf
     top = float(np.max(screen[np.isfinite(screen)], initial=0.0))
     ratios = [float(d[i]) / float(screen[i]) for i in traced if np.isfinite(screen[i]) and screen[i] > 0]
     return max(worst, top * max(ratios, default=0.0))
@@ -175,10 +189,13 @@ def _caustics_errors(scene) -> CausticsErrors:
     screen, peak, folds = np.zeros(scene.frames), np.zeros(scene.frames), False
     for i in range(scene.frames):
         eta = jnp.asarray(surface(i + 1), jnp.float32)
-        try:  # offered only below the first fold, where the gather answers alone on every frame
-            light = gather(eta, "raise")
-        except CausticsFold:
-            folds, light = True, gather(eta, "windows")
+        if folds:  # the gather is out already: its answer with the beam on the folded windows
+            light = gather(eta, "windows")
+        else:
+            try:  # offered only below the first fold, where the gather answers alone on every frame
+                light = gather(eta, "raise")
+            except CausticsFold:
+                folds, light = True, gather(eta, "windows")
         coarse = beam(eta, SCREEN_REFINE)
         screen[i] = float(np.abs(coarse - light).max())
         peak[i] = float(light.max())

@@ -38,7 +38,7 @@ CAUSTICS_REFINE = (0, 1, 2, 3, 4)
 r: beam rasterization of the surface refined r times, :func:`optics.caustics.floor_irradiance_beam`)."""
 CAUSTICS_JACOBIAN = "jacobian"
 """The caustics choice by the Jacobian of the landing map (:func:`optics.caustics.floor_irradiance_jacobian`),
-offered where the traced frames stay below their first fold and the calibration has its cost."""
+offered where every frame stays below its first fold and the calibration has its cost."""
 CAUSTICS_OPTIONS = CAUSTICS_REFINE + (CAUSTICS_JACOBIAN,)
 """Every value of :attr:`Choices.caustics`."""
 FULL_REFINE = 4
