@@ -408,6 +408,35 @@ def test_the_screen_picks_separate_peaks_and_the_brightest_focus():
     assert {3, 9} <= set(picked) and _evaluated(np.ones(12), screen, picked) == 1.0  # both traced: known
 
 
+def test_a_fold_on_a_frame_the_planner_does_not_trace_rules_the_gather_out(monkeypatch):
+    """The gather is offered only where no frame of the screen folds: one frame that folds (here the
+    gather refuses it, CausticsFold) and is not among the traced frames still makes the choice
+    unavailable; from that frame on the screen takes the gather with its folded windows directly."""
+    import optics.caustics as caustics
+    from wavephys.planner.caustics import _caustics_errors
+
+    scene = _pool(caustics=True)
+    before = _caustics_errors.__wrapped__(scene)
+    assert math.isfinite(before.delta["jacobian"])
+    untraced = [f for f in range(2, scene.frames + 1) if f not in before.frames]  # 1-based
+    assert untraced, before.frames  # 12 frames, at most 6 traced
+    folded = untraced[0]
+    real, calls = caustics.floor_irradiance_jacobian, []
+
+    def gather(eta, grid, depth, sun, *, fold="windows", **kw):
+        calls.append(fold)
+        if fold == "raise" and len(calls) == folded:
+            raise caustics.CausticsFold("the test's fold")
+        return real(eta, grid, depth, sun, fold=fold, **kw)
+
+    monkeypatch.setattr(caustics, "floor_irradiance_jacobian", gather)
+    after = _caustics_errors.__wrapped__(scene)
+    assert after.frames == before.frames and folded not in after.frames  # the same screen, so the same traces
+    assert math.isinf(after.delta["jacobian"])
+    assert calls == ["raise"] * folded + ["windows"] * (scene.frames - folded + 1)
+    assert all(after.delta[r] == before.delta[r] for r in (0, 1, 2, 3))
+
+
 @pytest.mark.slow  # moved to the slow run (CI runs it): the README's pytest must stay under 10 min on 2 cores
 def test_past_the_first_fold_the_jacobian_is_not_offered():
     """A pool 20 times deeper folds its light: the gather refuses (CausticsFold) on the traced
