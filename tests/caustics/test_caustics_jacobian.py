@@ -137,6 +137,7 @@ def test_past_the_fold_the_folded_windows_are_the_beam_and_the_rest_is_gathered(
     assert float(np.max(np.abs(out - ref.irradiance))) / peak <= beam_error + 0.005
 
 
+@pytest.mark.slow  # moved to the slow run (CI runs it): the README's pytest must stay under 10 min on 2 cores
 def test_just_past_the_fold_the_windows_answer_the_smooth_seas():
     from optics.caustics.jacobian import _jacobian
 
@@ -186,8 +187,8 @@ def test_a_finer_floor_map_over_a_flat_floor_is_still_gathered(resolution):
     assert errors["auto"] <= 0.01 < errors[1], errors
 
 
-@pytest.mark.parametrize("kx, ky", [(20, 3), pytest.param(19, 7, marks=pytest.mark.slow),
-                                    pytest.param(21, 0, marks=pytest.mark.slow)])  # the README's pytest: one case
+@pytest.mark.slow  # 25 s a case: the README's pytest must stay under 10 min on 2 cores (CI runs the slow ones)
+@pytest.mark.parametrize("kx, ky", [(20, 3), (19, 7), (21, 0)])
 def test_waves_at_the_grid_scale_are_gathered_at_the_fields_resolution(kx, ky):
     """Two crossed waves of about 3 samples on 64² (a light breeze on a coarse shore grid, as the
     planner's generated scenes have them): the fields are refined twice, and the light has
@@ -240,6 +241,7 @@ def test_past_the_fold_the_gathered_texels_take_the_grid_scale_waves_too():
     assert outside.mean() > 0.5 and error <= 2e-4, (outside.mean(), error)
 
 
+@pytest.mark.slow  # moved to the slow run (CI runs it): the README's pytest must stay under 10 min on 2 cores
 def test_a_coarse_floor_map_of_a_fine_surface_is_still_gathered():
     """Fields of 256 samples a side on a 16-texel floor map: 8 points a texel (the most) gather it;
     the rule of as many points as the fields have samples cannot hold and does not refuse it."""
@@ -398,6 +400,7 @@ def test_bad_options_are_refused_by_name(kw, name):
         floor_irradiance(jnp.zeros((16, 16)), Grid(16, 1.0), method="jacobian", **args)
 
 
+@pytest.mark.slow  # moved to the slow run (CI runs it): the README's pytest must stay under 10 min on 2 cores
 def test_mild_floors_reach_the_float32_floor_after_the_chord_step():
     """Far from the fold the first Newton step and the chord step do most of the work: on 30
     generated seas (5 spectra, steepness 0.04–0.15, suns 40–90°, floors at 0.1–0.5 of the first fold,

@@ -408,6 +408,7 @@ def test_the_screen_picks_separate_peaks_and_the_brightest_focus():
     assert {3, 9} <= set(picked) and _evaluated(np.ones(12), screen, picked) == 1.0  # both traced: known
 
 
+@pytest.mark.slow  # 20 s: the README's pytest must stay under 10 min on 2 cores (CI runs the slow ones)
 def test_a_fold_on_a_frame_the_planner_does_not_trace_rules_the_gather_out(monkeypatch):
     """The gather is offered only where no frame of the screen folds: one frame that folds (here the
     gather refuses it, CausticsFold) and is not among the traced frames still makes the choice
