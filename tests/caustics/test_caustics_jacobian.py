@@ -290,7 +290,8 @@ def test_a_ground_height_field_is_landed_on_as_the_beam_does(seed):
     assert info["answer"] == "gather" and error <= 0.01, (info, error)
 
 
-@pytest.mark.parametrize("elevation,azimuth", [(90.0, 0.0), (60.0, 30.0), (55.0, 200.0)])
+@pytest.mark.parametrize("elevation,azimuth", [pytest.param(90.0, 0.0, marks=pytest.mark.slow), (60.0, 30.0),
+                                               (55.0, 200.0)])
 def test_the_walls_of_a_pool_go_to_the_beam_and_no_texel_is_wrong(elevation, azimuth):
     """Light either side of a steep wall's edge lands a metre apart: the map jumps between samples.
     The jump (and the spline's ringing around it) is left to the beam; every texel within 1 % of the

@@ -35,7 +35,7 @@ def _shadowed_flat_floor(grid, depth, elevation, azimuth, walls, m=None):
     return flat_irradiance(elevation) * lit[1][:, None] * lit[0][None, :]
 
 
-@pytest.mark.parametrize("walls, elevation, azimuth", [("all", 50.0, 30.0),
+@pytest.mark.parametrize("walls, elevation, azimuth", [pytest.param("all", 50.0, 30.0, marks=pytest.mark.slow),
                                                        pytest.param("x", 35.0, 200.0, marks=pytest.mark.slow),
                                                        pytest.param("y", 70.0, -75.0, marks=pytest.mark.slow)])
 def test_flat_water_lights_the_tank_but_the_walls_shadow(walls, elevation, azimuth):

@@ -212,6 +212,7 @@ def test_sixteen_bits_and_a_grazing_view_need_the_exact_fresnel_form():
     assert _choices("lake", view_elevation=25.0).fresnel == "exact"
 
 
+@pytest.mark.slow  # moved to the slow run (CI runs it): the README's pytest must stay under 10 min on 2 cores
 def test_a_plan_is_drawn_with_its_shading_choices():
     """Plan.drawn gives the renderer the plan's Fresnel form and absorption (RGB: the coefficients fitted
     over the scene's paths, as the plan's shading has them); the picture differs from the full model's."""

@@ -250,6 +250,7 @@ def test_solitary_wave_runs_up_to_the_exact_linear_runup(cot, frac):
 
 
 # -- the API: pure, batched, differentiable, strict ------------------------------------------
+@pytest.mark.slow  # moved to the slow run (CI runs it): the README's pytest must stay under 10 min on 2 cores
 def test_step_is_pure_under_jit_vmap_and_grad():
     n = 64
     x = (np.arange(n) + 0.5) / n * 4 - 2
