@@ -145,7 +145,7 @@ def first_fold_depth(eta, grid: Grid, sun=(0.0, 0.0, 1.0), n_water: float = N_WA
     check_array("eta", eta, ndim=2, shape_tail=(n, n))
     check_array("sun", sun, ndim=1, shape_tail=(3,))
     if not np.asarray(sun, float)[2] > 0:
-        raise ValueError(f"sun must point up (z > 0), got {tuple(np.asarray(sun, float))}")
+        raise ValueError(f"sun must point up (z > 0), got {np.asarray(sun, float).tolist()}")
     check_scalar("n_water", n_water, lo=1.0, lo_open=True)
     check_scalar("max_depth", max_depth, lo=0.0, lo_open=True)
     check_scalar("tolerance", tolerance, lo=0.0, hi=0.1, lo_open=True)

@@ -54,21 +54,36 @@ def prepare(eta, grid: Grid, depth, sun, resolution, n_water, fresnel, check_val
     ground = np.ndim(depth) == 2
     if ground:
         check_array("depth", depth, ndim=2, shape_tail=(n, n), lo=-MAX_DEPTH)
-        if float(jnp.max(jnp.asarray(depth) - jnp.asarray(eta))) >= 0:
-            raise ValueError("depth (a ground height field) must lie below the water surface everywhere")
         floor = jnp.asarray(depth, jnp.float32)
     else:
         check_scalar("depth", depth, lo=0.0, hi=MAX_DEPTH, lo_open=True)
         floor = float(depth)
+    shallowest, deepest = (float(v) for v in _water_column(jnp.asarray(eta, jnp.float32), floor))
+    if shallowest <= 0:
+        raise ValueError("depth (a ground height field) must lie below the water surface everywhere" if ground else
+                         f"eta must lie above the floor everywhere (eta > -depth = {-floor:g} m): its lowest sample "
+                         f"is {shallowest - floor:.4g} m")
+    if deepest > MAX_DEPTH:
+        raise ValueError(f"eta: the water above the floor is {deepest:.4g} m deep at its deepest, at most {MAX_DEPTH:g} m "
+                         f"(the depth's own limit: beyond it light lands outside float32's digits of a texel)")
     check_array("sun", sun, ndim=1, shape_tail=(3,))
     sun = np.asarray(sun, float)
     if not sun[2] > 0:
-        raise ValueError(f"sun must point up (z > 0), got {tuple(sun)}")
+        raise ValueError(f"sun must point up (z > 0), got {sun.tolist()}")
     check_scalar("n_water", n_water, lo=N_AIR, hi=MAX_INDEX, lo_open=True)  # denser than air: light bends in
     check_bool("fresnel", fresnel)
     m = n if resolution is None else check_int("resolution", resolution, lo=2)
     return Lighting(jnp.asarray(eta, jnp.float32), grid, floor, ground, -sun / np.linalg.norm(sun), m,
                     float(n_water))
+
+
+@jax.jit
+def _water_column(eta, floor):
+    """The shallowest and the deepest water between the surface and the floor (a depth or a ground
+    height field), over the finite samples (NaN and inf are refused by name after this)."""
+    column = eta + floor if jnp.ndim(floor) == 0 else eta - floor
+    finite = jnp.isfinite(column)
+    return jnp.stack([jnp.min(jnp.where(finite, column, jnp.inf)), jnp.max(jnp.where(finite, column, -jnp.inf))])
 
 
 class Tank(NamedTuple):

@@ -185,7 +185,7 @@ def _shares(local, twice, w, K: int):
     Small windows evaluate the K² − 2K corner areas one by one (XLA fuses them into one
     pass); large ones broadcast over the corners."""
     (x0, y0), (x1, y1), (x2, y2) = local
-    if K <= 4:
+    if K <= 3:
         corner = {}
         for i in range(K + 1):
             for j in range(K + 1):
@@ -202,7 +202,8 @@ def _shares(local, twice, w, K: int):
     # goes to the texel of its centroid
     cover = jnp.maximum(G[1:, 1:] - G[:-1, 1:] - G[1:, :-1] + G[:-1, :-1], 0.0)
     total = jnp.sum(cover, (0, 1))
-    tiny = ~(total > 64 * float(jnp.finfo(jnp.result_type(twice)).eps) * K * K)
+    own = jnp.maximum(jnp.maximum(jnp.maximum(x0, x1), x2), jnp.maximum(jnp.maximum(y0, y1), y2)) + 1.0
+    tiny = ~(total > 64 * float(jnp.finfo(jnp.result_type(twice)).eps) * own * own)  # its own span, not the window's
     cx, cy = jnp.floor((x0 + x1 + x2) / 3.0), jnp.floor((y0 + y1 + y2) / 3.0)
     ii = jnp.arange(K).reshape((K, 1) + (1,) * twice.ndim)
     jj = jnp.arange(K).reshape((1, K) + (1,) * twice.ndim)
@@ -253,14 +254,56 @@ def deposit_triangles(u, v, values, shape: tuple[int, int], window: int, origin=
 _deposit = jax.jit(deposit_triangles, static_argnames=("shape", "window"))
 _SMALL = 3  # the window of every group under two texels across: one fast pass
 
+PASS_SHARES = 1 << 24
+"""Most texel shares (window² × groups) one pass of wide groups computes: bounds its memory (about
+0.8 GB of corner areas and shares); also the largest window², so no group may span more than
+4094 texels (its window 4096 on the ladder)."""
+
+MAX_SHARES = 1 << 32
+"""Most texel shares the wide groups of one rasterization may cost in all (2–4 minutes on a 2-core
+CPU at 25–60 ns a share, measured): past it the work is refused before it starts."""
+
+
+def _ladder(window):
+    """The next power of two (at least 2): few programs, each reused across calls, at most 4 × the
+    shares of the exact window."""
+    window = np.maximum(np.asarray(window, np.int64), 2)
+    return np.left_shift(1, np.ceil(np.log2(window)).astype(np.int64))
+
+
+def _wide_passes(extent, chunk: int):
+    """Passes over the wide groups, their ``extent`` (texels, host numpy) sorted ascending:
+    ``(start, count, window)``, the window on :func:`_ladder` (under 2 × each group's own side), each
+    pass padded to a power of two, at most ``chunk`` groups and :data:`PASS_SHARES` shares. Refuses by name a group wider than
+    the largest window or more than :data:`MAX_SHARES` shares in all."""
+    windows = _ladder(np.floor(extent).astype(np.int64) + 2)
+    if windows.size and windows[-1] ** 2 > PASS_SHARES:
+        raise ValueError(f"a group of triangles spans {float(extent[-1]):.4g} texels: at most "
+                         f"{math.isqrt(PASS_SHARES) - 2} (its window's shares are held in memory at once)")
+    passes, start = [], 0
+    while start < windows.size:
+        window = int(windows[start])
+        same = int(np.searchsorted(windows, window, side="right")) - start
+        count = max(1, min(same, chunk, 1 << (PASS_SHARES // window**2).bit_length() - 1))
+        passes.append((start, count, window))
+        start += count
+    total = sum((1 << (count - 1).bit_length()) * window**2 for _, count, window in passes)
+    if total > MAX_SHARES:
+        raise ValueError(f"the wide triangles cover {total:.3g} texel shares in all (window² × groups): at most "
+                         f"{MAX_SHARES:.3g}, minutes of work on a 2-core CPU")
+    return passes
+
 
 def rasterize_triangles(u, v, values, shape: tuple[int, int], origin=None, chunk: int = 1 << 15):
     """:func:`deposit_triangles` with the windows chosen here (concrete arrays).
 
     Groups under two texels across (the common case) go in one pass with a 3 × 3 window;
     the few wider ones (light spreading from a steep facet, a coarse surface on a fine map)
-    are gathered and deposited ``chunk`` at a time with a window that holds them. Groups
-    that carry nothing are skipped.
+    are sorted by extent and deposited in passes of at most ``chunk`` groups and
+    :data:`PASS_SHARES` shares, each with a window that holds them, a power of two under twice their
+    own (:func:`_wide_passes`; one window for all, the widest's, cost up to its area over theirs).
+    Groups that carry nothing are skipped. Work past :data:`MAX_SHARES` or a group wider than 4094 texels is
+    refused (ValueError) before it starts.
     """
     shape = (int(shape[0]), int(shape[1]))
     u, v, w = jnp.asarray(u), jnp.asarray(v), jnp.asarray(values)
@@ -271,19 +314,20 @@ def rasterize_triangles(u, v, values, shape: tuple[int, int], origin=None, chunk
     extent = _extents(u, v, w)
     if not bool(jnp.isfinite(jnp.max(extent))):
         raise ValueError("triangle vertices must be finite")
-    wide = np.flatnonzero(np.asarray(extent >= _SMALL - 1))
+    extent = np.asarray(extent)
+    wide = np.flatnonzero(extent >= _SMALL - 1)
+    wide = wide[np.argsort(extent[wide], kind="stable")]  # by extent: each pass's window fits its groups
+    passes = _wide_passes(extent[wide], chunk)
     w_small = w.at[:, wide].set(0.0)
     out = jnp.zeros(shape, w.dtype)
     step = 1 << 22  # groups a pass (bounds the memory of the corner areas: about 1 GB)
     for start in range(0, w.shape[-1], step):
         part = slice(start, start + step)
         out = out + _deposit(u[:, :, part], v[:, :, part], w_small[:, part], shape, _SMALL, (du[part], dv[part]))
-    for start in range(0, wide.size, chunk):
-        part = jnp.asarray(wide[start:start + chunk])
-        size = 1 << max(int(part.size - 1).bit_length(), 0)  # padded to a power of two: few programs
-        part = jnp.pad(part, (0, size - part.size), constant_values=int(wide[0]))
-        keep = (jnp.arange(size) < wide[start:start + chunk].size)
+    for start, count, window in passes:
+        size = 1 << max(int(count - 1).bit_length(), 0)  # padded to a power of two: few programs
+        part = jnp.asarray(np.pad(wide[start:start + count], (0, size - count), constant_values=int(wide[start])))
+        keep = jnp.arange(size) < count
         pu, pv = u[:, :, part], v[:, :, part]
-        window = triangle_window(pu, pv)
         out = out + _deposit(pu, pv, jnp.where(keep, w[:, part], 0.0), shape, window, (du[part], dv[part]))
     return out

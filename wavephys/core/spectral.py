@@ -133,14 +133,15 @@ def cosine_refine(field, factor: int):
 
 def spectral_derivatives(field, spacing):
     """(∂f/∂x, ∂f/∂y, ∂²f/∂x², ∂²f/∂x∂y, ∂²f/∂y²) of a real periodic field by one FFT: exact for
-    band-limited fields (1/m and 1/m² × f), stacked on a new first axis."""
+    band-limited fields (1/m and 1/m² × f), stacked on a new first axis, in ``field``'s floating dtype."""
     xp = array_module(field)
     f = xp.asarray(field)
     ny, nx = f.shape[-2:]
     ky, kx = angular_wavenumbers((ny, nx), spacing, real=True, xp=xp)
     spec = xp.fft.rfft2(f)
     planes = xp.stack([1j * kx * spec, 1j * ky * spec, -kx * kx * spec, -kx * ky * spec, -ky * ky * spec])
-    return xp.fft.irfft2(planes, s=(ny, nx))
+    out = xp.fft.irfft2(planes, s=(ny, nx))
+    return out.astype(f.dtype) if xp.issubdtype(f.dtype, xp.floating) else out  # float32 stays float32 (x64 mode too)
 
 
 def bspline_coefficients(field):

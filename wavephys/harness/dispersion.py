@@ -469,7 +469,7 @@ def dispersion_check(samples: DispersionSamples, water: Water, dt: float, *, rto
     check_int("min_samples", min_samples, lo=1)
     check_array("k_range", k_range, ndim=1, shape_tail=(2,), lo=0.0, allow_inf=True)
     if not k_range[0] < k_range[1]:
-        raise ValueError(f"k_range must be (k_min, k_max) with k_min < k_max, got {tuple(k_range)}")
+        raise ValueError(f"k_range must be (k_min, k_max) with k_min < k_max, got {np.asarray(k_range, float).tolist()}")
     k_range = (float(k_range[0]), float(k_range[1]))
     all_k = samples.k
     samples = samples.select(*k_range)
