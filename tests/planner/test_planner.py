@@ -331,6 +331,42 @@ def test_caustics_term_on_pools_with_and_without_light_to_show():
     assert plan(fine, fine.height_quantum).model.choices.caustics != 0
 
 
+def test_the_gathers_cost_is_read_at_the_points_it_gathers():
+    """The Jacobian gather's calibration counts points gathered a side (texels × the supersampling the
+    gather chose): 4 points a texel cost what that many points cost, more than one. A calibration
+    from before (by texels) is read at the texels, as it was measured."""
+    from wavephys.planner.cost import calibration, caustics_cost, interpolate
+
+    scene = _pool(n=32, frames=6, depth=0.4, caustics=True)
+    cal = calibration()
+    assert cal["caustics_jacobian"]["by"] == "points"
+    at = lambda side: scene.frames * interpolate(cal["caustics_jacobian"], side)
+    assert caustics_cost(scene, "jacobian", cal, 4 * scene.texels) == pytest.approx(at(4 * scene.texels))
+    assert caustics_cost(scene, "jacobian", cal, 4 * scene.texels) > 1.5 * caustics_cost(scene, "jacobian", cal, scene.texels)
+    assert caustics_cost(scene, "jacobian", cal) == pytest.approx(at(scene.texels))  # not screened: one a texel
+    old = dict(cal, caustics_jacobian={k: v for k, v in cal["caustics_jacobian"].items() if k != "by"})
+    assert caustics_cost(scene, "jacobian", old, 4 * scene.texels) == pytest.approx(at(scene.texels))
+
+
+@pytest.mark.slow  # a plan with its caustics screen: 18 s
+def test_the_plan_reads_the_gathers_cost_where_its_screen_gathered():
+    """The screen records the points a side the gather took on the scene's frames, and the plan's
+    caustics cost is read there."""
+    from wavephys.planner.caustics import caustics_errors
+    from wavephys.planner.cost import calibration, caustics_cost
+
+    scene = _pool(n=32, frames=6, depth=1.6, caustics=True)  # sharp light: the gather takes 4 points a texel
+    points = caustics_errors(scene).gather_points
+    assert points in {scene.texels * s for s in (2, 4, 8)}, points
+    from wavephys.planner.plan import _context, cost_parts
+
+    ctx = _context(scene, calibration())
+    expected = caustics_cost(scene, "jacobian", calibration(), points)
+    assert expected > 1.5 * caustics_cost(scene, "jacobian", calibration(), scene.texels)
+    assert TERMS["caustics"].cost(ctx, "jacobian") == pytest.approx(expected)
+    assert cost_parts(ctx, replace(ctx.full.choices, caustics="jacobian"))["caustics"] == pytest.approx(expected)
+
+
 @pytest.mark.slow  # moved to the slow run (CI runs it): the README's pytest must stay under 10 min on 2 cores
 @pytest.mark.parametrize("seed, index", [(5, 2), (808, 0), (808, 1), (909, 2), (909, 3)])
 def test_the_caustics_bound_holds_over_every_frame_of_a_run(seed, index):

@@ -27,7 +27,7 @@ def _scaled(cal, factor):
         elif isinstance(value, (float, int)):
             out[key] = value * factor
         elif "n" in value:
-            out[key] = {k: (v if k == "n" or k.startswith(("ratio", "work")) else [x * factor for x in v])
+            out[key] = {k: (v if k == "n" or k.startswith(("ratio", "work")) or isinstance(v, str) else [x * factor for x in v])
                         for k, v in value.items()}
         else:  # per form, or per surface model (a table each)
             out[key] = {k: (v * factor if isinstance(v, (int, float)) else _scaled({"t": v}, factor)["t"])
@@ -89,11 +89,14 @@ def _corrupt(cal, how):
     if how == "kappa":
         cal["kappa"] = math.inf
         return cal, r"\['kappa'\] must be seconds"
+    if how == "gather counted by":
+        cal["caustics_jacobian"]["by"] = "pixels"
+        return cal, r"\['caustics_jacobian'\]\['by'\] must be 'points' or 'texels'"
     raise AssertionError(how)
 
 
 @pytest.mark.parametrize("how", ["missing table", "nan", "negative", "unsorted sizes", "short table",
-                                 "string seconds", "kappa"])
+                                 "string seconds", "kappa", "gather counted by"])
 def test_a_damaged_calibration_file_is_refused_naming_the_entry(tmp_path, how):
     cal, message = _corrupt(shipped(), how)
     path = tmp_path / "bad.json"
@@ -219,3 +222,4 @@ def test_the_card_says_where_the_time_goes(caustics):
     biggest = max(p.cost_parts, key=p.cost_parts.get)
     assert line.startswith(f"time goes to {biggest} ")
     assert p.as_dict()["cost_parts"] == p.cost_parts
+

@@ -133,9 +133,11 @@ class CausticsErrors:
     mappings), ``flat`` E₀, ``frames`` the frames traced at every option (1-based),
     ``screen`` the screen's value per frame (max |E₁ − E_J|/E₀, every frame), ``traced`` r ↦
     the largest |E_r − E_full|/E₀ on the traced frames alone, ``seconds`` the
-    time the first evaluation took (later calls return the cached result). A trace that is
-    not finite everywhere makes its entries ∞ (that choice is never taken); a frame past its
-    first fold makes the Jacobian gather's ∞."""
+    time the first evaluation took (later calls return the cached result), ``gather_points`` the
+    most points a side the Jacobian gather took on a screened frame (texels × its supersampling;
+    0 once a frame folds), what its cost is calibrated by. A trace that is not finite everywhere
+    makes its entries ∞ (that choice is never taken); a frame past its first fold makes the
+    Jacobian gather's ∞."""
 
     delta: Mapping
     e_max: Mapping
@@ -144,6 +146,7 @@ class CausticsErrors:
     seconds: float
     screen: tuple
     traced: Mapping
+    gather_points: int = 0
 
 
 def caustics_errors(scene) -> CausticsErrors | None:
@@ -183,8 +186,13 @@ def _caustics_errors(scene) -> CausticsErrors:
     e0 = flat_irradiance(scene.sun_elevation)
     surface = _surface_maker(scene)
     beam = lambda eta, r: np.asarray(floor_irradiance_beam(eta, grid, scene.depth, sun, refine=r), np.float64) / e0
-    gather = lambda eta, fold: np.asarray(floor_irradiance_jacobian(eta, grid, scene.depth, sun, fold=fold),
-                                          np.float64) / e0
+    points = [0]  # the most points a side the gather took (texels × supersampling)
+
+    def gather(eta, fold):
+        out, info = floor_irradiance_jacobian(eta, grid, scene.depth, sun, fold=fold, explain=True)
+        points[0] = max(points[0], grid.n * (info["supersample"] or 1))
+        return np.asarray(out, np.float64) / e0
+
     # the screen, every frame: the coarsest beam against the gather (the beam on its folded windows)
     screen, peak, folds = np.zeros(scene.frames), np.zeros(scene.frames), False
     for i in range(scene.frames):
@@ -218,4 +226,5 @@ def _caustics_errors(scene) -> CausticsErrors:
     delta = {r: MARGIN * _evaluated(d[r], screen, traced) for r in CAUSTICS_OPTIONS}
     return CausticsErrors(MappingProxyType(delta), MappingProxyType({r: MARGIN * v for r, v in e_max.items()}), e0,
                           tuple(i + 1 for i in traced), time.perf_counter() - start, tuple(float(v) for v in screen),
-                          MappingProxyType({r: max(float(d[r][i]) for i in traced) for r in CAUSTICS_OPTIONS}))
+                          MappingProxyType({r: max(float(d[r][i]) for i in traced) for r in CAUSTICS_OPTIONS}),
+                          0 if folds else points[0])

@@ -16,7 +16,8 @@ measured after compilation (:mod:`wavephys.planner.measure`):
 * ``refine``: the extra of Fourier interpolation of a frame from a grid 2× coarser, by the fine n;
 * ``fresnel``, ``absorption``: seconds per million pixels of each form, in the compiled shading;
 * ``caustics``: one frame's floor irradiance by beam rasterization, by traced cells per side
-  (texels × refinement); ``caustics_jacobian``: by the Jacobian gather, by texels per side;
+  (texels × refinement); ``caustics_jacobian``: by the Jacobian gather, by the points it gathers a
+  side (texels × its supersampling, ``"by": "points"``; older files: by texels);
 * ``surface``: one output frame of each surface model other than the spectral step, by texels
   per side;
 * ``texture``: encoding a frame into each height texture format, seconds per million texels;
@@ -130,6 +131,9 @@ def check_calibration(cal, name: str = "calibration") -> dict:
         raise ValueError(f"{name}['surface'] must map each surface model to a table")
     for model, table in cal["surface"].items():
         _check_table(table, f"{name}['surface'][{model!r}]")
+    if "caustics_jacobian" in cal and cal["caustics_jacobian"].get("by", "texels") not in ("points", "texels"):
+        raise ValueError(f"{name}['caustics_jacobian']['by'] must be 'points' or 'texels' (what its sizes count), "
+                         f"got {cal['caustics_jacobian']['by']!r}")
     if "run_overhead" in cal:
         _check_seconds(cal["run_overhead"], f"{name}['run_overhead']")
     _check_seconds(cal["kappa"], f"{name}['kappa']")
@@ -242,9 +246,13 @@ def colour_cost(scene, fresnel: str, absorption: str, cal: dict | None = None) -
     return per_frame * scene.frames
 
 
-def caustics_cost(scene, refine, cal: dict | None = None) -> float:
+def caustics_cost(scene, refine, cal: dict | None = None, gather_points: int | None = None) -> float:
     """Predicted seconds of the floor irradiance of every output frame at tracing refinement
-    ``refine`` (0: off, free; ``"jacobian"``: the Jacobian gather; scenes without caustics: 0)."""
+    ``refine`` (0: off, free; ``"jacobian"``: the Jacobian gather; scenes without caustics: 0).
+    ``gather_points``: the points a side the gather takes on the scene's frames (texels × its
+    supersampling; :class:`~wavephys.planner.caustics.CausticsErrors`), which a table measured
+    ``by`` points is read at; without it, or with a table by texels (a calibration written before
+    2026-12-05), the scene's texels."""
     if not refine or not scene.caustics:
         return 0.0
     cal = cal or calibration()
@@ -252,7 +260,9 @@ def caustics_cost(scene, refine, cal: dict | None = None) -> float:
         if "caustics_jacobian" not in cal:
             raise ValueError("refine 'jacobian' needs the calibration's caustics_jacobian table "
                              "(python -m bench calibrate --only caustics_jacobian)")
-        return interpolate(cal["caustics_jacobian"], scene.texels) * scene.frames
+        table = cal["caustics_jacobian"]
+        side = gather_points if table.get("by") == "points" and gather_points else scene.texels
+        return interpolate(table, side) * scene.frames
     return interpolate(cal["caustics"], scene.texels * refine) * scene.frames
 
 

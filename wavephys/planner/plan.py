@@ -503,7 +503,7 @@ def cost_parts(ctx: PlanContext, choices: Choices) -> dict:
     heights.pop("total")
     heights["overhead"] = heights.pop("overhead")  # listed after the work
     return dict(heights, shading=colour_cost(scene, choices.fresnel, choices.absorption, cal),
-                caustics=caustics_cost(scene, choices.caustics, cal),
+                caustics=caustics_cost(scene, choices.caustics, cal, ctx.gather_points),
                 texture=texture_cost(scene, choices.texture, cal))
 
 
@@ -534,7 +534,7 @@ def _search(ctx: PlanContext, fits, fmt, colour_tolerance):
                 err = colour_total(ctx.colour, f, a, delta, e_max)
                 if not err <= colour_tolerance:
                     continue
-                cost = (cand.cost + colour_cost(scene, f, a, cal) + caustics_cost(scene, r, cal)
+                cost = (cand.cost + colour_cost(scene, f, a, cal) + caustics_cost(scene, r, cal, ctx.gather_points)
                         + texture_cost(scene, fmt, cal))
                 choices = replace(cand.choices, fresnel=f, absorption=a, caustics=r, texture=fmt)
                 key = (round(cost, 12), -choices.simpler())

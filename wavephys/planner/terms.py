@@ -99,6 +99,12 @@ class PlanContext:
         """The scene's modes (:func:`wavephys.planner.spectrum.scene_spectrum`)."""
         return scene_spectrum(self.scene)
 
+    @property
+    def gather_points(self) -> Optional[int]:
+        """The points a side the Jacobian gather takes on the scene's screened frames (what its cost
+        is read at; None without caustics)."""
+        return self.caustics.gather_points if self.caustics is not None else None
+
     @cached_property
     def by_choices(self) -> dict:
         return {c.choices: c for c in self.candidates}
@@ -564,7 +570,7 @@ class Caustics(PlanTerm):
         return CAUSTICS_OPTIONS if "caustics_jacobian" in cal else CAUSTICS_REFINE
 
     def cost(self, ctx, option) -> float:
-        return caustics_cost(ctx.scene, option, ctx.calibration)
+        return caustics_cost(ctx.scene, option, ctx.calibration, ctx.gather_points)
 
     def bound(self, ctx, option):
         if ctx.caustics is None:
