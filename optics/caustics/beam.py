@@ -27,7 +27,7 @@ from optics.caustics.common import (CELL, blur_121, clip_cells, land, prepare, s
 from optics.light.fresnel import N_WATER
 from wavephys.core.grid import Grid
 from wavephys.core.inputs import check_bool, check_choice, check_int
-from wavephys.core.sampling import rasterize_triangles
+from wavephys.core.sampling import TriangleSpread, rasterize_triangles
 from wavephys.core.spectral import central_gradient, spectral_gradient
 
 __all__ = ["floor_irradiance_beam"]
@@ -145,7 +145,7 @@ def floor_irradiance_beam(eta, grid: Grid, depth, sun=(0.0, 0.0, 1.0), *, resolu
         return _tank_irradiance(tank, refine, fresnel, normals, blur)
     tri_u, tri_v, flux, origin = beam_triangles(light, refine, fresnel, normals)
     m = light.resolution
-    return _irradiance(rasterize_triangles(tri_u, tri_v, flux, (m, m), origin), float(grid.length) / m, blur)
+    return _irradiance(deposit_light(tri_u, tri_v, flux, (m, m), origin), float(grid.length) / m, blur)
 
 
 def _tank_irradiance(tank, refine: int, fresnel: bool, normals: str, blur: bool):
@@ -154,9 +154,20 @@ def _tank_irradiance(tank, refine: int, fresnel: bool, normals: str, blur: bool)
     light = tank.light
     tri_u, tri_v, flux, origin = beam_triangles(light, refine, fresnel, normals, tank)
     big = light.resolution
-    out = _irradiance(rasterize_triangles(tri_u, tri_v, flux, (big, big), origin), float(light.grid.length) / big, False)
+    out = _irradiance(deposit_light(tri_u, tri_v, flux, (big, big), origin), float(light.grid.length) / big, False)
     out = out[:tank.m, :tank.m]
     return blur_121(out) if blur else out
+
+
+def deposit_light(tri_u, tri_v, flux, shape, origin):
+    """:func:`~wavephys.core.sampling.rasterize_triangles` of landed beams; light spread too wide to
+    rasterize is refused naming the inputs that spread it."""
+    try:
+        return rasterize_triangles(tri_u, tri_v, flux, shape, origin)
+    except TriangleSpread as exc:
+        raise ValueError(f"depth: the light of the surface's cells spreads too far on the floor to rasterize ({exc}): "
+                         "the floor lies too far below a surface this steep for a map this fine; use a shallower "
+                         "floor, a coarser resolution, or a smaller refine") from exc
 
 
 def beam_triangles(light, refine: int, fresnel: bool, normals: str = "spectral", tank=None):

@@ -16,7 +16,7 @@ from optics.light.directions import refract_components
 from optics.light.fresnel import MAX_INDEX, N_AIR, N_WATER, reflectance_exact
 from wavephys.core.grid import Grid
 from wavephys.core.inputs import (Array, Int, Real, _real_kind, check_array, check_bool, check_instance, check_int, check_scalar,
-                                  validate)
+                                  is_traced, validate)
 from wavephys.core.spectral import central_gradient
 
 __internal__ = True  # tooling for the library's own modules: not fuzzed as public API
@@ -25,6 +25,10 @@ __all__ = ["Lighting", "prepare", "surface_fields", "land", "blur_121", "bilater
 
 MAX_DEPTH = 1e4
 """Deepest floor, m: light lands within float32's digits of a floor texel below that."""
+
+MAX_COLUMN = 2 * MAX_DEPTH
+"""Farthest the surface may lie from the floor (above it, or below a flat floor that cuts the troughs),
+m: the deepest floor and as much again for the waves (a crest over a floor at MAX_DEPTH is answered)."""
 
 
 class Lighting(NamedTuple):
@@ -58,14 +62,16 @@ def prepare(eta, grid: Grid, depth, sun, resolution, n_water, fresnel, check_val
     else:
         check_scalar("depth", depth, lo=0.0, hi=MAX_DEPTH, lo_open=True)
         floor = float(depth)
-    shallowest, deepest = (float(v) for v in _water_column(jnp.asarray(eta, jnp.float32), floor))
-    if shallowest <= 0:
-        raise ValueError("depth (a ground height field) must lie below the water surface everywhere" if ground else
-                         f"eta must lie above the floor everywhere (eta > -depth = {-floor:g} m): its lowest sample "
-                         f"is {shallowest - floor:.4g} m")
-    if deepest > MAX_DEPTH:
-        raise ValueError(f"eta: the water above the floor is {deepest:.4g} m deep at its deepest, at most {MAX_DEPTH:g} m "
-                         f"(the depth's own limit: beyond it light lands outside float32's digits of a texel)")
+    if not is_traced((eta, floor)):  # values are checked where they are concrete (as check_array does)
+        finite, shallowest, deepest = (float(v) for v in _water_column(jnp.asarray(eta, jnp.float32), floor))
+        if not finite:
+            raise ValueError("eta must be finite everywhere; it contains NaN or inf")
+        if ground and shallowest <= 0:
+            raise ValueError("depth (a ground height field) must lie below the water surface everywhere")
+        if max(deepest, -shallowest) > MAX_COLUMN:  # (a flat floor may cut the troughs: the rays' lines still land)
+            raise ValueError(f"eta: the surface lies {max(deepest, -shallowest):.4g} m from the floor at the farthest, "
+                             f"at most {MAX_COLUMN:g} m (MAX_COLUMN: beyond it light lands outside float32's digits "
+                             "of a texel)")
     check_array("sun", sun, ndim=1, shape_tail=(3,))
     sun = np.asarray(sun, float)
     if not sun[2] > 0:
@@ -79,11 +85,12 @@ def prepare(eta, grid: Grid, depth, sun, resolution, n_water, fresnel, check_val
 
 @jax.jit
 def _water_column(eta, floor):
-    """The shallowest and the deepest water between the surface and the floor (a depth or a ground
-    height field), over the finite samples (NaN and inf are refused by name after this)."""
+    """Whether every sample is finite (1/0), and the shallowest and the deepest water between the
+    surface and the floor (a depth or a ground height field) over the finite samples."""
     column = eta + floor if jnp.ndim(floor) == 0 else eta - floor
     finite = jnp.isfinite(column)
-    return jnp.stack([jnp.min(jnp.where(finite, column, jnp.inf)), jnp.max(jnp.where(finite, column, -jnp.inf))])
+    return jnp.stack([jnp.all(finite).astype(column.dtype), jnp.min(jnp.where(finite, column, jnp.inf)),
+                      jnp.max(jnp.where(finite, column, -jnp.inf))])
 
 
 class Tank(NamedTuple):

@@ -62,7 +62,7 @@ from optics.caustics.common import land, prepare, shadow_steps, sunlit, walled_t
 from optics.light.fresnel import N_WATER
 from wavephys.core.grid import Grid
 from wavephys.core.inputs import check_bool, check_choice, check_int
-from wavephys.core.sampling import bspline, rasterize_triangles
+from wavephys.core.sampling import bspline
 from wavephys.core.spectral import bspline_coefficients, central_gradient, spectral_derivatives
 
 __all__ = ["floor_irradiance_jacobian", "CausticsFold", "SHARPNESS_LIMIT", "MIN_AREA_RATIO", "MAX_CONTRACTION", "MAX_KINK", "MAX_GAP",
@@ -426,7 +426,7 @@ def _beam_windows(light, fresnel, windows, refine: int = 3, tank=None):
     """The exact beam rasterization (refine ``refine``) of every triangle that can reach a texel
     of ``windows``: right on those texels, partial elsewhere (E/E0, (m, m)); in a ``tank`` (its
     extension's light), only the tank's cells carry light."""
-    from optics.caustics.beam import beam_triangles
+    from optics.caustics.beam import beam_triangles, deposit_light
 
     m, length = light.resolution, float(light.grid.length)
     tri_u, tri_v, flux, origin = beam_triangles(light, refine, fresnel, tank=tank)
@@ -438,7 +438,7 @@ def _beam_windows(light, fresnel, windows, refine: int = 3, tank=None):
     keep = jnp.asarray(np.arange(size) < index.size)
     index = jnp.asarray(np.pad(index, (0, size - index.size), constant_values=index[0]))
     pick = lambda a: jnp.take(a.reshape(a.shape[:-2] + (-1,)), index, axis=-1)
-    deposited = rasterize_triangles(pick(tri_u), pick(tri_v), jnp.where(keep, pick(flux), 0.0), (m, m),
+    deposited = deposit_light(pick(tri_u), pick(tri_v), jnp.where(keep, pick(flux), 0.0), (m, m),
                                     (pick(origin[0]), pick(origin[1])))
     return deposited / (length / m) ** 2
 

@@ -221,6 +221,7 @@ def test_waves_at_the_grid_scale_are_gathered_at_the_fields_resolution(kx, ky):
     assert _supersampling(SHARPNESS_LIMIT / 0.1 * 3, 0.1, "auto", 64, 128) == 4
 
 
+@pytest.mark.slow  # 18 s: the README's pytest must stay under 10 min on 2 cores (CI runs it)
 def test_past_the_fold_the_gathered_texels_take_the_grid_scale_waves_too():
     """The same ripples (weaker) on a swell that folds: the folded windows are the beam, and the
     rest is gathered at the fields' resolution, within 2e-4 of the peak (one point a texel:
@@ -271,7 +272,7 @@ def _walled_ground(grid, depth=1.0, rim=0.05, width=0.12):
     return (-depth + (depth - rim) * t * t * (3 - 2 * t)).astype(np.float32)
 
 
-@pytest.mark.parametrize("seed", [0, 1])
+@pytest.mark.parametrize("seed", [pytest.param(0, marks=pytest.mark.slow), 1])  # 0: 17 s, to the slow run
 def test_a_ground_height_field_is_landed_on_as_the_beam_does(seed):
     """A gently sloping, rippled ground below a generated sea: the gather alone, within 1 % of the reference."""
     grid = Grid(96, 3.0)
@@ -290,8 +291,8 @@ def test_a_ground_height_field_is_landed_on_as_the_beam_does(seed):
     assert info["answer"] == "gather" and error <= 0.01, (info, error)
 
 
-@pytest.mark.parametrize("elevation,azimuth", [pytest.param(90.0, 0.0, marks=pytest.mark.slow), (60.0, 30.0),
-                                               (55.0, 200.0)])
+@pytest.mark.parametrize("elevation,azimuth", [pytest.param(90.0, 0.0, marks=pytest.mark.slow),
+                                               pytest.param(60.0, 30.0, marks=pytest.mark.slow), (55.0, 200.0)])
 def test_the_walls_of_a_pool_go_to_the_beam_and_no_texel_is_wrong(elevation, azimuth):
     """Light either side of a steep wall's edge lands a metre apart: the map jumps between samples.
     The jump (and the spline's ringing around it) is left to the beam; every texel within 1 % of the
@@ -473,8 +474,8 @@ def _x64_case(i):
     return grid, eta, sun, kw, "windows" if i == 1 else "gather"
 
 
-@pytest.mark.parametrize("case", [0, pytest.param(1, marks=pytest.mark.slow), pytest.param(2, marks=pytest.mark.slow),
-                                  pytest.param(3, marks=pytest.mark.slow)])
+@pytest.mark.slow  # 7-16 s a case (each compiled in both modes)
+@pytest.mark.parametrize("case", [0, 1, 2, 3])
 def test_float64_mode_gives_the_float32_maps(case):
     """With ``jax_enable_x64`` on, the method runs (its mesh and spectral derivatives in eta's own
     dtype: before, the forward-mode derivatives refused the mixed dtypes) and answers float32 and

@@ -24,7 +24,7 @@ import numpy as np
 
 __internal__ = True  # tooling for the library's own modules (users call the Grid's methods)
 __all__ = ["texel_coordinates", "bilinear", "bspline", "cloud_in_cell", "array_module", "triangle_window",
-           "deposit_triangles", "rasterize_triangles"]
+           "deposit_triangles", "rasterize_triangles", "TriangleSpread"]
 
 MODES = ("wrap", "clamp")
 
@@ -202,8 +202,13 @@ def _shares(local, twice, w, K: int):
     # goes to the texel of its centroid
     cover = jnp.maximum(G[1:, 1:] - G[:-1, 1:] - G[1:, :-1] + G[:-1, :-1], 0.0)
     total = jnp.sum(cover, (0, 1))
-    own = jnp.maximum(jnp.maximum(jnp.maximum(x0, x1), x2), jnp.maximum(jnp.maximum(y0, y1), y2)) + 1.0
-    tiny = ~(total > 64 * float(jnp.finfo(jnp.result_type(twice)).eps) * own * own)  # its own span, not the window's
+    # the rounding of a corner area: ε × (how far the triangle lies in its window) × (its own span)
+    # (the window's area instead let a small triangle in a wide window round away whole)
+    high = lambda a, b, c: jnp.maximum(jnp.maximum(a, b), c)
+    low = lambda a, b, c: jnp.minimum(jnp.minimum(a, b), c)
+    reach = jnp.maximum(high(x0, x1, x2), high(y0, y1, y2)) + 1.0
+    span = jnp.maximum(high(x0, x1, x2) - low(x0, x1, x2), high(y0, y1, y2) - low(y0, y1, y2)) + 1.0
+    tiny = ~(total > 64 * float(jnp.finfo(jnp.result_type(twice)).eps) * reach * span)
     cx, cy = jnp.floor((x0 + x1 + x2) / 3.0), jnp.floor((y0 + y1 + y2) / 3.0)
     ii = jnp.arange(K).reshape((K, 1) + (1,) * twice.ndim)
     jj = jnp.arange(K).reshape((1, K) + (1,) * twice.ndim)
@@ -264,6 +269,10 @@ MAX_SHARES = 1 << 32
 CPU at 25–60 ns a share, measured): past it the work is refused before it starts."""
 
 
+class TriangleSpread(ValueError):
+    """The wide triangles of a rasterization would take more memory or work than it allows."""
+
+
 def _ladder(window):
     """The next power of two (at least 2): few programs, each reused across calls, at most 4 × the
     shares of the exact window."""
@@ -278,7 +287,7 @@ def _wide_passes(extent, chunk: int):
     the largest window or more than :data:`MAX_SHARES` shares in all."""
     windows = _ladder(np.floor(extent).astype(np.int64) + 2)
     if windows.size and windows[-1] ** 2 > PASS_SHARES:
-        raise ValueError(f"a group of triangles spans {float(extent[-1]):.4g} texels: at most "
+        raise TriangleSpread(f"a group of triangles spans {float(extent[-1]):.4g} texels: at most "
                          f"{math.isqrt(PASS_SHARES) - 2} (its window's shares are held in memory at once)")
     passes, start = [], 0
     while start < windows.size:
@@ -289,7 +298,7 @@ def _wide_passes(extent, chunk: int):
         start += count
     total = sum((1 << (count - 1).bit_length()) * window**2 for _, count, window in passes)
     if total > MAX_SHARES:
-        raise ValueError(f"the wide triangles cover {total:.3g} texel shares in all (window² × groups): at most "
+        raise TriangleSpread(f"the wide triangles cover {total:.3g} texel shares in all (window² × groups): at most "
                          f"{MAX_SHARES:.3g}, minutes of work on a 2-core CPU")
     return passes
 
@@ -314,10 +323,11 @@ def rasterize_triangles(u, v, values, shape: tuple[int, int], origin=None, chunk
     extent = _extents(u, v, w)
     if not bool(jnp.isfinite(jnp.max(extent))):
         raise ValueError("triangle vertices must be finite")
-    extent = np.asarray(extent)
-    wide = np.flatnonzero(extent >= _SMALL - 1)
-    wide = wide[np.argsort(extent[wide], kind="stable")]  # by extent: each pass's window fits its groups
-    passes = _wide_passes(extent[wide], chunk)
+    wide = np.flatnonzero(np.asarray(extent >= _SMALL - 1))
+    spans = np.asarray(extent[jnp.asarray(wide)]) if wide.size else np.zeros(0, np.float32)  # only theirs to the host
+    order = np.argsort(spans, kind="stable")  # by extent: each pass's window fits its groups
+    wide, spans = wide[order], spans[order]
+    passes = _wide_passes(spans, chunk)
     w_small = w.at[:, wide].set(0.0)
     out = jnp.zeros(shape, w.dtype)
     step = 1 << 22  # groups a pass (bounds the memory of the corner areas: about 1 GB)
