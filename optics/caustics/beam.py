@@ -165,9 +165,9 @@ def deposit_light(tri_u, tri_v, flux, shape, origin):
     try:
         return rasterize_triangles(tri_u, tri_v, flux, shape, origin)
     except TriangleSpread as exc:
-        raise ValueError(f"depth: the light of the surface's cells spreads too far on the floor to rasterize ({exc}): "
-                         "the floor lies too far below a surface this steep for a map this fine; use a shallower "
-                         "floor, a coarser resolution, or a smaller refine") from exc
+        raise ValueError(f"eta, depth: the light of the surface's cells spreads too far on the floor to rasterize "
+                         f"({exc}): the surface is too steep or too far above the floor for a map this fine; use "
+                         "gentler or lower waves, a shallower floor, a coarser resolution, or a smaller refine") from exc
 
 
 def beam_triangles(light, refine: int, fresnel: bool, normals: str = "spectral", tank=None):

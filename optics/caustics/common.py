@@ -68,6 +68,9 @@ def prepare(eta, grid: Grid, depth, sun, resolution, n_water, fresnel, check_val
             raise ValueError("eta must be finite everywhere; it contains NaN or inf")
         if ground and shallowest <= 0:
             raise ValueError("depth (a ground height field) must lie below the water surface everywhere")
+        if deepest <= 0:  # (a flat floor may cut the troughs, below)
+            raise ValueError(f"eta lies below the floor everywhere (its highest sample {deepest - floor:.4g} m, the floor "
+                             f"at -depth = {-floor:g} m): there is no water above the floor")
         if max(deepest, -shallowest) > MAX_COLUMN:  # (a flat floor may cut the troughs: the rays' lines still land)
             raise ValueError(f"eta: the surface lies {max(deepest, -shallowest):.4g} m from the floor at the farthest, "
                              f"at most {MAX_COLUMN:g} m (MAX_COLUMN: beyond it light lands outside float32's digits "

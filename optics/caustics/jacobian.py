@@ -439,7 +439,7 @@ def _beam_windows(light, fresnel, windows, refine: int = 3, tank=None):
     index = jnp.asarray(np.pad(index, (0, size - index.size), constant_values=index[0]))
     pick = lambda a: jnp.take(a.reshape(a.shape[:-2] + (-1,)), index, axis=-1)
     deposited = deposit_light(pick(tri_u), pick(tri_v), jnp.where(keep, pick(flux), 0.0), (m, m),
-                                    (pick(origin[0]), pick(origin[1])))
+                              (pick(origin[0]), pick(origin[1])))
     return deposited / (length / m) ** 2
 
 

@@ -182,33 +182,34 @@ def triangle_window(u, v, values=None) -> int:
 def _shares(local, twice, w, K: int):
     """Each triangle's value split over the K × K texels of its window, ``(K, K, ...)``.
 
-    Small windows evaluate the K² − 2K corner areas one by one (XLA fuses them into one
-    pass); large ones broadcast over the corners."""
+    The corner areas are taken in the triangle's own frame (shifted by the integer floor of its
+    lowest corner, exact), so their rounding is ε times its own size squared wherever it lies in
+    the window. Small windows evaluate the K² − 2K corner areas one by one (XLA fuses them into
+    one pass); large ones broadcast over the corners."""
     (x0, y0), (x1, y1), (x2, y2) = local
+    low = lambda a, b, c: jnp.minimum(jnp.minimum(a, b), c)
+    high = lambda a, b, c: jnp.maximum(jnp.maximum(a, b), c)
+    sx, sy = jnp.floor(low(x0, x1, x2)), jnp.floor(low(y0, y1, y2))
+    own = ((x0 - sx, y0 - sy), (x1 - sx, y1 - sy), (x2 - sx, y2 - sy))
     if K <= 3:
         corner = {}
         for i in range(K + 1):
             for j in range(K + 1):
                 corner[i, j] = (jnp.zeros_like(twice) if i == 0 or j == 0 else 0.5 * jnp.abs(twice) if i == K == j
-                                else _quadrant_area(local, float(i), float(j)))
+                                else _quadrant_area(own, i - sx, j - sy))
         G = jnp.stack([jnp.stack([corner[i, j] for j in range(K + 1)]) for i in range(K + 1)])
     else:
         lattice = jnp.arange(K + 1, dtype=twice.dtype)
-        X = lattice.reshape((K + 1, 1) + (1,) * twice.ndim)
-        Y = lattice.reshape((1, K + 1) + (1,) * twice.ndim)
-        G = _quadrant_area(tuple((a[None, None], b[None, None]) for a, b in local), X, Y)
+        X = lattice.reshape((K + 1, 1) + (1,) * twice.ndim) - sx[None, None]
+        Y = lattice.reshape((1, K + 1) + (1,) * twice.ndim) - sy[None, None]
+        G = _quadrant_area(tuple((a[None, None], b[None, None]) for a, b in own), X, Y)
     # never negative (rounding is clipped), then normalized: each value is conserved exactly,
-    # even for a sliver at a fold; a triangle of no area (below the rounding of its coverage)
-    # goes to the texel of its centroid
+    # even for a sliver at a fold; a triangle of no area (below the rounding of its coverage,
+    # ε × its own size², in its own frame) goes to the texel of its centroid
     cover = jnp.maximum(G[1:, 1:] - G[:-1, 1:] - G[1:, :-1] + G[:-1, :-1], 0.0)
     total = jnp.sum(cover, (0, 1))
-    # the rounding of a corner area: ε × (how far the triangle lies in its window) × (its own span)
-    # (the window's area instead let a small triangle in a wide window round away whole)
-    high = lambda a, b, c: jnp.maximum(jnp.maximum(a, b), c)
-    low = lambda a, b, c: jnp.minimum(jnp.minimum(a, b), c)
-    reach = jnp.maximum(high(x0, x1, x2), high(y0, y1, y2)) + 1.0
-    span = jnp.maximum(high(x0, x1, x2) - low(x0, x1, x2), high(y0, y1, y2) - low(y0, y1, y2)) + 1.0
-    tiny = ~(total > 64 * float(jnp.finfo(jnp.result_type(twice)).eps) * reach * span)
+    size = jnp.maximum(high(*(a for a, _ in own)), high(*(b for _, b in own))) + 1.0
+    tiny = ~(total > 64 * float(jnp.finfo(jnp.result_type(twice)).eps) * size * size)
     cx, cy = jnp.floor((x0 + x1 + x2) / 3.0), jnp.floor((y0 + y1 + y2) / 3.0)
     ii = jnp.arange(K).reshape((K, 1) + (1,) * twice.ndim)
     jj = jnp.arange(K).reshape((1, K) + (1,) * twice.ndim)
