@@ -359,11 +359,12 @@ def test_the_plan_reads_the_gathers_cost_where_its_screen_gathered():
     points = caustics_errors(scene).gather_points
     assert points in {scene.texels * s for s in (2, 4, 8)}, points
     from wavephys.planner.plan import _context, cost_parts
+    from wavephys.planner.terms import TERMS as REGISTRY  # (model.TERMS is the names alone)
 
     ctx = _context(scene, calibration())
     expected = caustics_cost(scene, "jacobian", calibration(), points)
     assert expected > 1.5 * caustics_cost(scene, "jacobian", calibration(), scene.texels)
-    assert TERMS["caustics"].cost(ctx, "jacobian") == pytest.approx(expected)
+    assert REGISTRY["caustics"].cost(ctx, "jacobian") == pytest.approx(expected)
     assert cost_parts(ctx, replace(ctx.full.choices, caustics="jacobian"))["caustics"] == pytest.approx(expected)
 
 
