@@ -41,7 +41,8 @@ from wavephys.core.sampling import array_module
 
 __all__ = ["N_AIR", "N_WATER", "normal_reflectance", "reflectance_sp", "reflectance_exact", "reflectance_schlick",
            "reflectance_jensen_golias", "reflectance_loviscach", "reflectance_lut", "REFLECTANCE_METHODS",
-           "reflectance", "fresnel_lut", "approximation_errors", "sun_glint", "water_refractive_index"]
+           "reflectance", "fresnel_lut", "approximation_errors", "sun_glint", "water_refractive_index",
+           "water_refractive_index_quan_fry", "WATER_CONDITIONS", "IndexRange", "water_index_range"]
 
 N_AIR = 1.000293
 """Refractive index of air (docs/physics.md)."""
@@ -412,3 +413,142 @@ def water_refractive_index(wavelength_nm, temperature_k: float = 293.15):
 
     return np.asarray(light_water_refractive_index_Schiebener1990(np.asarray(wavelength_nm, float),
                                                                     temperature_k))
+
+
+def water_refractive_index_quan_fry(wavelength_nm, temperature_c=20.0, salinity=0.0):
+    r"""Refractive index of fresh or sea water relative to air (Quan & Fry 1995).
+
+    .. math::
+
+        n = n_0 + (n_1 + n_2 T + n_3 T^2) S + n_4 T^2 + \frac{n_5 + n_6 S + n_7 T}{\lambda}
+            + \frac{n_8}{\lambda^2} + \frac{n_9}{\lambda^3}
+
+    with n₀ = 1.31405, n₁ = 1.779e-4, n₂ = −1.05e-6, n₃ = 1.6e-8, n₄ = −2.02e-6, n₅ = 15.868,
+    n₆ = 0.01155, n₇ = −0.00423, n₈ = −4382, n₉ = 1.1455e6 (λ in nm, T in °C, S in ‰). A fit to
+    the measurements Austin & Halikas (1976) selected, within their error; the index is relative
+    to air at standard pressure (the absolute index is n × 1.000293 at sea level).
+
+    Parameters
+    ----------
+    wavelength_nm : array_like
+        Wavelength in air, nm, in [400, 700] (the fit's range).
+    temperature_c : array_like, optional
+        Water temperature, °C, in [0, 30] (default 20).
+    salinity : array_like, optional
+        Salinity, ‰ (g/kg), in [0, 35]: 0 fresh water, 35 the mean ocean (default 0).
+
+    Returns
+    -------
+    numpy.ndarray
+        n relative to air, dimensionless (1.329–1.352 over the ranges above), the broadcast shape
+        of the arguments.
+
+    References
+    ----------
+    X. Quan & E. S. Fry (1995). Empirical equation for the index of refraction of seawater.
+    *Applied Optics* 34(18), 3477–3480.
+
+    Examples
+    --------
+    >>> round(float(water_refractive_index_quan_fry(589.0, 20.0, 0.0)), 4)   # sodium D line, fresh
+    1.333
+    """
+    check_array("wavelength_nm", wavelength_nm, lo=400.0, hi=700.0)
+    check_array("temperature_c", temperature_c, lo=0.0, hi=30.0)
+    check_array("salinity", salinity, lo=0.0, hi=35.0)
+    lam = np.asarray(wavelength_nm, np.float64)
+    t = np.asarray(temperature_c, np.float64)
+    s = np.asarray(salinity, np.float64)
+    return (1.31405 + (1.779e-4 - 1.05e-6 * t + 1.6e-8 * t * t) * s - 2.02e-6 * t * t
+            + (15.868 + 0.01155 * s - 0.00423 * t) / lam - 4382.0 / lam ** 2 + 1.1455e6 / lam ** 3)
+
+
+WATER_CONDITIONS = dict(wavelength_nm=(400.0, 700.0), temperature_c=(0.0, 30.0), salinity=(0.0, 35.0),
+                        n_air=(1.0, N_AIR))
+"""The conditions under which water is still "water" for a check of a user's code: the visible
+spectrum, 0–30 °C, fresh or sea water, and air as 1 (what real-time code writes) or 1.000293."""
+
+
+class IndexRange:
+    """A range of relative refractive indices m = n_water / n_air (water seen from air).
+
+    Parameters
+    ----------
+    low, high : float
+        The smallest and largest m, > 1.
+
+    Attributes
+    ----------
+    low, high : float
+        The range of m.
+    eta : (float, float)
+        The range of n1/n2 from the air side, 1/high to 1/low.
+    f0 : (float, float)
+        The range of the normal-incidence reflectance ((m − 1)/(m + 1))².
+    """
+
+    def __init__(self, low: float, high: float):
+        if not 1.0 < low <= high:
+            raise ValueError(f"low and high must satisfy 1 < low <= high, got {low} and {high}")
+        self.low, self.high = float(low), float(high)
+
+    @property
+    def eta(self) -> tuple:
+        return (1.0 / self.high, 1.0 / self.low)
+
+    @property
+    def f0(self) -> tuple:
+        return (((self.low - 1) / (self.low + 1)) ** 2, ((self.high - 1) / (self.high + 1)) ** 2)
+
+    def __contains__(self, m) -> bool:
+        return self.low <= float(m) <= self.high
+
+    def f0_contains(self, f0) -> bool:
+        """Whether a normal-incidence reflectance belongs to the range."""
+        lo, hi = self.f0
+        return lo <= float(f0) <= hi
+
+    def __repr__(self) -> str:
+        return (f"IndexRange(m {self.low:.4f}–{self.high:.4f}; n1/n2 from air {self.eta[0]:.4f}–{self.eta[1]:.4f}; "
+                f"f0 {self.f0[0]:.5f}–{self.f0[1]:.5f})")
+
+
+def water_index_range(**conditions) -> IndexRange:
+    """Every relative index m = n_water/n_air that water has under :data:`WATER_CONDITIONS`.
+
+    Evaluates :func:`water_refractive_index_quan_fry` (relative to real air) over the
+    wavelength, temperature and salinity ranges; code that takes air as 1 with water's
+    absolute index has m larger by the factor 1.000293, so both readings of air are in.
+
+    Parameters
+    ----------
+    **conditions
+        Narrower ranges than :data:`WATER_CONDITIONS`, as (low, high) pairs under the same
+        names (``temperature_c=(15, 25)``, ``salinity=(0, 0)`` for fresh water only, ``n_air=(1.0, 1.0)``).
+
+    Returns
+    -------
+    IndexRange
+        m 1.3291–1.3519 over the default conditions (n1/n2 from air 0.7397–0.7524, f0
+        0.01997–0.02239), the bounds of SPEC §2.7 before rounding.
+
+    Examples
+    --------
+    >>> water_index_range()
+    IndexRange(m 1.3291–1.3519; n1/n2 from air 0.7397–0.7524; f0 0.01997–0.02238)
+    """
+    unknown = sorted(set(conditions) - set(WATER_CONDITIONS))
+    if unknown:
+        raise ValueError(f"{unknown} are not conditions of water_index_range; they are {sorted(WATER_CONDITIONS)}")
+    box = dict(WATER_CONDITIONS, **conditions)
+    for name, (lo, hi) in box.items():
+        full = WATER_CONDITIONS[name]
+        if not (full[0] <= lo <= hi <= full[1]):
+            raise ValueError(f"{name} must be a range (low, high) within {full}, got {(lo, hi)}")
+    lam = np.linspace(*box["wavelength_nm"], 61)[:, None, None]
+    t = np.linspace(*box["temperature_c"], 31)[None, :, None]
+    s = np.linspace(*box["salinity"], 8)[None, None, :]
+    n = water_refractive_index_quan_fry(lam, t, s)  # relative to real air
+    air = box["n_air"]
+    # a program that takes air as n_air holds water at its absolute index n × N_AIR: m = n × N_AIR / n_air
+    return IndexRange(float(n.min()) * N_AIR / air[1], float(n.max()) * N_AIR / air[0])

@@ -28,5 +28,8 @@ check runs from pytest (``wavephys_check.glsl``) and from ``wavephys check --gls
 from optics.shaders.check import ShaderReport, check_glsl, describe_check
 from optics.shaders.checks import ROLES, SHADER_CHECKS
 from optics.shaders.glsl import GLSLError
+from optics.shaders.hlsl import TRANSLATOR_PACKAGES, TranslatorMissing
+from optics.shaders.source import LANGUAGES
 
-__all__ = ["check_glsl", "ShaderReport", "SHADER_CHECKS", "ROLES", "GLSLError", "describe_check"]
+__all__ = ["check_glsl", "ShaderReport", "SHADER_CHECKS", "ROLES", "GLSLError", "describe_check", "TranslatorMissing",
+           "TRANSLATOR_PACKAGES", "LANGUAGES"]

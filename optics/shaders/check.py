@@ -1,51 +1,68 @@
-"""Check a user's GLSL function against the physics: :func:`check_glsl` and its :class:`ShaderReport`."""
+"""Check a user's shader function against the physics: :func:`check_glsl` and its :class:`ShaderReport`."""
 
 from __future__ import annotations
 
+import inspect
 import math
 import time
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 
 import numpy as np
 
 from wavephys.core.inputs import check_instance, check_scalar, describe
 
-from optics.shaders.checks import ROLES, SHADER_CHECKS, _finite_cause
-from optics.shaders.glsl import GLSLError, evaluate, find_function
+from optics.shaders.checks import ROLES, SHADER_CHECKS, SIDE_ROLES, finite_cause
+from optics.shaders.glsl import GLSLError, declarations, evaluate
+from optics.shaders.models import best_correct, explain
+from optics.shaders.roles import infer_takes, is_constant, role_type
+from optics.shaders.source import LANGUAGES, detect_language, prepare
 
 __all__ = ["ShaderReport", "check_glsl", "describe_check"]
 
 
 @dataclass(frozen=True)
 class ShaderReport:
-    """The verdict on one GLSL function.
+    """The verdict on one shader function.
 
     Attributes
     ----------
     against : str
         The check (a name in :data:`~optics.shaders.SHADER_CHECKS`).
     function : str
-        The checked declaration, as GLSL.
+        The checked declaration, as written (HLSL parameters with GLSL types).
     takes : tuple of str
-        The role of each parameter (:data:`~optics.shaders.ROLES`).
+        The role of each value-taking parameter (:data:`~optics.shaders.ROLES`).
+    quantity : str
+        What ``error`` measures.
     error : float
-        The worst error over the domain (NaN if the function returned NaN or inf); the
-        quantity is ``quantity``.
+        The worst error over the domain of the best correct form with constants the physics allows (NaN if the
+        function returned NaN or inf).
     tolerance : float
         The largest error allowed.
     worst : dict
-        The input at the worst error: each role's value and the domain's coordinates
-        (angle, side, distance, …), with the value the function returned and the one expected.
+        The input at the worst error: each role's value and the domain's coordinates (angle, side, distance, …),
+        with the value the function returned and the one expected.
     cause : str
-        A one-line cause when the error matches a known mistake, else "".
+        On failure, the cause in words when a model explains the output, else "".
     note : str
         What the domain covered.
     samples : int
         How many inputs were evaluated.
     seconds : float
-        Wall time of the check (compile, evaluate, compare).
+        Wall time of the check (translate, compile, evaluate, fit).
     renderer : str
         The OpenGL renderer that ran the function (``llvmpipe …`` or a GPU).
+    fitted : str
+        What the function computes, as fitted: the form and its constants per side or channel
+        ("above: Schlick's approximation, F0 = 0.0200 (m = 1.3300)").
+    tolerance_note : str
+        How the tolerance was set.
+    notes : tuple of str
+        How the function was read: the language, roles read from names, the side it is checked from.
+    language : str
+        The language it was read as (:data:`~optics.shaders.source.LANGUAGES`).
+    result : str
+        Where the result came from: ``"return"`` or an out parameter's name.
     """
 
     against: str
@@ -60,6 +77,11 @@ class ShaderReport:
     samples: int
     seconds: float
     renderer: str
+    fitted: str = ""
+    tolerance_note: str = ""
+    notes: tuple = ()
+    language: str = "glsl"
+    result: str = "return"
     _errors: np.ndarray = field(repr=False, compare=False, default=None)
     _axis: tuple = field(repr=False, compare=False, default=None)
     _groups: np.ndarray = field(repr=False, compare=False, default=None)
@@ -73,16 +95,22 @@ class ShaderReport:
         """The verdict as a :class:`wavephys.harness.Check` row (worst error ≤ tolerance)."""
         from wavephys.harness.checks import bound
 
-        note = self.note + (f"; likely cause: {self.cause}" if self.cause else "")
+        note = "; ".join(x for x in (self.note, self.fitted, self.tolerance_note) if x)
+        note += f"; likely cause: {self.cause}" if self.cause else ""
         return bound(f"{self.function} against {self.against}: worst {self.quantity}", self.error, self.tolerance,
                      note=note)
 
     def report(self) -> str:
-        """A few lines: the verdict, the worst input, the cause."""
+        """A few lines: the verdict, the worst input, what the function computes, the cause."""
         where = ", ".join(f"{k} = {_show(v)}" for k, v in self.worst.items())
         lines = [f"{self.function} against {self.against}: {'ok' if self.ok else 'FAILED'}: worst {self.quantity} "
                  f"{self.error:.4g} (tolerance {self.tolerance:.3g}) over {self.samples} inputs",
                  f"  worst at {where}", f"  domain: {self.note}"]
+        if self.fitted:
+            lines.append(f"  fitted: {self.fitted}")
+        if self.tolerance_note:
+            lines.append(f"  {self.tolerance_note}")
+        lines += [f"  read: {n}" for n in self.notes]
         if self.cause and not self.ok:
             lines.append(f"  likely cause: {self.cause}")
         return "\n".join(lines)
@@ -92,7 +120,9 @@ class ShaderReport:
         return dict(against=self.against, function=self.function, takes=list(self.takes), quantity=self.quantity,
                     ok=self.ok, error=self.error if math.isfinite(self.error) else None, tolerance=self.tolerance,
                     worst={k: _plain(v) for k, v in self.worst.items()}, cause=self.cause, note=self.note,
-                    samples=self.samples, seconds=self.seconds, renderer=self.renderer)
+                    fitted=self.fitted, tolerance_note=self.tolerance_note, notes=list(self.notes),
+                    language=self.language, result=self.result, samples=self.samples, seconds=self.seconds,
+                    renderer=self.renderer)
 
     def chart(self, path):
         """Draw the error over the domain (one line per side or group, the tolerance dashed) to a PNG."""
@@ -134,77 +164,143 @@ def _show(v):
     return f"{p:.5g}" if isinstance(p, float) else p
 
 
+def _number(t):
+    if isinstance(t, str):
+        try:
+            value = float(t)
+        except ValueError:
+            return t
+        return value if math.isfinite(value) else t
+    return float(t) if is_constant(t) else t
+
+
 def _check_takes(check, takes, name="takes"):
-    if takes is None:
-        return check.takes
     if isinstance(takes, str):
         takes = tuple(t.strip() for t in takes.split(",") if t.strip())
-    if not isinstance(takes, (tuple, list)) or not all(isinstance(t, str) for t in takes):
-        raise TypeError(f"{name} must be a sequence of role names, got {describe(takes)}")
-    unknown = [t for t in takes if t not in check.roles]
+    if not isinstance(takes, (tuple, list)) or not all(isinstance(t, str) or is_constant(t) for t in takes):
+        raise TypeError(f"{name} must be a sequence of role names (or numbers for parameters held fixed), got "
+                        f"{describe(takes)}")
+    takes = tuple(_number(t) for t in takes)
+    unknown = [t for t in takes if not is_constant(t) and t not in check.roles]
     if unknown:
         roles = "; ".join(f"{r} ({ROLES[r][0]}: {ROLES[r][1]})" for r in check.roles)
         raise ValueError(f"{name}: {unknown} are not roles the {check.name!r} check can feed; its roles: {roles}")
     return tuple(takes)
 
 
-def _declaration(check, source, function, takes, returns):
-    types = tuple(ROLES[t][0] for t in takes)
-    try:
-        decl = find_function(source, function, types)
-    except GLSLError as exc:
-        if "does not take" not in str(exc):
-            raise
-        raise GLSLError(f"{exc}: say what each parameter is with takes=(...), roles of {check.name!r}: "
-                        + ", ".join(f"{r} ({ROLES[r][0]})" for r in check.roles)) from None
-    if returns is not None and decl.returns != returns:
-        raise GLSLError(f"returns: {decl.signature()} returns {decl.returns}, not {returns}")
-    if decl.returns not in check.returns:
-        raise GLSLError(f"function: {decl.signature()} returns {decl.returns}; the {check.name!r} check needs "
+def _declaration(check, code, function, takes):
+    """The overload of ``function`` to check and its roles: the one whose types ``takes`` gives, or whose
+    parameter names say their roles."""
+    named = [d for d in declarations(code) if d.name == function]
+    if not named:
+        from optics.shaders.glsl import find_function
+
+        find_function(code, function)  # raises, listing what is defined
+    if takes is not None:
+        types = tuple(role_type(t) for t in takes)
+        for d in named:
+            if d.types == types:
+                return d, takes, ""
+        have = "; ".join(d.signature() for d in named)
+        raise GLSLError(f"function: {have} does not take ({', '.join(types)}) as takes says: roles of "
+                        f"{check.name!r}: " + ", ".join(f"{r} ({ROLES[r][0]})" for r in check.roles))
+    problem = None
+    for d in named:
+        try:
+            found, how = infer_takes(check, d)
+            return d, found, how
+        except GLSLError as exc:
+            problem = exc
+    raise problem
+
+
+def _result(check, decl, result, returns):
+    result = decl.default_result() if result is None else result
+    if not isinstance(result, str) or result not in decl.outputs:
+        raise GLSLError(f"result: {decl.signature()} has no result {result!r}; its results: "
+                        f"{', '.join(decl.outputs) or 'none'}")
+    kind = decl.result_type(result)
+    if returns is not None and kind != returns:
+        raise GLSLError(f"returns: {decl.signature()} gives {kind} ({result}), not {returns}")
+    if kind not in check.returns:
+        raise GLSLError(f"function: {decl.signature()} gives {kind} ({result}); the {check.name!r} check needs "
                         f"{' or '.join(check.returns)}")
-    return decl
+    return result
 
 
-def _cause(check, values, domain, expected, errors, tolerance):
-    """The first recognized cause: the check's early test, NaN, a matching alternative, the late test."""
-    cause = check.early(values, domain, errors) or _finite_cause(values, domain)
-    if cause:
-        return cause
-    worst = float(np.max(errors))
-    for text, answer in domain.alternatives:
-        alt = check.error(values, np.asarray(answer, np.float64)[:, :values.shape[1]], domain)
-        if np.max(alt) <= max(2.0 * tolerance, 0.2 * worst) and np.max(alt) < 0.5 * worst:
-            return text
-    return check.late(values, domain, errors)
+def _side_options(check, takes, front_facing, options, notes):
+    """A Fresnel or refraction function that takes nothing telling the side is checked from the air; one that
+    takes no normal assumes flat water."""
+    if not check.sided:
+        return
+    vectors = {"incident", "view"} & set(takes)
+    knows = bool({"n1", "n2", "eta", "front_facing"} & set(takes)) or front_facing or (
+        "normal" in takes and vectors)
+    if "sides" not in options and not knows and check.name != "reflect":
+        options["sides"] = ("above",)
+        notes.append("checked from the air only: the function takes nothing that tells the side the ray comes from "
+                     f"({', '.join(r for r in SIDE_ROLES if r != 'cos_theta_t')} or gl_FrontFacing); pass "
+                     "sides=('above', 'below') to check it from the water too")
+    if vectors and not {"normal", "facing_normal"} & set(takes) and "tilt" not in options:
+        options["tilt"] = 0.0
+        notes.append("flat water: the function takes no normal, so the surface's normal is up")
 
 
-def check_glsl(source, function: str, against: str, *, takes=None, returns: str | None = None,
-               uniforms: dict | None = None, tolerance: float | None = None, chart=None, **options) -> ShaderReport:
-    """Run a GLSL function over its whole input domain and compare it with the physics.
+def _read(source, function, language, defines, include_dirs):
+    """(prepared GLSL, the user's declarations' source text, the translation or None)."""
+    if not isinstance(language, str) or language not in LANGUAGES:
+        raise ValueError(f"language must be one of {LANGUAGES}, got {language!r}")
+    read_as = detect_language(source) if language == "auto" else language
+    if read_as == "hlsl":
+        from optics.shaders.hlsl import translate
+
+        tr = translate(source, function, defines=defines, include_dirs=include_dirs)
+        return tr.prepared, tr, read_as
+    prepared = prepare(source, read_as, defines=defines, include_dirs=include_dirs)
+    return prepared, None, read_as
+
+
+def check_glsl(source, function: str, against: str, *, takes=None, result=None, returns: str | None = None,
+               uniforms: dict | None = None, tolerance: float | None = None, language: str = "auto", defines=None,
+               include_dirs=(), chart=None, **options) -> ShaderReport:
+    """Run a shader function over its whole input domain and compare it with the physics.
 
     Parameters
     ----------
     source : str
-        GLSL defining ``function`` (and anything it calls); a ``#version`` line is ignored,
-        line numbers in driver messages are those of ``source``.
+        The shader source defining ``function`` (and anything it calls), as shipped: GLSL, GLSL ES, WebGL,
+        Shadertoy, a Godot shader file or HLSL (``language``). A ``#version`` line is ignored; line numbers in
+        messages are those of ``source``.
     function : str
         The function's name.
     against : str
-        The check: a name in :data:`~optics.shaders.SHADER_CHECKS` ("fresnel", "refract",
-        "reflect", "transmittance", "rgb_absorption", "normal_decode", "height_normal").
+        The check: a name in :data:`~optics.shaders.SHADER_CHECKS` ("fresnel", "refract", "reflect",
+        "transmittance", "rgb_absorption", "normal_decode", "height_normal").
     takes : sequence of str, optional
-        The role of each parameter, in order (:data:`~optics.shaders.ROLES`; default: the
-        check's own, e.g. ``("cos_theta", "n1", "n2")`` for "fresnel").
+        The role of each value-taking parameter (in, inout), in order (:data:`~optics.shaders.ROLES`). Default:
+        the check's own when the types match, else read from the parameters' names (``cosTheta``, ``F0``,
+        ``I``, ``N``, ``eta`` …); a name it cannot place is refused by name.
+    result : str, optional
+        Where the result is: ``"return"`` or an out/inout parameter (default: the return value, or a void
+        function's only out parameter).
     returns : str, optional
-        The return type you expect ("float", "vec3"): refused if the declaration differs.
+        The result type you expect ("float", "vec3"): refused if the declaration differs.
     uniforms : dict, optional
-        Values for ``uniform`` variables the function reads (name → number or tuple).
+        Values for uniforms the function reads (name → number or tuple; HLSL globals by their names).
     tolerance : float, optional
-        The largest error allowed (default: the check's, see :mod:`optics.shaders.checks`).
+        The largest error allowed (default: the check's, from physics and the display; see the report's
+        ``tolerance_note``).
+    language : str, optional
+        "auto" (default: told from the text), "glsl", "glsl_es", "webgl", "shadertoy", "godot" or "hlsl".
+    defines : dict or list of str, optional
+        Macros the source relies on (an engine's), defined before it.
+    include_dirs : sequence of path, optional
+        Folders for ``#include``.
     chart : path, optional
         Also draw the error over the domain to this PNG.
     **options
-        The check's domain options (``form="schlick"``, ``sides=("above",)``, ``convention="directx"``, …).
+        The check's domain options (``form="schlick"``, ``sides=("above",)``, ``convention="directx"``,
+        ``bits=10``, ``radiance=4``, ``up="y"`` …; :func:`describe_check` lists them).
 
     Returns
     -------
@@ -213,48 +309,207 @@ def check_glsl(source, function: str, against: str, *, takes=None, returns: str 
     Raises
     ------
     GLSLError
-        The function is not defined, takes other types than ``takes`` say, returns a type the
-        check cannot use, or the source does not compile (the driver's message).
+        The function is not defined, takes other types than ``takes`` say, has parameters whose roles cannot
+        be read, gives a type the check cannot use, or the source does not compile (the driver's or glslang's
+        message with your line numbers, and a missing macro or include named).
+    TranslatorMissing
+        HLSL was given and glslangValidator or spirv-cross is not installed.
 
     Examples
     --------
-    >>> source = "float f(float c) { return 0.02 + 0.98 * pow(1.0 - c, 5.0); }"   # doctest: +SKIP
-    >>> report = check_glsl(source, "f", "fresnel", form="schlick")              # doctest: +SKIP
-    >>> report.ok, report.cause                                                  # doctest: +SKIP
+    >>> source = "float f(float cosTheta) { return 0.02 + 0.98 * pow(1.0 - cosTheta, 5.0); }"   # doctest: +SKIP
+    >>> check_glsl(source, "f", "fresnel").ok                                                   # doctest: +SKIP
+    True
     """
     start = time.perf_counter()
     check = _check_against(against)
     if not isinstance(source, str):
-        raise TypeError(f"source must be GLSL text (str), got {describe(source)}")
-    takes = _check_takes(check, takes)
+        raise TypeError(f"source must be shader text (str), got {describe(source)}")
+    if not isinstance(function, str):
+        raise TypeError(f"function must be the name of a function (str), got {describe(function)}")
+    takes = None if takes is None else _check_takes(check, takes)
     if uniforms is not None:
         check_instance("uniforms", uniforms, dict)
     if chart is not None:
         from wavephys.core.files import output_file
 
         output_file(chart, "chart", (".png",))
-    decl = _declaration(check, source, function, takes, returns)
     if tolerance is not None:
         check_scalar("tolerance", tolerance, lo=0.0, lo_open=True)
         options["tolerance"] = tolerance
-    domain = _domain(check, options)
-    values = evaluate(source, decl, [domain.inputs[t] for t in takes], uniforms).astype(np.float64)
-    expected = domain.expected[:, :values.shape[1]]
-    errors = check.error(values, expected, domain)
-    errors = np.where(np.isfinite(errors), errors, np.inf)
+    _check_options(check, options)
+    prepared, translated, language = _read(source, function, language, defines, include_dirs)
+    user_code = source if translated is not None else prepared.text
+    decl, takes, how = _declaration(check, user_code, function, takes) if translated is None else \
+        _translated_declaration(check, translated, takes)
+    result = _result(check, decl, result, returns)
+    notes = [n for n in (*prepared.notes, how) if n]
+    _side_options(check, takes, prepared.front_facing, options, notes)
+    domain = _domain(check, options, takes)
+    inputs = [np.full((domain.size, 1), t) if is_constant(t) else domain.inputs[t] for t in takes]
+    glsl_decl = decl if translated is None else translated.glsl
+    if translated is not None:
+        inputs = [inputs[i] for i in translated.order]
+        uniforms = {translated.uniforms.get(k, k): v for k, v in (uniforms or {}).items()}
+    values = evaluate(prepared, glsl_decl, inputs, uniforms, result=result,
+                      front_facing=domain.front_facing if prepared.front_facing else None).astype(np.float64)
+    return _judge(check, domain, values, decl, takes, result, language, notes, start, chart)
+
+
+def _translated_declaration(check, translated, takes):
+    decl = translated.declaration
+    if takes is not None:
+        types = tuple(role_type(t) for t in takes)
+        if decl.types != types:
+            raise GLSLError(f"function: {decl.signature()} does not take ({', '.join(types)}) as takes says")
+        return decl, takes, ""
+    found, how = infer_takes(check, decl)
+    return decl, found, how
+
+
+def _per_channel(domain, values):
+    """A colour result of a scalar check: each channel its own group of rows (fitted alone)."""
+    c = values.shape[1]
+    names = "RGBA"[:c]
+
+    def tile(answer):
+        if isinstance(answer, tuple):
+            return tuple(np.tile(np.asarray(a)[:, :1], (c, 1)) for a in answer)
+        return np.tile(np.asarray(answer)[:, :1], (c, 1))
+
+    def wrap(models):
+        return [replace(m, answer=lambda v, a=m.answer: tile(a(v))) for m in models]
+
+    groups = np.concatenate([np.char.add(domain.groups.astype(str), f" {ch}") for ch in names])
+    context = {k: np.tile(np.asarray(v), c) for k, v in domain.context.items()}
+    context["channel"] = np.repeat(np.array(list(names)), len(values))
+    extra = {k: (np.tile(v, c) if isinstance(v, np.ndarray) and v.shape[:1] == (len(values),) else v)
+             for k, v in domain.extra.items()}
+    axis = (domain.axis[0], np.tile(domain.axis[1], c))
+    flat = values.T.reshape(-1, 1)
+    return replace(domain, groups=groups, context=context, correct=wrap(domain.correct), faults=wrap(domain.faults),
+                   extra=extra, axis=axis), flat
+
+
+def _judge(check, domain, values, decl, takes, result, language, notes, start, chart):
+    """The verdict: the best correct model within the physical ranges; on failure, the cause."""
+    rows = len(values)
+    if check.per_channel and values.shape[1] > 1:
+        if np.array_equal(values, np.repeat(values[:, :1], values.shape[1], axis=1), equal_nan=True):
+            values = values[:, :1]
+            notes.append("its colour result has equal channels: checked as one")
+        else:
+            domain, values = _per_channel(domain, values)
+    fits, errors = best_correct(domain.correct, values, check.error, domain.groups)
     i = int(np.argmax(errors))
-    worst = {t: domain.inputs[t][i] for t in takes if not hasattr(domain.inputs[t], "wrap")}
-    worst.update({k: v[i] for k, v in domain.context.items()})
-    worst.update(returned=values[i], expected=expected[i])
     error = float(errors[i]) if math.isfinite(errors[i]) else math.nan
+    fit = fits[domain.groups[i]]
+    expected = _expected_row(fit, values, check.error, i)
+    worst = {t: domain.inputs[t][i % rows] for t in takes if not is_constant(t) and not hasattr(domain.inputs[t],
+                                                                                                   "wrap")}
+    worst.update({k: v[i] for k, v in domain.context.items()})
+    worst.update(returned=values[i], expected=expected)
     ok = math.isfinite(error) and error <= domain.tolerance
-    cause = "" if ok else _cause(check, values, domain, expected, errors, domain.tolerance)
-    report = ShaderReport(check.name, decl.signature(), takes, check.quantity, error, domain.tolerance, worst, cause,
-                          domain.note, len(values), time.perf_counter() - start, _renderer(), errors,
-                          domain.axis, domain.groups)
+    extra = dict(domain.extra, expected=_expected_all(fits, domain, values, check.error))
+    judged = replace(domain, extra=extra)
+    cause = "" if ok else _cause(check, judged, values, errors, error, fits)
+    report = ShaderReport(check.name, decl.signature(), tuple(takes), check.quantity, error, domain.tolerance, worst,
+                          cause, domain.note, rows, time.perf_counter() - start, _renderer(), _fitted(fits, domain.tolerance),
+                          domain.tolerance_note, tuple(notes), language, result, errors, domain.axis, domain.groups)
     if chart is not None:
         report.chart(chart)
     return report
+
+
+def _expected_row(fit, values, error, i):
+    answer = fit.model.answer(fit.values)
+    options = answer if isinstance(answer, tuple) else (answer,)
+    rows = [np.asarray(a, np.float64)[i, :values.shape[1]] for a in options]
+    return min(rows, key=lambda r: float(np.nan_to_num(error(values[i:i + 1], r[None]), nan=np.inf)[0]))
+
+
+def _expected_all(fits, domain, values, error):
+    out = np.full(values.shape, np.nan)
+    for g, f in fits.items():
+        on = domain.groups == g
+        answer = f.model.answer(f.values)
+        answer = answer[0] if isinstance(answer, tuple) else answer
+        out[on] = np.asarray(answer, np.float64)[on, :values.shape[1]]
+    return out
+
+
+def _fitted(fits, tolerance) -> str:
+    parts = []
+    for g, f in fits.items():
+        constants = f.constants()
+        parts.append((g, f"{f.model.name}{', ' + constants if constants else ''}" if f.error <= tolerance else
+                      "no correct form with water's constants fits"))
+    if len(fits) > 1 and len({w for _, w in parts}) == 1:
+        return parts[0][1]
+    return _join(parts)
+
+
+def _subset(domain, rows):
+    """The domain restricted to some rows (arrays over the rows sliced, the rest kept)."""
+    n = len(rows)
+
+    def cut(v):
+        return v[rows] if isinstance(v, np.ndarray) and v.shape[:1] == (n,) else v
+
+    return replace(domain, inputs={k: cut(v) for k, v in domain.inputs.items()}, groups=domain.groups[rows],
+                   context={k: cut(v) for k, v in domain.context.items()}, extra={k: cut(v) for k, v in
+                                                                                  domain.extra.items()},
+                   axis=(domain.axis[0], cut(domain.axis[1])), front_facing=cut(domain.front_facing))
+
+
+def _right(f) -> str:
+    return f"right ({f.model.name}{', ' + f.constants() if f.constants() else ''})"
+
+
+def _cause(check, domain, values, errors, error, fits):
+    """The cause of a failure: the check's early test, NaN, a model that explains the whole output; else each
+    group (side, channel) alone: right, a model that explains it, or the late test on its rows."""
+    from optics.shaders.models import explain_rows
+
+    early = check.early(values, domain, errors)
+    flagged = early if isinstance(early, tuple) else None
+    whole = early if isinstance(early, str) and early else finite_cause(values, domain)
+    if not whole and flagged is None:
+        worst = float(np.nanmax(np.where(np.isfinite(errors), errors, np.nan))) if np.isfinite(errors).any() else 1.0
+        parts = explain(domain.correct, domain.faults, values, check.error, domain.groups, domain.tolerance, worst)
+        whole = parts[0][1] if len(parts) == 1 and parts[0][0] is None else ""
+    right = {g: f for g, f in fits.items() if f.error <= domain.tolerance}
+    if whole:
+        if right and len(right) < len(fits):
+            wrong = ", ".join(g for g in fits if g not in right)
+            return _join([(g, _right(f)) for g, f in right.items()] + [(wrong, whole)])
+        return whole
+    parts, found = [], False
+    for g, f in fits.items():
+        if g in right:
+            parts.append((g, _right(f)))
+            continue
+        rows = domain.groups == g
+        if flagged is not None and g == flagged[0]:
+            text = flagged[1]
+        else:
+            text = (explain_rows(domain.correct, domain.faults, values, check.error, rows, domain.tolerance)
+                    or check.late(values[rows], _subset(domain, rows), errors[rows]))
+        found = found or bool(text)
+        parts.append((g, text or "wrong, for no cause the checker knows"))
+    if found and len(fits) > 1:
+        return _join(parts)
+    return check.late(values, domain, errors)
+
+
+def _join(parts) -> str:
+    """(group, words) pairs as one line, groups with the same words merged ('above R, above G: …')."""
+    if len(parts) == 1 and parts[0][0] is None:
+        return parts[0][1]
+    merged = {}
+    for label, words in parts:
+        merged.setdefault(words, []).append(label)
+    return "; ".join(f"{', '.join(labels)}: {words}" for words, labels in merged.items())
 
 
 def _check_against(against):
@@ -265,13 +520,16 @@ def _check_against(against):
     return SHADER_CHECKS[against]
 
 
-def _domain(check, options):
-    import inspect
-
-    allowed = set(inspect.signature(check.domain).parameters)
+def _check_options(check, options):
+    allowed = set(inspect.signature(check.domain).parameters) - {"roles"}
     unknown = sorted(set(options) - allowed)
     if unknown:
         raise TypeError(f"{unknown} are not options of the {check.name!r} check; its options: {sorted(allowed)}")
+
+
+def _domain(check, options, takes):
+    if "roles" in inspect.signature(check.domain).parameters:
+        return check.domain(**options, roles=tuple(takes))
     return check.domain(**options)
 
 
@@ -297,10 +555,10 @@ def describe_check(against: str) -> str:
         Several lines: the summary, the default roles, each role's meaning, the options.
     """
     check = _check_against(against)
-    import inspect
-
-    roles = "\n".join(f"    {r:14s} {ROLES[r][0]:9s} {ROLES[r][1]}" for r in check.roles)
-    params = ", ".join(p for p in inspect.signature(check.domain).parameters)
+    roles = "\n".join(f"    {r:16s} {ROLES[r][0]:9s} {ROLES[r][1]}" for r in check.roles)
+    params = ", ".join(p for p in inspect.signature(check.domain).parameters if p != "roles")
     doc = inspect.getdoc(check.domain) or ""
     return (f"{check.name}: {check.summary}; returns {' or '.join(check.returns)}; error {check.quantity}\n"
-            f"  default takes: {', '.join(check.takes)}\n  roles:\n{roles}\n  options: {params}\n  {doc}")
+            f"  default takes: {', '.join(check.takes)} (else read from the parameter names)\n  roles:\n{roles}\n"
+            f"  options: {params}\n  {doc}")
+

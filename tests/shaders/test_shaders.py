@@ -9,7 +9,8 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from shader_corpus import CORPUS, SCHLICK_F0
+from shader_corpus import CORPUS, LEARNOPENGL_SCHLICK
+from truth import is_correct
 
 pytest.importorskip("moderngl")
 
@@ -28,69 +29,74 @@ def shaders():
     return optics.shaders
 
 
-def _split(options):
-    options = dict(options)
-    return options.pop("takes", None), options.pop("uniforms", None), options
+IDS = [entry.name for entry in CORPUS]
 
 
-IDS = [entry[0] for entry in CORPUS]
-
-
-@pytest.mark.parametrize("name,against,source,function,options,ok,cause", CORPUS, ids=IDS)
-def test_corpus_from_python(shaders, name, against, source, function, options, ok, cause):
-    takes, uniforms, opts = _split(options)
-    report = shaders.check_glsl(source, function, against, takes=takes, uniforms=uniforms, **opts)
-    assert report.ok is ok, report.report()
-    assert cause in report.cause, report.report()
-    if ok:
+@pytest.mark.parametrize("entry", CORPUS, ids=IDS)
+def test_corpus_from_python(shaders, entry):
+    """Each function gets the verdict its numpy transcription earns against the physics (decided without the
+    checker), and a faulty one the cause written beside it."""
+    report = shaders.check_glsl(entry.source, entry.function, entry.against, **entry.options)
+    truth = is_correct(entry, report)
+    assert truth is entry.ok, f"the corpus label is wrong: {entry.name}"
+    assert report.ok is truth, report.report()
+    assert entry.cause in report.cause, report.report()
+    if entry.ok:
         assert report.error <= report.tolerance and report.cause == ""
     else:
         assert not report.error <= report.tolerance  # NaN counts as failed
         assert "likely cause" in report.report()
 
 
-def test_every_check_has_correct_and_broken_entries(shaders):
+def test_the_corpus_covers_every_check_language_and_fault(shaders):
     verdicts = {}
-    for _, against, *_, ok, _ in CORPUS:
-        verdicts.setdefault(against, set()).add(ok)
+    for e in CORPUS:
+        verdicts.setdefault(e.against, set()).add(e.ok)
     assert verdicts == {name: {True, False} for name in shaders.SHADER_CHECKS}
+    languages = {e.options.get("language", "glsl") for e in CORPUS} | {
+        "godot" for e in CORPUS if "shader_type" in e.source} | {"webgl" for e in CORPUS if "mainImage" in e.source}
+    assert {"glsl", "hlsl", "godot"} <= languages
+    assert len({(e.source, e.function) for e in CORPUS}) >= 40 and len({e.cause for e in CORPUS if e.cause}) >= 30
 
 
-def test_corpus_from_the_fixture(shaders, wavephys_check):
-    for name, against, source, function, options, ok, cause in CORPUS:
-        takes, uniforms, opts = _split(options)
-        if ok:
-            report = wavephys_check.glsl(source, function, against, takes=takes, uniforms=uniforms, **opts)
-            assert report.ok, name
-        else:
-            with pytest.raises(AssertionError, match="likely cause") as info:
-                wavephys_check.glsl(source, function, against, takes=takes, uniforms=uniforms, **opts)
-            assert cause in str(info.value), name
+@pytest.mark.parametrize("entry", CORPUS[::2], ids=IDS[::2])
+def test_corpus_from_the_fixture(shaders, wavephys_check, entry):
+    if entry.ok:
+        assert wavephys_check.glsl(entry.source, entry.function, entry.against, **entry.options).ok
+    else:
+        with pytest.raises(AssertionError, match="likely cause") as info:
+            wavephys_check.glsl(entry.source, entry.function, entry.against, **entry.options)
+        assert entry.cause in str(info.value), entry.name
 
 
-def _argv(tmp_path, name, against, source, function, options):
-    takes, uniforms, opts = _split(options)
-    path = tmp_path / (name.replace(" ", "_").replace("/", "_") + ".glsl")
-    path.write_text(source)
-    argv = ["check", "--glsl", str(path), "--function", function, "--against", against]
+def _argv(tmp_path, entry):
+    options = dict(entry.options)
+    takes, uniforms = options.pop("takes", None), options.pop("uniforms", None)
+    language, defines = options.pop("language", None), options.pop("defines", None)
+    path = tmp_path / (entry.function + (".hlsl" if language == "hlsl" else ".glsl"))
+    path.write_text(entry.source)
+    argv = ["check", "--hlsl" if language == "hlsl" else "--glsl", str(path), "--function", entry.function,
+            "--against", entry.against]
     if takes:
-        argv += ["--takes", ",".join(takes)]
+        argv += ["--takes", ",".join(map(str, takes))]
     for key, value in (uniforms or {}).items():
         argv += ["--uniform", f"{key}={value}"]
-    for key, value in opts.items():
+    for key, value in (defines or {}).items():
+        argv += ["--define", f"{key}={value}"]
+    for key, value in options.items():
         text = ",".join(map(str, value)) + ("," if len(value) == 1 else "") if isinstance(value, tuple) else value
         argv += ["--option", f"{key}={text}"]
     return argv
 
 
-def test_corpus_from_the_command(shaders, tmp_path, capsys):
+@pytest.mark.parametrize("entry", CORPUS[1::2], ids=IDS[1::2])
+def test_corpus_from_the_command(shaders, tmp_path, capsys, entry):
     from wavephys.app.cli import main
 
-    for name, against, source, function, options, ok, cause in CORPUS:
-        code = main(_argv(tmp_path, name, against, source, function, options))
-        out = capsys.readouterr().out
-        assert code == (0 if ok else 1), (name, out)
-        assert cause in out, (name, out)
+    code = main(_argv(tmp_path, entry))
+    out = capsys.readouterr().out
+    assert code == (0 if entry.ok else 1), (entry.name, out)
+    assert entry.cause in out, (entry.name, out)
 
 
 def test_command_writes_json_and_chart(shaders, tmp_path, capsys):
@@ -99,13 +105,14 @@ def test_command_writes_json_and_chart(shaders, tmp_path, capsys):
     from wavephys.app.cli import main
 
     src = tmp_path / "f.glsl"
-    src.write_text(SCHLICK_F0)
+    src.write_text(LEARNOPENGL_SCHLICK)
     code = main(["check", "--glsl", str(src), "--function", "fresnelSchlick", "--against", "fresnel",
-                 "--takes", "cos_theta,f0", "--option", "form=schlick", "--json", str(tmp_path / "r.json"),
-                 "--chart", str(tmp_path / "r.png")])
-    assert code == 1  # from below, no TIR
+                 "--option", "sides=above,below", "--json", str(tmp_path / "r.json"), "--chart",
+                 str(tmp_path / "r.png")])
+    assert code == 1  # asked to, from below too: no TIR
     data = json.loads((tmp_path / "r.json").read_text())
-    assert data["ok"] is False and data["cause"].startswith("no total internal reflection")
+    assert data["ok"] is False and "below: no total internal reflection" in data["cause"]
+    assert data["cause"].startswith("above: right (Schlick's approximation, F0 = 0.0203")
     assert data["worst"]["side"] == "below" and data["worst"]["theta_deg"] > 48.6
     assert Image.open(tmp_path / "r.png").size[0] > 300
     assert sorted(p.name for p in tmp_path.iterdir()) == ["f.glsl", "r.json", "r.png"]  # no partial files
@@ -121,7 +128,11 @@ def test_command_usage_errors(shaders, tmp_path, capsys):
     assert "does not compile" in err and "0:2(" in err  # the driver's message with the user's line number
     for argv, words in [
         (["check", "--glsl", str(tmp_path / "missing.glsl"), "--function", "f", "--against", "fresnel"], "no file"),
-        (["check", "--function", "f", "--against", "fresnel"], "or --glsl FILE, --function NAME"),
+        (["check", "--function", "f", "--against", "fresnel"], "or --glsl FILE (or --hlsl, --shader)"),
+        (["check", "--glsl", str(src), "--hlsl", str(src), "--function", "f", "--against", "fresnel"],
+         "not --glsl and --hlsl"),
+        (["check", "--glsl", str(src), "--function", "f", "--against", "fresnel", "--include", str(tmp_path / "no")],
+         "--include"),
         (["check", "--glsl", str(src), "--function", "f", "--against", "fresnel", "--option", "nonsense"],
          "KEY=VALUE"),
         (["check", "--glsl", str(src), "--function", "f", "--against", "colour"], "against must be one of"),
@@ -160,20 +171,25 @@ def test_library_glsl_passes_its_own_checks(shaders):
 
 @pytest.mark.parametrize("source,function,kwargs,error,words", [
     ("float f(float c) { return c; }", "g", dict(takes=("cos_theta",)), "GLSLError", "'g' is not defined"),
-    ("float f(vec3 v, vec3 n) { return v.x; }", "f", {}, "GLSLError", "does not take (float, float, float)"),
-    ("vec3 f(float c, float a, float b) { return vec3(c); }", "f", {}, "GLSLError", "returns vec3"),
+    ("float f(vec3 v, vec3 n) { return v.x; }", "f", dict(takes=("cos_theta", "n1", "n2")), "GLSLError",
+     "does not take (float, float, float)"),
+    ("float f(float q, float zz) { return q; }", "f", {}, "GLSLError", "cannot tell what float q"),
+    ("float f(float cosTheta, float cosine) { return cosTheta; }", "f", {}, "GLSLError", "two parameters read as"),
+    ("vec4 f(float c, float a, float b) { return vec4(c); }", "f", {}, "GLSLError", "gives vec4"),
     ("float f(float c, float a, float b) { return c; }", "f", dict(returns="vec3"), "GLSLError", "not vec3"),
     ("float f(float c) { return c; }", "f", dict(takes=("colour",)), "ValueError", "roles"),
     ("float f(float c) { return c; }", "f", dict(takes=("cos_theta",), samplez=8), "TypeError", "options"),
     ("float f(float c) { return c; }", "f", dict(takes=("cos_theta",), uniforms={"uX": 1.0}), "GLSLError",
      "'uX' is not a uniform"),
-    ("void f(float c, out float r) { r = c; }", "f", dict(takes=("cos_theta", "n1")), "GLSLError", "out/inout"),
+    ("void f(float c, out float r, out float s) { r = c; s = c; }", "f", {}, "GLSLError", "result='r'"),
+    ("void f(float c, out float r) { r = c; }", "f", dict(result="q"), "GLSLError", "has no result 'q'"),
     ("void g(out float r) { r = 1.0; }\nfloat f(float c) { float r; g(r); return c * r; }", "f",
      dict(takes=("cos_theta",), sides="above", form="loviscach"), None, ""),  # out helpers are fine
-    ("float f(float c, out float r) { r = c; return c; }", "f", dict(takes=("cos_theta", "n1")), "GLSLError",
-     "out/inout"),
-    ("void f(float c) { }", "f", dict(takes=("cos_theta",)), "GLSLError", "returns void"),
+    ("void f(float c) { }", "f", dict(takes=("cos_theta",)), "GLSLError", "no out parameter"),
     ("float f(float c) { return c; }", "f", dict(takes=("cos_theta",), tolerance=-1.0), "ValueError", "tolerance"),
+    ("float f(float c) { return c; }", "f", dict(language="cuda"), "ValueError", "language must be one of"),
+    ("float f(float c) { return UNITY_F0 + c; }", "f", {}, "GLSLError", "defines={'UNITY_F0'"),
+    ('#include "UnityCG.cginc"\nfloat f(float c) { return c; }', "f", {}, "GLSLError", "includes 'UnityCG.cginc'"),
     (42, "f", {}, "TypeError", "source"),
     ("float f(float c) { return c; }", "f(", {}, "ValueError", "identifier"),
 ])
@@ -233,22 +249,19 @@ def test_central_differences_pass_on_generated_surfaces(shaders, seed, slope):
     """The verdict on a correct function holds on surfaces the test draws, not only the default one."""
     from shader_corpus import HEIGHT_CENTRAL, HEIGHT_ONE_SIDED
 
-    takes = ("heights", "uv", "texel_uv", "texel_size")
-    good = shaders.check_glsl(HEIGHT_CENTRAL, "height_normal", "height_normal", takes=takes, seed=seed,
-                              max_slope=slope, n=64)
+    good = shaders.check_glsl(HEIGHT_CENTRAL, "heightNormal", "height_normal", seed=seed, max_slope=slope, n=64)
     assert good.ok, good.report()
     if slope > 0.3:  # one-sided differences err by about half a texel's slope change
-        bad = shaders.check_glsl(HEIGHT_ONE_SIDED, "height_fwd", "height_normal", takes=takes, seed=seed,
-                                 max_slope=slope, n=64)
-        assert not bad.ok
+        bad = shaders.check_glsl(HEIGHT_ONE_SIDED, "heightForward", "height_normal", seed=seed, max_slope=slope, n=64)
+        assert not bad.ok and "one-sided" in bad.cause
 
 
 def test_reference_is_evaluated_at_the_shaders_float32_inputs(shaders):
     """Rounding the inputs to float32 is not counted against the function: the exact GLSL Fresnel
     errs by float32 arithmetic only (a few 1e-6 at most, near the critical angle)."""
-    from shader_corpus import FRESNEL_EXACT
+    from shader_corpus import PBRT_DIELECTRIC
 
-    r = shaders.check_glsl(FRESNEL_EXACT, "fr_dielectric", "fresnel", samples=8192)
+    r = shaders.check_glsl(PBRT_DIELECTRIC, "frDielectric", "fresnel", samples=8192)
     assert r.ok and r.error < 5e-5
 
 

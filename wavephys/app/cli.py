@@ -26,6 +26,14 @@ EXIT_CODES = """exit status:
   2  usage error: a bad option or output path (checked before any work starts)
   3  no OpenGL context (headless EGL missing: apt-get install libegl1 libegl-mesa0 libgl1-mesa-dri)"""
 
+CHECK_EXIT_CODES = """exit status:
+  0  every check ok (frames), or the function meets the physics (a shader)
+  1  a check failed, or the function does not meet the physics
+  2  usage error: a bad option or output path, unreadable frames, or a shader that does not compile or whose
+     function cannot be called as asked (said before any check runs)
+  3  no OpenGL context (apt-get install libegl1 libegl-mesa0 libgl1-mesa-dri), or for HLSL no translator
+     (apt-get install glslang-tools spirv-cross)"""
+
 RECORD_CHECK_HELP = (  # wavephys.harness.RECORD_CHECKS, written out so that --help imports nothing heavy
     ("dispersion", "omega(k) of every shell of |k| against linear theory (worst relative error)", ()),
     ("energy", "drift of the wave energy over the record, with the damping rate per k and its kind", ()),
@@ -416,16 +424,16 @@ def _setting(text: str):
     return key.strip(), tuple(parts) if parts is not None else one(value)
 
 
-def _read_glsl(parser, path: str) -> str:
+def _read_glsl(parser, path: str, flag: str = "--glsl") -> str:
     p = Path(path)
     if not p.is_file():
-        parser.error(f"--glsl: no file at {path}" if not p.exists() else f"--glsl: {path} is not a file")
+        parser.error(f"{flag}: no file at {path}" if not p.exists() else f"{flag}: {path} is not a file")
     try:
         return p.read_text(encoding="utf-8")
     except UnicodeDecodeError:
-        parser.error(f"--glsl: {path} is not a UTF-8 text file (GLSL source expected)")
+        parser.error(f"{flag}: {path} is not a UTF-8 text file (shader source expected)")
     except OSError as exc:
-        parser.error(f"--glsl: cannot read {path} ({exc.strerror})")
+        parser.error(f"{flag}: cannot read {path} ({exc.strerror})")
 
 
 def _pair(text: str):
@@ -586,34 +594,45 @@ def cmd_check(args, parser) -> int:
     from wavephys.core.files import atomic_path, output_file
 
     if args.frames:
-        if args.glsl is not None or args.list:
-            parser.error("give either FRAMES (a record) or --glsl FILE (a shader), not both")
+        if args.glsl is not None or args.hlsl is not None or args.shader is not None or args.list:
+            parser.error("give either FRAMES (a record) or --glsl/--hlsl/--shader FILE (a shader), not both")
         return cmd_check_frames(args, parser)
     if args.list:
         from optics.shaders import SHADER_CHECKS, describe_check
 
         print("\n\n".join(describe_check(name) for name in SHADER_CHECKS))
         return 0
-    if args.glsl is None or args.function is None or args.against is None:
-        parser.error("give FRAMES... (exported frames), or --glsl FILE, --function NAME and --against CHECK "
-                     "(names from --list)")
-    source = _read_glsl(parser, args.glsl)
+    shader = [(flag, path) for flag, path in (("--glsl", args.glsl), ("--hlsl", args.hlsl), ("--shader", args.shader))
+              if path is not None]
+    if len(shader) > 1:
+        parser.error(f"give one of --glsl, --hlsl and --shader, not {' and '.join(f for f, _ in shader)}")
+    if not shader or args.function is None or args.against is None:
+        parser.error("give FRAMES... (exported frames), or --glsl FILE (or --hlsl, --shader), --function NAME and "
+                     "--against CHECK (names from --list)")
+    flag, path = shader[0]
+    source = _read_glsl(parser, path, flag)
+    language = "hlsl" if flag == "--hlsl" else args.language if flag == "--shader" or args.language != "auto" else \
+        "auto"
     json_path = _checked(parser, output_file, args.json, "--json", (".json",)) if args.json else None
     chart = _checked(parser, output_file, args.chart, "--chart", (".png",)) if args.chart else None
+    for folder in args.include or []:
+        if not Path(folder).is_dir():
+            parser.error(f"--include: {folder} is not a folder")
     from optics.gpu import RendererUnavailable
-    from optics.shaders import GLSLError, check_glsl
+    from optics.shaders import GLSLError, TranslatorMissing, check_glsl
 
     options = dict(args.option or [])
     takes = tuple(t.strip() for t in args.takes.split(",")) if args.takes else None
     try:
-        report = check_glsl(source, args.function, args.against, takes=takes, returns=args.returns,
-                            uniforms=dict(args.uniform or []) or None, tolerance=args.tolerance, chart=chart,
-                            **options)
-    except RendererUnavailable as exc:
+        report = check_glsl(source, args.function, args.against, takes=takes, result=args.result,
+                            returns=args.returns, uniforms=dict(args.uniform or []) or None, tolerance=args.tolerance,
+                            language=language, defines=args.define, include_dirs=tuple(args.include or ()),
+                            chart=chart, **options)
+    except (RendererUnavailable, TranslatorMissing) as exc:
         print(f"wavephys check: {exc}", file=sys.stderr)
         return 3
     except GLSLError as exc:
-        print(f"wavephys check: {args.glsl}: {exc}", file=sys.stderr)
+        print(f"wavephys check: {path}: {exc}", file=sys.stderr)
         return 2
     except (TypeError, ValueError) as exc:
         parser.error(str(exc))
@@ -638,20 +657,20 @@ def _add_check_parser(sub, fmt) -> None:
     checks = "\n".join(f"  {name:15s} {measures}" + (f" (needs {', '.join('--' + x for x in needs)})" if needs else "")
                        for name, measures, needs in RECORD_CHECK_HELP)
     ck = sub.add_parser("check", help="check exported frames, or a GLSL function, against the physics",
-                        epilog=EXIT_CODES.replace("a validation row failed", "a check failed (frames), or the "
-                                                  "function does not meet the physics (--glsl)").replace(
-                            "usage error: a bad option or output path", "usage error: a bad option, output path or "
-                            "unreadable frames"),
+                        epilog=CHECK_EXIT_CODES,
                         formatter_class=fmt,
                         description="Frames: read a folder, glob or list of EXR / 16-bit PNG / npy / npz height "
                                     "frames (dx, dt and units from the files' headers where they say, else from "
                                     "--dx and --dt) and print each check's verdict and, on failure, its likely "
                                     "cause.\n\n  wavephys check out/frames --sea --direction 0\n  wavephys check "
                                     "'export/h_*.exr' --dx 0.05 --dt 1/60 --depth 0.5 --junit checks.xml\n\nChecks "
-                                    "on a record:\n" + checks + "\n\nGLSL: compile a function on the headless OpenGL "
-                                    "context, evaluate it over its whole input domain and compare it with the "
-                                    "physics.\n\n  wavephys check --glsl water.glsl --function fresnel --against "
-                                    "fresnel --option form=schlick")
+                                    "on a record:\n" + checks + "\n\nShaders: compile a function (GLSL, GLSL ES, WebGL, "
+                                    "Shadertoy, Godot, or HLSL through glslang and SPIRV-Cross) on the headless "
+                                    "OpenGL context, evaluate it over its whole input domain and compare it with the "
+                                    "physics; its constants (F0, the index ratio) are found from its output and "
+                                    "judged against water's range.\n\n  wavephys check --glsl water.glsl --function "
+                                    "fresnel --against fresnel\n  wavephys check --hlsl Water.hlsl --function "
+                                    "FresnelSchlick --against fresnel")
     ck.add_argument("frames", nargs="*", metavar="FRAMES", help="a folder, glob pattern or files of height frames")
     ck.add_argument("--dx", type=_float(0.0, open_lo=True), help="grid spacing, m (when the files do not say)")
     ck.add_argument("--dt", type=_seconds, help="time between frames, s: 0.0167 or 1/60 (when the files do not say)")
@@ -695,12 +714,26 @@ def _add_check_parser(sub, fmt) -> None:
     ck.add_argument("--rtol", type=_float(0.0, open_lo=True), default=0.02, help="dispersion tolerance (default "
                                                                                    "0.02)")
     ck.add_argument("--junit", metavar="PATH", help="also write JUnit XML for a CI server (frames)")
-    ck.add_argument("--glsl", metavar="FILE", help="the GLSL source that defines the function")
+    ck.add_argument("--glsl", metavar="FILE", help="the GLSL source that defines the function (GLSL ES, WebGL, "
+                                                   "Shadertoy and Godot shader files are read as written)")
+    ck.add_argument("--hlsl", metavar="FILE", help="the HLSL source that defines the function (Unity, Unreal, Crest): "
+                                                   "translated by glslang and SPIRV-Cross (apt-get install "
+                                                   "glslang-tools spirv-cross)")
+    ck.add_argument("--shader", metavar="FILE", help="a shader source in any of those languages (--language)")
+    ck.add_argument("--language", default="auto", choices=("auto", "glsl", "glsl_es", "webgl", "shadertoy", "godot",
+                                                           "hlsl"), help="the source's language (default: told from "
+                                                                         "the text)")
+    ck.add_argument("--define", action="append", metavar="NAME=VALUE", help="a macro the source relies on, e.g. "
+                                                                            "UNITY_PI=3.14159265 (repeatable)")
+    ck.add_argument("--include", action="append", metavar="DIR", help="a folder for the source's #include lines "
+                                                                      "(repeatable)")
     ck.add_argument("--function", metavar="NAME", help="the function to check")
+    ck.add_argument("--result", metavar="NAME", help="the out parameter that holds the result (default: the return "
+                                                     "value, or a void function's only out parameter)")
     ck.add_argument("--against", metavar="CHECK", help="what it computes: fresnel, refract, reflect, transmittance, "
                                                         "rgb_absorption, normal_decode, height_normal (see --list)")
     ck.add_argument("--takes", metavar="ROLE,...", help="what each parameter is, in order (roles from --list; "
-                                                        "default: the check's own)")
+                                                        "default: the check's own, else read from the names)")
     ck.add_argument("--returns", metavar="TYPE", help="the return type you expect (float, vec3)")
     ck.add_argument("--option", type=_setting, action="append", metavar="KEY=VALUE",
                     help="an option of the check, e.g. form=schlick, sides=above, convention=directx (repeatable)")

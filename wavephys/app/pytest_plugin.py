@@ -306,36 +306,46 @@ class Checker:
         return assert_check(wake_check(eta, dx, speed=speed, water=water, source=source, direction=direction,
                                        angle=angle, size=size, atol=atol, rtol=rtol, **options))
 
-    def glsl(self, source, function, against, *, takes=None, returns=None, uniforms=None, tolerance=None,
-             chart=None, **options):
-        """Assert that the GLSL ``function`` in ``source`` meets the physics of the check ``against``
+    def glsl(self, source, function, against, *, takes=None, result=None, returns=None, uniforms=None,
+             tolerance=None, language="auto", defines=None, include_dirs=(), chart=None, **options):
+        """Assert that the shader ``function`` in ``source`` meets the physics of the check ``against``
         over its whole input domain (:func:`optics.shaders.check_glsl`, same arguments).
 
-        Fails the test with the worst error, the input where it occurs and the likely cause;
-        returns the :class:`~optics.shaders.ShaderReport` when it passes. A source that does
-        not compile, or a function that is missing or has another signature, raises
-        :class:`~optics.shaders.GLSLError` (a ValueError) with the driver's message.
+        Fails the test with the worst error, the input where it occurs, what the function computes (its
+        fitted form and constants) and the likely cause; returns the :class:`~optics.shaders.ShaderReport`
+        when it passes. A source that does not compile, or a function that is missing or cannot be called
+        as asked, raises :class:`~optics.shaders.GLSLError` (a ValueError) with the driver's message.
 
         Parameters
         ----------
         source : str
-            GLSL defining ``function`` (and anything it calls).
+            The shader source as shipped (GLSL, GLSL ES, WebGL, Shadertoy, a Godot shader file, or HLSL).
         function : str
             The function's name.
         against : str
             The check: a name in :data:`optics.shaders.SHADER_CHECKS` (e.g. ``"fresnel"``).
         takes : sequence of str, optional, keyword-only
-            The role of each parameter, in order (default: the check's own).
+            The role of each value-taking parameter, in order (default: the check's own, else read from the
+            parameter names).
+        result : str, optional, keyword-only
+            ``"return"`` or the out parameter that holds the result (default: the return value, or a void
+            function's only out parameter).
         returns : str, optional, keyword-only
-            The return type expected (``"float"``, ``"vec3"``): refused if the declaration differs.
+            The result type expected (``"float"``, ``"vec3"``): refused if the declaration differs.
         uniforms : dict, optional, keyword-only
-            Values for ``uniform`` variables the function reads (name → number or tuple).
+            Values for uniforms the function reads (name → number or tuple).
         tolerance : float, optional, keyword-only
-            The largest error allowed, > 0 (default: the check's).
+            The largest error allowed, > 0 (default: the check's, from physics and the display).
+        language : str, optional, keyword-only
+            "auto" (default), "glsl", "glsl_es", "webgl", "shadertoy", "godot" or "hlsl".
+        defines : dict or list of str, optional, keyword-only
+            Macros the source relies on.
+        include_dirs : sequence of path, optional, keyword-only
+            Folders for ``#include``.
         chart : path, optional, keyword-only
             Also draw the error over the domain to this PNG.
         **options
-            The check's domain options (``form="schlick"``, ``sides=("above",)``, …).
+            The check's domain options (``form="schlick"``, ``sides=("above",)``, ``bits=10`` …).
 
         Returns
         -------
@@ -347,15 +357,49 @@ class Checker:
         AssertionError
             When the function does not meet the physics; the message is the report.
         GLSLError
-            When the source does not compile or the function is missing or has another signature.
+            When the source does not compile or the function is missing or cannot be called as asked.
+        TranslatorMissing
+            When HLSL is given and glslangValidator or spirv-cross is not installed.
         """
+        __tracebackhide__ = True
         from optics.shaders import check_glsl
 
-        report = check_glsl(source, function, against, takes=takes, returns=returns, uniforms=uniforms,
-                            tolerance=tolerance, chart=chart, **options)
+        report = check_glsl(source, function, against, takes=takes, result=result, returns=returns, uniforms=uniforms,
+                            tolerance=tolerance, language=language, defines=defines, include_dirs=include_dirs,
+                            chart=chart, **options)
         if not report.ok:
             raise AssertionError(report.report())
         return report
+
+    def hlsl(self, source, function, against, **kwargs):
+        """:meth:`glsl` for an HLSL source (``language="hlsl"``): translated by glslang and SPIRV-Cross, then
+        checked as written.
+
+        Parameters
+        ----------
+        source : str
+            HLSL text defining ``function``.
+        function : str
+            The function's name.
+        against : str
+            The check (a name in :data:`optics.shaders.SHADER_CHECKS`).
+        **kwargs
+            The keyword arguments of :meth:`glsl`.
+
+        Returns
+        -------
+        ShaderReport
+            The report, when it is ok.
+
+        Raises
+        ------
+        AssertionError
+            When the function does not meet the physics.
+        TranslatorMissing
+            When glslangValidator or spirv-cross is not installed.
+        """
+        __tracebackhide__ = True
+        return self.glsl(source, function, against, language="hlsl", **kwargs)
 
 
 def _is_numeric(value) -> bool:
