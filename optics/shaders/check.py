@@ -63,6 +63,10 @@ class ShaderReport:
         The language it was read as (:data:`~optics.shaders.source.LANGUAGES`).
     result : str
         Where the result came from: ``"return"`` or an out parameter's name.
+    unphysical : str
+        When the function's output is explained, within the tolerance, only by a constant outside its physical
+        range (an F0 of 0.0233, a hair above water's 0.0224), what that constant is; the verdict is then a
+        failure whatever the error. "" otherwise.
     """
 
     against: str
@@ -82,14 +86,16 @@ class ShaderReport:
     notes: tuple = ()
     language: str = "glsl"
     result: str = "return"
+    unphysical: str = ""
     _errors: np.ndarray = field(repr=False, compare=False, default=None)
     _axis: tuple = field(repr=False, compare=False, default=None)
     _groups: np.ndarray = field(repr=False, compare=False, default=None)
 
     @property
     def ok(self) -> bool:
-        """True when the worst error is finite and within the tolerance."""
-        return math.isfinite(self.error) and self.error <= self.tolerance
+        """True when the worst error is finite and within the tolerance, and no constant of the function is
+        measured outside its physical range (``unphysical``)."""
+        return math.isfinite(self.error) and self.error <= self.tolerance and not self.unphysical
 
     def as_check(self):
         """The verdict as a :class:`wavephys.harness.Check` row (worst error ≤ tolerance)."""
@@ -97,6 +103,10 @@ class ShaderReport:
 
         note = "; ".join(x for x in (self.note, self.fitted, self.tolerance_note) if x)
         note += f"; likely cause: {self.cause}" if self.cause else ""
+        if self.unphysical:  # within the tolerance only with a constant the physics does not allow: no measurement
+            note = f"worst error {self.error:.4g} with {self.unphysical}; {note}"
+            return bound(f"{self.function} against {self.against}: worst {self.quantity} with physical constants",
+                         math.nan, self.tolerance, note=note)
         return bound(f"{self.function} against {self.against}: worst {self.quantity}", self.error, self.tolerance,
                      note=note)
 
@@ -104,7 +114,8 @@ class ShaderReport:
         """A few lines: the verdict, the worst input, what the function computes, the cause."""
         where = ", ".join(f"{k} = {_show(v)}" for k, v in self.worst.items())
         lines = [f"{self.function} against {self.against}: {'ok' if self.ok else 'FAILED'}: worst {self.quantity} "
-                 f"{self.error:.4g} (tolerance {self.tolerance:.3g}) over {self.samples} inputs",
+                 f"{self.error:.4g} (tolerance {self.tolerance:.3g}) over {self.samples} inputs"
+                 + (" with a constant outside its physical range" if self.unphysical else ""),
                  f"  worst at {where}", f"  domain: {self.note}"]
         if self.fitted:
             lines.append(f"  fitted: {self.fitted}")
@@ -121,7 +132,8 @@ class ShaderReport:
                     ok=self.ok, error=self.error if math.isfinite(self.error) else None, tolerance=self.tolerance,
                     worst={k: _plain(v) for k, v in self.worst.items()}, cause=self.cause, note=self.note,
                     fitted=self.fitted, tolerance_note=self.tolerance_note, notes=list(self.notes),
-                    language=self.language, result=self.result, samples=self.samples, seconds=self.seconds,
+                    language=self.language, result=self.result, unphysical=self.unphysical, samples=self.samples,
+                    seconds=self.seconds,
                     renderer=self.renderer)
 
     def chart(self, path):
@@ -401,6 +413,7 @@ def _judge(check, domain, values, decl, takes, result, language, notes, start, c
         else:
             domain, values = _per_channel(domain, values)
     fits, errors = best_correct(domain.correct, values, check.error, domain.groups)
+    unphysical = _unphysical(domain, values, check.error, fits)
     i = int(np.argmax(errors))
     error = float(errors[i]) if math.isfinite(errors[i]) else math.nan
     fit = fits[domain.groups[i]]
@@ -409,16 +422,38 @@ def _judge(check, domain, values, decl, takes, result, language, notes, start, c
                                                                                                    "wrap")}
     worst.update({k: v[i] for k, v in domain.context.items()})
     worst.update(returned=values[i], expected=expected)
-    ok = math.isfinite(error) and error <= domain.tolerance
+    ok = math.isfinite(error) and error <= domain.tolerance and not unphysical
     extra = dict(domain.extra, expected=_expected_all(fits, domain, values, check.error))
     judged = replace(domain, extra=extra)
-    cause = "" if ok else _cause(check, judged, values, errors, error, fits)
+    cause = "" if ok else (unphysical if error <= domain.tolerance else _cause(check, judged, values, errors, error,
+                                                                                   fits))
     report = ShaderReport(check.name, decl.signature(), tuple(takes), check.quantity, error, domain.tolerance, worst,
                           cause, domain.note, rows, time.perf_counter() - start, _renderer(), _fitted(fits, domain.tolerance),
-                          domain.tolerance_note, tuple(notes), language, result, errors, domain.axis, domain.groups)
+                          domain.tolerance_note, tuple(notes), language, result, unphysical, errors, domain.axis,
+                          domain.groups)
     if chart is not None:
         report.chart(chart)
     return report
+
+
+def _unphysical(domain, values, error, fits) -> str:
+    """A constant measured outside its physical range: in a group that passes, a correct model fitted with its
+    constants free explains the output much better than within their ranges (the constant is measurable, not
+    noise), and those constants are not physical."""
+    from optics.shaders.models import fit
+
+    said = []
+    for g, inside in fits.items():
+        if inside.error > domain.tolerance or not inside.model.params:
+            continue
+        rows = domain.groups == g
+        free = min((fit(m, values, error, rows) for m in domain.correct if m.params), key=lambda f: f.error)
+        if not free.physical and free.error <= domain.tolerance and inside.error > 2 * free.error + \
+                0.05 * domain.tolerance:
+            said.append((g, free.model.text(free.values)))
+    if len(said) == 1 and len(fits) == 1:
+        return said[0][1]
+    return _join(said) if said else ""
 
 
 def _expected_row(fit, values, error, i):
