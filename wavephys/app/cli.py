@@ -26,39 +26,6 @@ EXIT_CODES = """exit status:
   2  usage error: a bad option or output path (checked before any work starts)
   3  no OpenGL context (headless EGL missing: apt-get install libegl1 libegl-mesa0 libgl1-mesa-dri)"""
 
-CHECK_EXIT_CODES = """exit status:
-  0  every check ok (frames), or the function meets the physics (a shader)
-  1  a check failed, or the function does not meet the physics
-  2  usage error: a bad option or output path, unreadable frames, or a shader that does not compile or whose
-     function cannot be called as asked (said before any check runs)
-  3  no OpenGL context (apt-get install libegl1 libegl-mesa0 libgl1-mesa-dri), or for HLSL no translator
-     (apt-get install glslang-tools spirv-cross)"""
-
-RECORD_CHECK_HELP = (  # wavephys.harness.RECORD_CHECKS, written out so that --help imports nothing heavy
-    ("dispersion", "omega(k) of every shell of |k| against linear theory (worst relative error)", ()),
-    ("energy", "drift of the wave energy over the record, with the damping rate per k and its kind", ()),
-    ("tiling", "the wrap step of the frames against an ordinary step (seams, clamped edges)", ()),
-    ("quantization", "noise of the lattice the heights are stored on, against the rms height", ()),
-    ("standing", "phase locking of every mode's +omega and -omega parts (a sea that does not travel)", ("sea",)),
-    ("direction", "the power-weighted mean direction of travel against the claimed one, degrees", ("direction",)),
-    ("group_velocity", "speed of a packet's energy centroid against the mean group velocity", ("packet",)),
-    ("ring_arrival", "share of eta^2 inside the calm disc r < c_g,min (t - t0) behind the first ring", ("source",)),
-    ("wake_edge", "outer edge of a moving source's wake in the first frame against the cusp line, degrees", ("wake",)),
-    ("wake_max", "angle of maximum amplitude on arcs behind the source (Darmon et al.), degrees",
-     ("wake", "wake-size")),
-    ("normals", "the normal map against the slopes of the first frame's heights (largest angle, degrees)",
-     ("normals",)),
-    ("caustics_flux", "mean of a caustics map against flat water's irradiance (light conserved)", ("caustics",)),
-    ("resolution", "variance per octave of |k| against the same sea exported at another resolution", ("other",)),
-    ("seiche", "frequencies of a tank's strongest cosine modes against omega(k_mn) (walls at the edges)", ("tank",)),
-    ("shoaling", "a wave train's amplitude across a floor against sqrt(c_g,ref/c_g(h)) (Green's law)", ("floor",)),
-    ("wall_reflection", "amplitude kept per reflection at a tank's walls, from its modes' decay", ("tank",)),
-    ("mass", "the water's volume over a shallow-water record's frames (heights over a bed, closed domain)",
-     ("bed",)),
-    ("lake_at_rest", "largest movement of a lake at rest's surface over an uneven bed, m", ("bed", "at-rest")),
-    ("dam_break", "speed of a dam break's front (Ritter) or bore (Stoker) against the exact one, m/s", ("bed", "dam")),
-)
-
 EFFECTS = ("refraction", "reflection", "fresnel", "absorption", "caustics")
 from wavephys.app import SCENES  # light: --help answers at once
 
@@ -89,10 +56,12 @@ def _int(lo: int, even: bool = False, hi: int | None = None):
 
 def _float(lo: float, open_lo: bool = False, hi: float | None = None):
     def parse(text: str) -> float:
+        from wavephys.harness.claims import parse_number
+
         try:
-            value = float(text)
+            value = parse_number(text)
         except ValueError:
-            raise argparse.ArgumentTypeError(f"expected a number, got {text!r}") from None
+            raise argparse.ArgumentTypeError(f"expected a number (0.05, 2/256), got {text!r}") from None
         if not math.isfinite(value) or value < lo or (open_lo and value == lo) or (hi is not None and value > hi):
             raise argparse.ArgumentTypeError(f"must be a finite number {'>' if open_lo else '≥'} {lo}"
                                              + (f" and ≤ {hi:g}" if hi is not None else "") + f", got {text}")
@@ -104,9 +73,11 @@ def _float(lo: float, open_lo: bool = False, hi: float | None = None):
 
 
 def _real(text: str) -> float:
-    """Any finite number (a signed angle, a time offset)."""
+    """Any finite number (a signed angle, a time offset); fractions accepted."""
+    from wavephys.harness.claims import parse_number
+
     try:
-        value = float(text)
+        value = parse_number(text)
     except ValueError:
         raise argparse.ArgumentTypeError(f"expected a number, got {text!r}") from None
     if not math.isfinite(value):
@@ -424,327 +395,14 @@ def _setting(text: str):
     return key.strip(), tuple(parts) if parts is not None else one(value)
 
 
-def _read_glsl(parser, path: str, flag: str = "--glsl") -> str:
-    p = Path(path)
-    if not p.is_file():
-        parser.error(f"{flag}: no file at {path}" if not p.exists() else f"{flag}: {path} is not a file")
-    try:
-        return p.read_text(encoding="utf-8")
-    except UnicodeDecodeError:
-        parser.error(f"{flag}: {path} is not a UTF-8 text file (shader source expected)")
-    except OSError as exc:
-        parser.error(f"{flag}: cannot read {path} ({exc.strerror})")
-
-
-def _pair(text: str):
-    """``X,Y``: two finite numbers."""
-    parts = text.split(",")
-    try:
-        values = tuple(float(p) for p in parts)
-    except ValueError:
-        values = ()
-    if len(values) != 2 or not all(math.isfinite(v) for v in values):
-        raise argparse.ArgumentTypeError(f"expected X,Y (two numbers, m), got {text!r}")
-    return values
-
-
-def _seconds(text: str) -> float:
-    """Seconds: a number or a fraction such as 1/60."""
-    num, sep, den = text.partition("/")
-    try:
-        value = float(num) / float(den) if sep else float(num)
-    except (ValueError, ZeroDivisionError):
-        raise argparse.ArgumentTypeError(f"expected seconds (0.0167 or 1/60), got {text!r}") from None
-    if not math.isfinite(value) or value <= 0:
-        raise argparse.ArgumentTypeError(f"must be > 0, got {text}")
-    return value
-
-
-_CLAIM_OPTIONS = (("only:", "--only:"), ("direction= (--direction DEG)", "--direction DEG"),
-                  ("sea=True (--sea)", "--sea"), ("source= (--source X,Y)", "--source X,Y"),
-                  ("packet=True (--packet)", "--packet"), ("wake=dict(speed=...) (--wake U)", "--wake U"),
-                  ("the source's size, wake=dict(size=...) (--wake-size SIGMA)", "--wake-size M"),
-                  ("normals= (--normals FILE)", "--normals FILE"), ("caustics= (--caustics FILE)", "--caustics FILE"),
-                  ("other= (--other FRAMES)", "--other FRAMES"), ("tank=True (--tank)", "--tank"),
-                  ("floor= (--floor FILE)", "--floor FILE"),
-                  ("(tank=True)", "(--tank)"))
-
-
-def _option_words(text: str) -> str:
-    """A message of :func:`wavephys.harness.check_record` in the command's words (its options, not Python's)."""
-    for python, option in _CLAIM_OPTIONS:
-        text = text.replace(python, option)
-    return text
-
-
-def _wake_claim(args):
-    """The ``wake=`` claim of :func:`wavephys.harness.check_record` from ``--wake`` and its companions."""
-    if args.wake is None:
-        return None
-    claim = dict(speed=args.wake, source=tuple(args.wake_at) if args.wake_at else (0.0, 0.0),
-                 direction=args.wake_heading)
-    if args.wake_size is not None:
-        claim["size"] = args.wake_size
-    return claim
-
-
-def _claim_maps(args) -> dict:
-    """The maps and arrays the record's claims name (--normals, --caustics, --floor, --bed, --other), read."""
-    import numpy as np
-
-    from wavephys.core.frames import read_map
-    from wavephys.harness import Record
-
-    maps = {}
-    if args.normals:
-        maps["normals"] = read_map(args.normals, name="--normals", channels=3)
-    if args.caustics:
-        maps["caustics"] = read_map(args.caustics, name="--caustics", channels=1)
-    if args.floor:
-        try:
-            maps["floor"] = np.load(args.floor, allow_pickle=False)
-        except (OSError, ValueError) as exc:
-            raise ValueError(f"--floor: cannot read {args.floor} as a .npy array of depths per column: {exc}")
-    if args.bed:
-        try:
-            maps["bed"] = np.load(args.bed, allow_pickle=False)
-        except (OSError, ValueError) as exc:
-            raise ValueError(f"--bed: cannot read {args.bed} as a .npy array of bed elevations, m: {exc}")
-    if args.other:
-        other = args.other[0] if len(args.other) == 1 else list(args.other)
-        maps["other"] = Record.from_files(other, channel=args.channel)
-    return maps
-
-
-def _dam_claim(parser, args):
-    if args.dam is None:
-        return None
-    if len(args.dam) not in (2, 3):
-        parser.error(f"--dam takes X H0 [HR] (m), got {len(args.dam)} values")
-    return dict(zip(("x", "h0", "hr"), args.dam))
-
-
-def cmd_check_frames(args, parser) -> int:
-    """``wavephys check FRAMES...``: the record's checks, their verdicts and causes."""
-    from wavephys.core.files import atomic_path, output_file
-
-    json_path = _checked(parser, output_file, args.json, "--json", (".json",)) if args.json else None
-    junit_path = _checked(parser, output_file, args.junit, "--junit", (".xml",)) if args.junit else None
-    names = [n for n, _, _ in RECORD_CHECK_HELP]
-    if args.only:  # checked before the frames are read
-        unknown = [n for n in args.only if n not in names]
-        if unknown:
-            parser.error(f"--only: unknown check(s) {', '.join(unknown)}; the checks are {', '.join(names)}")
-    given = {"direction": args.direction is not None, "sea": args.sea, "packet": args.packet,
-             "source": args.source is not None, "wake": args.wake is not None, "wake-size": args.wake_size is not None,
-             "normals": bool(args.normals), "caustics": bool(args.caustics), "other": bool(args.other),
-             "tank": args.tank, "floor": bool(args.floor), "bed": bool(args.bed), "at-rest": args.at_rest,
-             "dam": args.dam is not None}
-    for name, _, needs in RECORD_CHECK_HELP:
-        missing = [f"--{x}" for x in needs if not given[x]]
-        if args.only and name in args.only and missing:
-            parser.error(f"--only: the {name} check needs {', '.join(missing)}")
-    if args.wake is None and (args.wake_at is not None or args.wake_size is not None or args.wake_heading != 0.0):
-        parser.error("--wake-at, --wake-heading and --wake-size describe a moving source: give its speed with "
-                     "--wake U")
-    from wavephys import Water
-    from wavephys.harness import Record, check_record
-
-    source = args.frames[0] if len(args.frames) == 1 else list(args.frames)
-    try:
-        record = Record.from_files(source, dx=args.dx, dt=args.dt, channel=args.channel, depth=args.depth,
-                                   sigma=args.sigma, axes=args.axes)
-    except (TypeError, ValueError) as exc:
-        print(f"wavephys check: {exc}", file=sys.stderr)
-        return 2
-    try:
-        maps = _claim_maps(args)
-    except (TypeError, ValueError) as exc:
-        print(f"wavephys check: {exc}", file=sys.stderr)
-        return 2
-    nt, ny, nx = record.shape
-    print(f"{record.source}: {nt} frames of {nx} x {ny}, dx = {record.dx:.6g} m, dt = {record.dt:.6g} s", flush=True)
-    try:
-        report = check_record(record, Water(), only=args.only, direction=args.direction, sea=args.sea,
-                              packet=args.packet, source=args.source, t0=args.t0, radius=args.radius,
-                              viscosity=args.viscosity, rtol=args.rtol, wake=_wake_claim(args),
-                              convention=args.convention, tank=args.tank, at_rest=args.at_rest,
-                              dam=_dam_claim(parser, args), **maps,
-                              progress=lambda m: print(m, file=sys.stderr, flush=True))
-    except (TypeError, ValueError) as exc:  # a claim a named check needs: the option's name, not Python's
-        parser.error(_option_words(str(exc)))
-    for name, row in report.rows.items():
-        print(f"{'ok    ' if row.ok else 'FAILED'} {name}: {row.report()}")
-    for name, why in report.skipped.items():
-        print(f"skip   {name}: {_option_words(why)}")
-    if json_path is not None:
-        with atomic_path(json_path) as tmp:
-            tmp.write_text(json.dumps(report.as_dict(), indent=2))
-        print(f"wrote {json_path}")
-    if junit_path is not None:
-        from wavephys.app.junit import junit_xml
-
-        with atomic_path(junit_path) as tmp:
-            tmp.write_text(junit_xml(record.source, report.rows, report.seconds, report.skipped), encoding="utf-8")
-        print(f"wrote {junit_path}")
-    return 0 if report.ok else 1
-
-
-def cmd_check(args, parser) -> int:
-    from wavephys.core.files import atomic_path, output_file
-
-    if args.frames:
-        if args.glsl is not None or args.hlsl is not None or args.shader is not None or args.list:
-            parser.error("give either FRAMES (a record) or --glsl/--hlsl/--shader FILE (a shader), not both")
-        return cmd_check_frames(args, parser)
-    if args.list:
-        from optics.shaders import SHADER_CHECKS, describe_check
-
-        print("\n\n".join(describe_check(name) for name in SHADER_CHECKS))
-        return 0
-    shader = [(flag, path) for flag, path in (("--glsl", args.glsl), ("--hlsl", args.hlsl), ("--shader", args.shader))
-              if path is not None]
-    if len(shader) > 1:
-        parser.error(f"give one of --glsl, --hlsl and --shader, not {' and '.join(f for f, _ in shader)}")
-    if not shader or args.function is None or args.against is None:
-        parser.error("give FRAMES... (exported frames), or --glsl FILE (or --hlsl, --shader), --function NAME and "
-                     "--against CHECK (names from --list)")
-    flag, path = shader[0]
-    source = _read_glsl(parser, path, flag)
-    language = "hlsl" if flag == "--hlsl" else args.language if flag == "--shader" or args.language != "auto" else \
-        "auto"
-    json_path = _checked(parser, output_file, args.json, "--json", (".json",)) if args.json else None
-    chart = _checked(parser, output_file, args.chart, "--chart", (".png",)) if args.chart else None
-    for folder in args.include or []:
-        if not Path(folder).is_dir():
-            parser.error(f"--include: {folder} is not a folder")
-    from optics.gpu import RendererUnavailable
-    from optics.shaders import GLSLError, TranslatorMissing, check_glsl
-
-    options = dict(args.option or [])
-    takes = tuple(t.strip() for t in args.takes.split(",")) if args.takes else None
-    try:
-        report = check_glsl(source, args.function, args.against, takes=takes, result=args.result,
-                            returns=args.returns, uniforms=dict(args.uniform or []) or None, tolerance=args.tolerance,
-                            language=language, defines=args.define, include_dirs=tuple(args.include or ()),
-                            chart=chart, **options)
-    except (RendererUnavailable, TranslatorMissing) as exc:
-        print(f"wavephys check: {exc}", file=sys.stderr)
-        return 3
-    except GLSLError as exc:
-        print(f"wavephys check: {path}: {exc}", file=sys.stderr)
-        return 2
-    except (TypeError, ValueError) as exc:
-        parser.error(str(exc))
-    print(report.report())
-    if json_path is not None:
-        with atomic_path(json_path) as tmp:
-            tmp.write_text(json.dumps(report.as_dict(), indent=2))
-        print(f"wrote {json_path}")
-    if chart is not None:
-        print(f"wrote {chart}")
-    return 0 if report.ok else 1
-
-
 def _version() -> str:
     from wavephys import __version__
 
     return f"wavephys {__version__}"
 
 
-def _add_check_parser(sub, fmt) -> None:
-    """The ``check`` subcommand's options (exported frames, or a user's GLSL, against the physics)."""
-    checks = "\n".join(f"  {name:15s} {measures}" + (f" (needs {', '.join('--' + x for x in needs)})" if needs else "")
-                       for name, measures, needs in RECORD_CHECK_HELP)
-    ck = sub.add_parser("check", help="check exported frames, or a GLSL function, against the physics",
-                        epilog=CHECK_EXIT_CODES,
-                        formatter_class=fmt,
-                        description="Frames: read a folder, glob or list of EXR / 16-bit PNG / npy / npz height "
-                                    "frames (dx, dt and units from the files' headers where they say, else from "
-                                    "--dx and --dt) and print each check's verdict and, on failure, its likely "
-                                    "cause.\n\n  wavephys check out/frames --sea --direction 0\n  wavephys check "
-                                    "'export/h_*.exr' --dx 0.05 --dt 1/60 --depth 0.5 --junit checks.xml\n\nChecks "
-                                    "on a record:\n" + checks + "\n\nShaders: compile a function (GLSL, GLSL ES, WebGL, "
-                                    "Shadertoy, Godot, or HLSL through glslang and SPIRV-Cross) on the headless "
-                                    "OpenGL context, evaluate it over its whole input domain and compare it with the "
-                                    "physics; its constants (F0, the index ratio) are found from its output and "
-                                    "judged against water's range.\n\n  wavephys check --glsl water.glsl --function "
-                                    "fresnel --against fresnel\n  wavephys check --hlsl Water.hlsl --function "
-                                    "FresnelSchlick --against fresnel")
-    ck.add_argument("frames", nargs="*", metavar="FRAMES", help="a folder, glob pattern or files of height frames")
-    ck.add_argument("--dx", type=_float(0.0, open_lo=True), help="grid spacing, m (when the files do not say)")
-    ck.add_argument("--dt", type=_seconds, help="time between frames, s: 0.0167 or 1/60 (when the files do not say)")
-    ck.add_argument("--depth", type=_float(0.0, open_lo=True), help="the water's depth, m (default: deep)")
-    ck.add_argument("--sigma", type=_float(0.0), help="surface tension, N/m (default 0.0728; 0 for gravity waves)")
-    ck.add_argument("--axes", choices=("tyx", "yxt", "txy", "xyt", "ytx", "xty"),
-                    help="the layout of one .npy/.npz array of frames (yxt: time last); needed when its shape could "
-                         "be read more than one way")
-    ck.add_argument("--channel", metavar="NAME", help="the EXR channel holding the heights (default Y or the only one)")
-    ck.add_argument("--only", nargs="+", metavar="CHECK", help="run only these checks (names above)")
-    ck.add_argument("--sea", action="store_true", help="the frames are a sea meant to travel (standing-wave check)")
-    ck.add_argument("--direction", type=_real, metavar="DEG", help="claimed direction of travel, degrees, 0 = +x")
-    ck.add_argument("--packet", action="store_true", help="the frames are one wave packet (group-velocity check)")
-    ck.add_argument("--floor", metavar="FILE", help="a .npy of the still-water depth under each column, m, of a "
-                                                    "wave train travelling along x (shoaling check)")
-    ck.add_argument("--bed", metavar="FILE", help="a .npy of the bed elevation under each cell, m: the frames are "
-                                                  "shallow water over it (mass check; linear-wave checks skipped)")
-    ck.add_argument("--at-rest", action="store_true", help="with --bed: the water was started flat and at rest "
-                                                           "(lake-at-rest check)")
-    ck.add_argument("--dam", nargs="+", type=_real, metavar="X H0 [HR]", help="with --bed: a dam at X m from the "
-                    "left edge, H0 m deep behind it (HR ahead, default dry), released at the first frame")
-    ck.add_argument("--tank", action="store_true", help="the frames are water between four reflecting walls half a "
-                                                        "sample outside the edges (seiche and wall-reflection checks)")
-    ck.add_argument("--source", type=_pair, metavar="X,Y", help="where one disturbance was, m (ring-arrival check)")
-    ck.add_argument("--t0", type=_real, default=0.0, help="when it happened, s from the first frame (default 0)")
-    ck.add_argument("--radius", type=_float(0.0), default=0.0, help="its radius, m (default 0)")
-    ck.add_argument("--viscosity", type=_float(0.0), default=0.0, help="kinematic viscosity modelled, m^2/s")
-    ck.add_argument("--normals", metavar="FILE", help="the normal map exported with the first frame (EXR RGB or PNG)")
-    ck.add_argument("--convention", choices=("auto", "opengl", "directx"), default="auto",
-                    help="the normal map's green convention claimed (default: detect and report)")
-    ck.add_argument("--caustics", metavar="FILE", help="a caustics map, relative to flat water (EXR Y or PNG)")
-    ck.add_argument("--other", nargs="+", metavar="FRAMES", help="the same sea exported at another resolution "
-                                                                 "(files with dx in their headers)")
-    ck.add_argument("--wake", type=_float(0.0, open_lo=True), metavar="U", help="a source moving at U m/s (wake "
-                                                                                "checks on the first frame)")
-    ck.add_argument("--wake-at", type=_pair, metavar="X,Y", help="where that source is in the first frame, m "
-                                                                 "(default 0,0: the centre)")
-    ck.add_argument("--wake-heading", type=_real, default=0.0, metavar="DEG", help="its heading, degrees, 0 = +x")
-    ck.add_argument("--wake-size", type=_float(0.0, open_lo=True), metavar="M",
-                    help="its size as a Gaussian pressure, m (wake_max check)")
-    ck.add_argument("--rtol", type=_float(0.0, open_lo=True), default=0.02, help="dispersion tolerance (default "
-                                                                                   "0.02)")
-    ck.add_argument("--junit", metavar="PATH", help="also write JUnit XML for a CI server (frames)")
-    ck.add_argument("--glsl", metavar="FILE", help="the GLSL source that defines the function (GLSL ES, WebGL, "
-                                                   "Shadertoy and Godot shader files are read as written)")
-    ck.add_argument("--hlsl", metavar="FILE", help="the HLSL source that defines the function (Unity, Unreal, Crest): "
-                                                   "translated by glslang and SPIRV-Cross (apt-get install "
-                                                   "glslang-tools spirv-cross)")
-    ck.add_argument("--shader", metavar="FILE", help="a shader source in any of those languages (--language)")
-    ck.add_argument("--language", default="auto", choices=("auto", "glsl", "glsl_es", "webgl", "shadertoy", "godot",
-                                                           "hlsl"), help="the source's language (default: told from "
-                                                                         "the text)")
-    ck.add_argument("--define", action="append", metavar="NAME=VALUE", help="a macro the source relies on, e.g. "
-                                                                            "UNITY_PI=3.14159265 (repeatable)")
-    ck.add_argument("--include", action="append", metavar="DIR", help="a folder for the source's #include lines "
-                                                                      "(repeatable)")
-    ck.add_argument("--function", metavar="NAME", help="the function to check")
-    ck.add_argument("--result", metavar="NAME", help="the out parameter that holds the result (default: the return "
-                                                     "value, or a void function's only out parameter)")
-    ck.add_argument("--against", metavar="CHECK", help="what it computes: fresnel, refract, reflect, transmittance, "
-                                                        "rgb_absorption, normal_decode, height_normal (see --list)")
-    ck.add_argument("--takes", metavar="ROLE,...", help="what each parameter is, in order (roles from --list; "
-                                                        "default: the check's own, else read from the names)")
-    ck.add_argument("--returns", metavar="TYPE", help="the return type you expect (float, vec3)")
-    ck.add_argument("--option", type=_setting, action="append", metavar="KEY=VALUE",
-                    help="an option of the check, e.g. form=schlick, sides=above, convention=directx (repeatable)")
-    ck.add_argument("--uniform", type=_setting, action="append", metavar="NAME=VALUE",
-                    help="a value for a uniform the function reads, e.g. uF0=0.02 or uTint=0.1,0.2,0.3 (repeatable)")
-    ck.add_argument("--tolerance", type=_float(0.0, open_lo=True), default=None, help="largest error allowed "
-                                                                                      "(default: the check's)")
-    ck.add_argument("--json", metavar="PATH", help="also write the report as JSON")
-    ck.add_argument("--chart", metavar="PATH", help="also draw the error over the domain (a .png)")
-    ck.add_argument("--list", action="store_true", help="list the checks, their roles and options, and exit")
-    ck.set_defaults(func=cmd_check)
+HELPERS = {"setting": _setting, "checked": _checked}
+"""The command's shared argument types, for the subcommands defined in their own modules."""
 
 
 def build_parser() -> argparse.ArgumentParser:
@@ -822,7 +480,9 @@ def build_parser() -> argparse.ArgumentParser:
     rp.add_argument("--figures", metavar="DIR", help="the bench charts' folder (default: the checkout's bench/figures)")
     rp.add_argument("--quick", action="store_true", help="smaller grids, one model card, one frame")
     rp.set_defaults(func=cmd_report)
-    _add_check_parser(sub, fmt)
+    from wavephys.app.check_command import add_check_parser
+
+    add_check_parser(sub, fmt, _Parser, HELPERS)
     return parser
 
 

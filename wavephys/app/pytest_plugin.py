@@ -73,6 +73,7 @@ class Checker:
         ValueError
             When neither or both of ``rtol`` and ``atol`` are given, or a tolerance is negative.
         """
+        __tracebackhide__ = True
         from wavephys.harness.checks import assert_check, compare
 
         return assert_check(compare(quantity, measured, expected, rtol=rtol, atol=atol, unit=unit))
@@ -101,6 +102,7 @@ class Checker:
         AssertionError
             When ``measured`` exceeds ``limit``; the message is the row's report.
         """
+        __tracebackhide__ = True
         from wavephys.harness.checks import assert_check, bound
 
         return assert_check(bound(quantity, measured, limit, unit=unit))
@@ -142,6 +144,7 @@ class Checker:
             When the error exceeds ``rtol`` or too few shells are measured; the message names the
             band, the worst k and, where recognizable, the likely cause.
         """
+        __tracebackhide__ = True
         from wavephys.core.inputs import check_instance
         from wavephys.core.water import Water
         from wavephys.harness.checks import assert_check
@@ -183,6 +186,7 @@ class Checker:
         AssertionError
             When the drift exceeds ``rtol``.
         """
+        __tracebackhide__ = True
         import numpy as np
 
         from wavephys.harness.checks import assert_check, compare
@@ -197,7 +201,7 @@ class Checker:
         drift = np.max(np.abs(e / e[0] - 1.0))
         return assert_check(compare("energy drift", drift, 0.0, atol=rtol))
 
-    def record(self, frames, water=None, *, dx=None, dt=None, axes=None, only=None, **claims):
+    def record(self, frames, water=None, *, dx=None, dt=None, axes=None, png_range=None, only=None, **claims):
         """Assert that a record passes every check of :data:`wavephys.harness.RECORD_CHECKS` that applies.
 
         Parameters
@@ -213,12 +217,14 @@ class Checker:
         axes : str, optional, keyword-only
             The layout of an array, or of one ``.npy``/``.npz`` file of frames, e.g. ``"tyx"`` or ``"yxt"``
             (time last): needed when the shape could be read more than one way.
+        png_range : (float, float), optional, keyword-only
+            For 16-bit PNGs without a JSON sidecar: (offset, amplitude), m.
         only : list of str, optional, keyword-only
             The checks to run (default: every one whose claims are given).
         **claims
-            What the record is claimed to be: ``direction`` (degrees), ``sea=True``, ``packet=True``, ``source``
-            (m) with ``t0`` and ``radius``, ``wake=dict(speed=..., source=..., direction=..., size=...)``, and
-            the tolerances and options of :func:`wavephys.harness.check_record`.
+            What the record is claimed to be, by name: every field of :class:`wavephys.harness.Claims`
+            (``direction``, ``sea=True``, ``depth``, ``tank=True``, ``bed=``, ``rtol`` …) and any claim a registered
+            check brings.
 
         Returns
         -------
@@ -228,10 +234,11 @@ class Checker:
         Raises
         ------
         AssertionError
-            When a row fails; the message is every row's report, with the likely causes.
+            When a row fails; the message is the table of rows, each with its likely cause.
         ValueError
             When the layout is ambiguous, a claim a named check needs is missing, or a value is out of range.
         """
+        __tracebackhide__ = True
         import os
 
         from wavephys.harness.record import Record
@@ -246,7 +253,7 @@ class Checker:
             if isinstance(frames, Record):
                 record = frames
             elif isinstance(frames, (str, os.PathLike, list, tuple)) and not _is_numeric(frames):
-                record = Record.from_files(frames, dx=dx, dt=dt, axes=axes)
+                record = Record.from_files(frames, dx=dx, dt=dt, axes=axes, png_range=png_range)
             else:
                 if dx is None or dt is None:
                     raise ValueError("dx and dt: heights given as an array need dx (m) and dt (s)")
@@ -259,7 +266,7 @@ class Checker:
             raise type(exc)(f"frames: {exc}") from None
         report = check_record(record, water, only=only, **claims)
         if not report.ok:
-            raise AssertionError(report.report())
+            raise AssertionError(report.table())
         return report
 
     def wake_angle(self, eta, dx, *, speed, angle="edge", source=(0.0, 0.0), direction=0.0, size=None,
@@ -300,6 +307,7 @@ class Checker:
         AssertionError
             When the angle is off; the message is the row with the likely cause.
         """
+        __tracebackhide__ = True
         from wavephys.harness.checks import assert_check
         from wavephys.harness.steady import wake_check
 

@@ -22,6 +22,7 @@ import json
 import math
 import os
 import re
+import zipfile
 from dataclasses import dataclass, field
 from pathlib import Path
 
@@ -29,7 +30,7 @@ import numpy as np
 
 from typing import Optional
 
-from wavephys.core.inputs import check_choice, check_int, check_scalar, describe
+from wavephys.core.inputs import check_array, check_choice, check_int, check_scalar, describe
 
 __all__ = ["FRAME_SUFFIXES", "UNITS", "AXES", "Frames", "read_exr", "read_frames", "read_map", "resolve_axes"]
 
@@ -223,7 +224,7 @@ def _exr_frame(path: Path, channel):
     return np.asarray(channels[name], np.float64), dict(attrs, channel=name)
 
 
-def _png_frame(path: Path, channel):
+def _png_frame(path: Path, channel, png_range=None):
     from PIL import Image
 
     try:
@@ -247,12 +248,25 @@ def _png_frame(path: Path, channel):
         if not isinstance(meta, dict):
             raise ValueError(f"source: the sidecar {str(sidecar)!r} must hold a JSON object")
     q = np.flipud(data).astype(np.float64) / 65535.0
-    offset, amplitude = meta.get("offset", 0.0), meta.get("amplitude", 1.0)
+    stated = "offset" in meta and "amplitude" in meta
+    if png_range is not None:
+        if stated and (meta["offset"], meta["amplitude"]) != tuple(png_range):
+            raise ValueError(f"png_range: {tuple(png_range)} was given but the sidecar {str(sidecar)!r} says offset "
+                             f"{meta['offset']!r} and amplitude {meta['amplitude']!r}; leave png_range out to use it")
+        meta = dict(meta, offset=float(png_range[0]), amplitude=float(png_range[1]), units=meta.get("units", "m"))
+    elif not stated:
+        said = f"its sidecar {str(sidecar)!r} has no offset and amplitude" if sidecar.is_file() else \
+            f"it has no JSON sidecar ({sidecar.name} with offset and amplitude in metres)"
+        raise ValueError(f"source: {str(path)!r} is a 16-bit PNG and {said}: its levels do not say metres. Give "
+                         f"heights = offset + amplitude × level/65535 with png_range=(offset, amplitude) "
+                         f"(--png-range OFFSET,AMPLITUDE), or write the sidecar")
+    offset, amplitude = meta["offset"], meta["amplitude"]
     for key, value in (("offset", offset), ("amplitude", amplitude)):
         if isinstance(value, bool) or not isinstance(value, (int, float)) or not math.isfinite(value):
             raise ValueError(f"source: {key} in {str(sidecar)!r} must be a finite number, got {value!r}")
-    if "offset" not in meta:
-        meta = dict(meta, units=meta.get("units", "unknown (raw 16-bit levels / 65535)"))
+    if amplitude <= 0:
+        raise ValueError(f"source: the amplitude of {str(path)!r} must be > 0 (m per full level range), got "
+                         f"{amplitude!r}")
     return offset + amplitude * q, meta
 
 
@@ -269,8 +283,9 @@ def _np_frames(path: Path):
                 data = f[keys[0]]
                 meta = {k: f[k].item() for k in f.files if k != keys[0] and f[k].ndim == 0}
                 meta.update({k: f[k] for k in f.files if k != keys[0] and f[k].ndim > 0})
-    except (OSError, EOFError) as exc:
-        raise ValueError(f"source: {str(path)!r} is not a readable numpy file ({exc})") from None
+    except (OSError, EOFError, zipfile.BadZipFile) as exc:
+        raise ValueError(f"source: {str(path)!r} is not a readable numpy file ({type(exc).__name__}: {exc}): a "
+                         f"damaged or partly written file?") from None
     except ValueError as exc:
         if str(exc).startswith("source:"):
             raise
@@ -317,7 +332,7 @@ def _times(metas, paths):
 
 
 def read_frames(source, *, channel: str | None = None, dx: float | None = None, dt: float | None = None,
-                max_frames: int = 65536, axes: Optional[str] = None) -> Frames:
+                max_frames: int = 65536, axes: Optional[str] = None, png_range=None) -> Frames:
     """Read a time series of height images: one frame per file, or one ``.npy``/``.npz`` array of frames.
 
     Parameters
@@ -343,6 +358,10 @@ def read_frames(source, *, channel: str | None = None, dx: float | None = None, 
         The layout of one ``.npy``/``.npz`` array of frames, one of :data:`AXES` (``"yxt"``: time last). Needed
         when the shape can be read more than one way (time last, a cube), unless the ``.npz`` says (``axes``
         beside the heights, as ``Record.save`` writes); refused for image files, which are one frame each.
+    png_range : (float, float), optional, keyword-only
+        For 16-bit PNGs: (offset, amplitude), m: heights = offset + amplitude × level/65535. Needed when a PNG has
+        no JSON sidecar saying them; a sidecar that says otherwise is refused, never overridden. Without either,
+        such PNGs are refused: their levels do not say metres.
 
     Returns
     -------
@@ -364,6 +383,8 @@ def read_frames(source, *, channel: str | None = None, dx: float | None = None, 
     ((256, 128, 128), 0.0625, 0.016666666666666666)
     """
     max_frames = check_int("max_frames", max_frames, lo=1)
+    if png_range is not None:
+        check_array("png_range", png_range, ndim=1, shape_tail=(2,))
     if channel is not None and (not isinstance(channel, str) or not channel):
         raise TypeError(f"channel must be a non-empty string (an EXR channel name), got {describe(channel)}")
     paths = _expand(source)
@@ -397,7 +418,7 @@ def read_frames(source, *, channel: str | None = None, dx: float | None = None, 
             if kind == ".exr":
                 f, m = _exr_frame(p, channel)
             elif kind == ".png":
-                f, m = _png_frame(p, channel)
+                f, m = _png_frame(p, channel, png_range)
             else:
                 f, m = _np_frames(p)
                 if f.ndim != 2:
@@ -502,8 +523,10 @@ def read_map(path, *, name: str = "path", channels: int | None = None) -> np.nda
         if values.ndim == 3 and values.shape[-1] == 4:
             values = values[..., :3]
     elif suffix in (".npy", ".npz"):
-        values, _ = _np_frames(p) if suffix == ".npz" else (np.asarray(np.load(p, allow_pickle=False), np.float64),
-                                                            None)
+        try:
+            values, _ = _np_frames(p)
+        except ValueError as exc:
+            raise ValueError(re.sub(r"^source:", f"{name}:", str(exc))) from None
     else:
         raise ValueError(f"{name}: {str(p)!r} is not an .exr, .png, .npy or .npz file")
     if channels == 1 and values.ndim != 2:

@@ -168,7 +168,7 @@ def measure_dispersion(eta, dx: float, dt: float, *, min_relative_power: float =
             continue
         a, b, c = np.log(np.maximum(col[i - 1: i + 2], 1e-300))
         denom = a - 2 * b + c
-        offset = 0.5 * (a - c) / denom if denom < 0 else 0.0
+        offset = min(max(0.5 * (a - c) / denom, -0.5), 0.5) if denom < 0 else 0.0  # within its own bin
         w = (i + offset) * dw
         if w < min_bins * dw or w > (half - min_bins) * dw:
             continue

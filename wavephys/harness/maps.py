@@ -28,7 +28,7 @@ from wavephys.core.inputs import check_array, check_choice, check_scalar
 from wavephys.core.spectral import angular_wavenumbers
 
 __all__ = ["tiling_check", "normals_check", "resolution_check", "caustics_flux_check", "quantization_check",
-           "NORMAL_CONVENTIONS"]
+           "NORMAL_CONVENTIONS", "STENCILS"]
 
 NORMAL_CONVENTIONS = ("auto", "opengl", "directx")
 """Green conventions of a normal map: OpenGL (green = +y), DirectX (green = −y), or detected."""
@@ -108,7 +108,13 @@ def tiling_check(field, *, max_ratio: float = 2.0):
     return row
 
 
+STENCILS = ("spectral", "central", "forward", "backward", "sobel")
+"""The derivatives a normal map may be made with: spectral (exact for a band-limited periodic map), central
+differences (h₊ − h₋)/2Δx, one-sided forward (h₊ − h)/Δx and backward (h − h₋)/Δx, and a 3×3 Sobel filter."""
+
+
 def _slopes(eta, dx, derivative):
+    """(∂h/∂x, ∂h/∂y) of a periodic map by one of :data:`STENCILS`."""
     ny, nx = eta.shape
     if derivative == "spectral":
         ky, kx = angular_wavenumbers((ny, nx), dx, xp=np)
@@ -117,7 +123,15 @@ def _slopes(eta, dx, derivative):
         kx = np.where(np.abs(kx) >= np.pi / dx * (1 - 1e-9), 0.0, kx)
         ky = np.where(np.abs(ky) >= np.pi / dx * (1 - 1e-9), 0.0, ky)
         return np.real(np.fft.ifft2(1j * kx * spec)), np.real(np.fft.ifft2(1j * ky * spec))
-    return ((np.roll(eta, -1, 1) - np.roll(eta, 1, 1)) / (2 * dx), (np.roll(eta, -1, 0) - np.roll(eta, 1, 0)) / (2 * dx))
+    if derivative == "forward":
+        return (np.roll(eta, -1, 1) - eta) / dx, (np.roll(eta, -1, 0) - eta) / dx
+    if derivative == "backward":
+        return (eta - np.roll(eta, 1, 1)) / dx, (eta - np.roll(eta, 1, 0)) / dx
+    central = ((np.roll(eta, -1, 1) - np.roll(eta, 1, 1)) / (2 * dx), (np.roll(eta, -1, 0) - np.roll(eta, 1, 0)) / (2 * dx))
+    if derivative == "central":
+        return central
+    sx, sy = central  # Sobel: the central difference smoothed 1-2-1 across it
+    return ((np.roll(sx, 1, 0) + 2 * sx + np.roll(sx, -1, 0)) / 4, (np.roll(sy, 1, 1) + 2 * sy + np.roll(sy, -1, 1)) / 4)
 
 
 def _unit(v):
@@ -126,6 +140,23 @@ def _unit(v):
 
 def _angles(a, b):
     return np.degrees(np.arccos(np.clip(np.sum(a * b, axis=-1), -1.0, 1.0)))
+
+
+def _map_slopes(m):
+    """The slopes (s_x, s_y) a unit normal map stands for: −n_x/n_z, −n_y/n_z."""
+    z = np.maximum(m[..., 2], 1e-9)
+    return np.stack([-m[..., 0] / z, -m[..., 1] / z])
+
+
+def _stencil_fit(slope, h, dx):
+    """The stencil and scale whose slopes best explain the map's slopes: (relative residual, scale, stencil),
+    the scale by least squares (slope ≈ s × stencil's slope)."""
+    fits = []
+    for derivative in STENCILS:
+        ref = np.stack(_slopes(h, dx, derivative))
+        c = float(np.sum(slope * ref) / max(np.sum(ref * ref), 1e-300))
+        fits.append((_rms(slope - c * ref) / max(_rms(ref) * max(abs(c), 1e-300), 1e-300), c, derivative))
+    return min(fits)
 
 
 def normals_check(heights, normals, dx: float, *, convention: str = "auto", packed=None,
@@ -151,8 +182,10 @@ def normals_check(heights, normals, dx: float, *, convention: str = "auto", pack
     -------
     Check
         A ``"<="`` row of the largest angle (degrees); its note gives the rms angle, the convention and packing
-        found, the derivative the map matches, and on failure the likely cause (the other green convention,
-        slopes scaled by a factor, a map of other heights).
+        found, the derivative the map matches, and on failure the likely cause, fitted: the other green
+        convention, the stencil the map was made with and the factor on its slopes (one-sided differences, a
+        central difference not halved, a normal strength or dx taken otherwise, a flat map), or a map of other
+        heights.
     """
     from wavephys.harness.checks import bound
 
@@ -179,11 +212,11 @@ def normals_check(heights, normals, dx: float, *, convention: str = "auto", pack
         for green, sign in (("opengl", 1.0), ("directx", -1.0)):
             m = n * np.array([1.0, sign, 1.0])
             ang = _angles(m, ref)
-            fits.append((float(ang.max()), float(np.sqrt(np.mean(ang**2))), derivative, green, m, None, None))
+            fits.append((float(ang.max()), float(np.sqrt(np.mean(ang**2))), derivative, green, m))
     found = min(fits, key=lambda f: f[1])
     wanted = found[3] if convention == "auto" else convention
     mine = min((f for f in fits if f[3] == wanted), key=lambda f: f[1])
-    worst, rms, derivative, _, m, _, _ = mine
+    worst, rms, derivative, _, m = mine
     note = (f"rms {rms:.3g} deg; {'packed 0.5 + 0.5 n' if packed else 'float n'}; green convention found: "
             f"{found[3]}{'' if convention == 'auto' else f' (claimed {convention})'}; matches {derivative} "
             f"slopes of the heights")
@@ -191,25 +224,42 @@ def normals_check(heights, normals, dx: float, *, convention: str = "auto", pack
                 note=note)
     if row.ok:
         return row
-    if found[3] != wanted and found[1] <= tolerance:
-        cause = (f"the map uses the {found[3]} green convention (green = {'+y' if found[3] == 'opengl' else '-y'}), "
-                 f"not {wanted}: flip green (g' = 1 - g)")
-    else:
-        slope = np.stack([-m[..., 0] / np.maximum(m[..., 2], 1e-9), -m[..., 1] / np.maximum(m[..., 2], 1e-9)])
-        scales = []
-        for derivative in ("spectral", "central"):  # the map's slopes against a multiple of the heights'
-            ref = np.stack(_slopes(h, dx, derivative))
-            c = float(np.sum(slope * ref) / max(np.sum(ref * ref), 1e-300))
-            scales.append((_rms(slope - c * ref) / max(_rms(ref), 1e-300), c))
-        resid, scale = min(scales)
-        if resid < 0.1 and abs(scale - 1) > 0.05:
-            cause = (f"the map's slopes are {scale:.4g} x the heights' (a normal 'strength' factor, or dx taken as "
-                     f"{dx / scale:.4g} m instead of {dx:.4g} m)")
-        elif not packed and v.min() > -1e-3 and np.median(v[..., 2]) < 0.9:
-            cause = "the map looks packed (0.5 + 0.5 n) but was read as float n: pass packed=True"
-        else:
-            cause = "the normals do not follow from these heights (another frame, another texel size, or flipped axes)"
+    cause = _normals_cause(found, wanted, tolerance, m, h, dx, v, packed)
     return bound(row.quantity, worst, tolerance, unit="deg", note=f"{note}; likely cause: {cause}")
+
+
+def _normals_cause(found, wanted, tolerance, m, h, dx, v, packed) -> str:
+    if found[3] != wanted and found[1] <= tolerance:
+        return (f"the map uses the {found[3]} green convention (green = {'+y' if found[3] == 'opengl' else '-y'}), "
+                f"not {wanted}: flip green (g' = 1 - g)")
+    slope = _map_slopes(m)
+    if _rms(slope) < 1e-6 * max(_rms(np.stack(_slopes(h, dx, "central"))), 1e-300):
+        return "the map is flat (every normal (0, 0, 1)): it was not made from these heights, or its slopes are lost"
+    resid, scale, stencil = _stencil_fit(slope, h, dx)
+    swapped = _stencil_fit(slope[::-1], h, dx)
+    if resid < 0.1:
+        what = {"spectral": "spectral slopes", "central": "central differences (h₊ − h₋)/2Δx",
+                "forward": "one-sided differences (h₊ − h)/Δx: each normal half a texel off",
+                "backward": "one-sided differences (h − h₋)/Δx: each normal half a texel off",
+                "sobel": "a 3×3 Sobel filter"}[stencil]
+        parts = [f"the map's slopes are {what}"] if stencil in ("forward", "backward") else []
+        if abs(scale - 2.0) < 0.04 and stencil == "central":
+            parts.append("its slopes are 2 x the heights': the central difference is not divided by 2 ((h₊ − h₋)/Δx), "
+                         "or a normal 'strength' of 2")
+        elif abs(scale + 1.0) < 0.05:
+            parts.append("the slopes have the wrong sign: the normals lean uphill")
+        elif abs(scale - 1) > 0.05:
+            parts.append(f"its slopes are {scale:.4g} x the heights' (a normal 'strength' factor, or dx taken as "
+                         f"{dx / scale:.4g} m instead of {dx:.4g} m)")
+        if parts:
+            return f"{'; '.join(parts)} (fitted: {stencil} differences × {scale:.4g}, {resid:.2g} left)"
+        return (f"the map matches {stencil} slopes of the heights × {scale:.4g} (residual {resid:.2g}): its error is "
+                f"the stencil's own on this surface; a finer map or spectral slopes fix it")
+    if swapped[0] < 0.1:
+        return f"x and y are swapped (a transposed map): it matches {swapped[2]} slopes with x and y exchanged"
+    if not packed and v.min() > -1e-3 and np.median(v[..., 2]) < 0.9:
+        return "the map looks packed (0.5 + 0.5 n) but was read as float n: pass packed=True"
+    return "the normals do not follow from these heights (another frame, another texel size, or flipped axes)"
 
 
 def _band_variance(eta, dx, edges):

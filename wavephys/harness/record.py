@@ -287,7 +287,7 @@ class Record:
     @classmethod
     def from_files(cls, source, *, dx: Optional[float] = None, dt: Optional[float] = None,
                    channel: Optional[str] = None, depth: Optional[float] = None,
-                   sigma: Optional[float] = None, axes: Optional[str] = None) -> "Record":
+                   sigma: Optional[float] = None, axes: Optional[str] = None, png_range=None) -> "Record":
         """A record from exported frames (:func:`wavephys.core.frames.read_frames`).
 
         Parameters
@@ -305,6 +305,9 @@ class Record:
         axes : str, optional, keyword-only
             The layout of one ``.npy``/``.npz`` array of frames (``"tyx"``, ``"yxt"``, …): needed when its shape
             can be read more than one way (time last, a cube); never guessed.
+        png_range : (float, float), optional, keyword-only
+            For 16-bit PNGs without a JSON sidecar: (offset, amplitude), m (heights = offset + amplitude ×
+            level/65535); such PNGs are refused without it.
 
         Returns
         -------
@@ -318,7 +321,7 @@ class Record:
         """
         from wavephys.core.frames import read_frames
 
-        frames = read_frames(source, channel=channel, dx=dx, dt=dt, axes=axes)
+        frames = read_frames(source, channel=channel, dx=dx, dt=dt, axes=axes, png_range=png_range)
         for name, value in (("dx", frames.dx), ("dt", frames.dt)):
             if value is None:
                 raise ValueError(f"{name}: the frames ({frames.paths[0]}, ...) do not say their {name}; give "

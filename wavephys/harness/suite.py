@@ -1,10 +1,16 @@
 """Every law the harness measures, as one registry of checks on a :class:`~wavephys.harness.Record`.
 
 :data:`RECORD_CHECKS` names each check, says what it measures and which claims it needs
-(a direction of travel, a source, "this is a sea"); :func:`check_record` runs the ones asked
-for (by default every one whose claims are given) and returns a :class:`RecordReport`: one
-:class:`~wavephys.harness.Check` row per check, with its verdict and, on failure, the
-likely cause. ``wavephys check FRAMES...`` and the pytest fixture are built on it.
+(:class:`~wavephys.harness.Claims`: a direction of travel, a source, "this is a sea"), and how
+many frames it needs at least; :func:`check_record` runs the ones asked for (by default every one
+whose claims are made) and returns a :class:`RecordReport`: one :class:`~wavephys.harness.Check`
+row per check, with its verdict and, on failure, the likely cause. ``wavephys check FRAMES...``
+and the pytest fixture are built on it, their options generated from the claims.
+
+A new check is one function and one row here; a check that needs a claim :class:`Claims` does not
+hold brings it in its row (``claims=(Claim(...),)``), and ``check_record``, the fixture and the
+command take it by name (``tests/harness/test_claims.py`` shows one). This module imports nothing
+heavy: ``wavephys check --help`` lists the rows.
 """
 
 from __future__ import annotations
@@ -14,19 +20,10 @@ import time
 from dataclasses import dataclass, field
 from typing import Callable, Optional
 
-import numpy as np
+from wavephys.harness.claims import Claim, Claims, claim_fields
 
-from wavephys.core.inputs import check_array, check_bool, check_choice, check_instance, check_scalar, describe
-from wavephys.core.water import Water
-
-__all__ = ["RecordCheck", "RECORD_CHECKS", "RecordReport", "check_record", "CLAIMS"]
-
-CLAIMS = ("direction", "sea", "packet", "source", "wake", "normals", "caustics", "other", "tank", "floor")
-"""Claims a check may need: a direction of travel (degrees), that the record is a travelling sea, that it is
-one wave packet, where a single disturbance was, a moving source (its speed, where it is in the first frame, its
-heading and size), the normal map or caustics map exported with the first frame, the same sea exported at
-another resolution, that the record is water between four reflecting walls (a tank), the depth under each
-column of a wave train crossing a floor."""
+__all__ = ["RecordCheck", "RECORD_CHECKS", "RecordReport", "check_record", "CLAIMS", "register", "Claim",
+           "Claims"]
 
 
 @dataclass(frozen=True)
@@ -40,145 +37,171 @@ class RecordCheck:
     measures : str
         What it measures, in words.
     needs : tuple of str
-        The claims it needs (from :data:`CLAIMS`); none: it runs on every record.
+        The claims it needs (names of :class:`~wavephys.harness.Claims` fields or of its own ``claims``); none:
+        it runs on every record.
     run : callable
-        ``run(record, water, options) -> Check``.
+        ``run(record, water, claims) -> Check`` (``claims`` a :class:`~wavephys.harness.Claims`).
+    min_frames : int
+        The fewest frames it can measure on (a shorter record is refused by name before any work).
+    claims : tuple of Claim
+        Claims it brings that :class:`~wavephys.harness.Claims` does not hold (taken by name everywhere).
+    periodic : bool
+        It assumes a periodic domain: not run on a tank (``instead`` names the check that is).
+    instead : str
+        For a periodic check, the tank's check that takes its place.
+    linear : bool
+        A check of linear waves on a periodic sea: not run on shallow water over a bed.
+    also : callable, optional
+        ``also(claims)`` → "" when it can run, else the further claim it needs, in words.
     """
 
     name: str
     measures: str
     needs: tuple
     run: Callable
+    min_frames: int = 8
+    claims: tuple = ()
+    periodic: bool = False
+    instead: str = ""
+    linear: bool = False
+    also: Optional[Callable] = None
 
 
-def _dispersion(record, water, o):
+def _dispersion(record, water, c):
     from wavephys.harness.dispersion import dispersion_check, measure_dispersion
 
     samples = measure_dispersion(record.eta, record.dx, record.dt, axes="tyx")
-    return dispersion_check(samples, water, record.dt, rtol=o.get("rtol", 0.02), k_range=o.get("k_range", (0, math.inf)))
+    return dispersion_check(samples, water, record.dt, rtol=c.rtol, k_range=c.k_range)
 
 
-def _energy(record, water, o):
+def _energy(record, water, c):
     from wavephys.harness.energy import energy_check
 
-    return energy_check(record, water, rtol=o.get("energy_rtol", 0.01), viscosity=o.get("viscosity", 0.0),
-                        tank=bool(o.get("tank")))
+    return energy_check(record, water, rtol=c.energy_rtol, viscosity=c.viscosity, tank=c.tank)
 
 
-def _standing(record, water, o):
+def _standing(record, water, c):
     from wavephys.harness.travel import standing_check
 
     return standing_check(record)
 
 
-def _direction(record, water, o):
+def _direction(record, water, c):
     from wavephys.harness.travel import direction_check
 
-    return direction_check(record, o["direction"])
+    return direction_check(record, c.direction)
 
 
-def _tiling(record, water, o):
+def _tiling(record, water, c):
     from wavephys.harness.maps import tiling_check
 
     return tiling_check(record.eta)
 
 
-def _quantization(record, water, o):
+def _quantization(record, water, c):
     from wavephys.harness.maps import quantization_check
 
     return quantization_check(record.eta)
 
 
-def _group(record, water, o):
+def _group(record, water, c):
     from wavephys.harness.packets import group_velocity_check
 
-    return group_velocity_check(record, water, direction=o.get("direction"))
+    return group_velocity_check(record, water, direction=c.direction)
 
 
-def _ring(record, water, o):
+def _ring(record, water, c):
     from wavephys.harness.packets import ring_arrival_check
 
-    return ring_arrival_check(record, water, source=o["source"], t0=o.get("t0", 0.0), radius=o.get("radius", 0.0))
+    return ring_arrival_check(record, water, source=c.source, t0=c.t0, radius=c.radius)
 
 
 def _wake(angle):
-    def run(record, water, o):
+    def run(record, water, c):
         from wavephys.harness.steady import wake_check
 
-        w = dict(o["wake"])
+        w = dict(c.wake)
         return wake_check(record.eta[0], record.dx, water=water, angle=angle, speed=w["speed"],
                           source=w.get("source", (0.0, 0.0)), direction=w.get("direction", 0.0), size=w.get("size"))
     return run
 
 
-def _normals(record, water, o):
+def _normals(record, water, c):
     from wavephys.harness.maps import normals_check
 
-    return normals_check(record.eta[0], o["normals"], record.dx, convention=o.get("convention", "auto"))
+    return normals_check(record.eta[0], c.normals, record.dx, convention=c.convention)
 
 
-def _caustics(record, water, o):
+def _caustics(record, water, c):
     from wavephys.harness.maps import caustics_flux_check
 
-    return caustics_flux_check(o["caustics"])
+    return caustics_flux_check(c.caustics)
 
 
-def _seiche(record, water, o):
+def _seiche(record, water, c):
     from wavephys.harness.tank import seiche_check
 
-    return seiche_check(record, water, rtol=o.get("rtol", 0.02) / 2)
+    return seiche_check(record, water, rtol=c.rtol / 2)
 
 
-def _reflection(record, water, o):
+def _reflection(record, water, c):
     from wavephys.harness.tank import wall_reflection_check
 
-    return wall_reflection_check(record, water, tolerance=o.get("energy_rtol", 0.01))
+    return wall_reflection_check(record, water, tolerance=c.energy_rtol)
 
 
-def _shoaling(record, water, o):
+def _shoaling(record, water, c):
     from wavephys.harness.shoaling import shoaling_check
 
-    return shoaling_check(record, water, o["floor"])
+    return shoaling_check(record, water, c.floor)
 
 
-def _depth(record, o):
+def _depth(record, c):
     """Depth frames of a shallow-water record: its heights over the claimed bed, 0 where below it (dry)."""
-    return np.maximum(np.asarray(record.eta, np.float64) - np.asarray(o["bed"], np.float64)[None], 0.0)
+    import numpy as np
+
+    return np.maximum(np.asarray(record.eta, np.float64) - np.asarray(c.bed, np.float64)[None], 0.0)
 
 
-def _mass(record, water, o):
+def _mass(record, water, c):
     from wavephys.harness.shallow_water import mass_check
 
-    return mass_check(_depth(record, o), record.dx)
+    return mass_check(_depth(record, c), record.dx)
 
 
-def _lake(record, water, o):
+def _lake(record, water, c):
     from wavephys.harness.shallow_water import lake_at_rest_check
 
-    return lake_at_rest_check(_depth(record, o), o["bed"], record.dx)
+    return lake_at_rest_check(_depth(record, c), c.bed, record.dx)
 
 
-def _dam(record, water, o):
+def _dam(record, water, c):
     from wavephys.harness.shallow_water import dam_break_check
 
-    d = o["dam"]
-    return dam_break_check(_depth(record, o), record.dx, record.dt, d["h0"], dam=d["x"], hr=d.get("hr", 0.0),
-                           t0=d.get("t0", 0.0), g=float(water.g), rtol=max(o.get("rtol", 0.02), 0.05))
+    d = c.dam
+    return dam_break_check(_depth(record, c), record.dx, record.dt, d["h0"], dam=d["x"], hr=d.get("hr", 0.0),
+                           t0=d.get("t0", 0.0), g=float(water.g), rtol=max(c.rtol, 0.05))
 
 
-def _resolution(record, water, o):
+def _resolution(record, water, c):
     from wavephys.harness.maps import resolution_check
 
-    other = o["other"]
+    other = c.other
     return resolution_check(record.eta, record.dx, other.eta, other.dx)
+
+
+def _wake_size(c) -> str:
+    return "" if (c.wake or {}).get("size") is not None else \
+        "the source's size, wake=dict(size=...) (--wake-size SIGMA)"
 
 
 RECORD_CHECKS = {c.name: c for c in (
     RecordCheck("dispersion", "omega(k) of every shell of |k| against linear theory (worst relative error)", (),
-                _dispersion),
+                _dispersion, min_frames=16, periodic=True, instead="seiche", linear=True),
     RecordCheck("energy", "drift of the wave energy over the record, with the damping rate per k and its kind", (),
-                _energy),
-    RecordCheck("tiling", "the wrap step of the frames against an ordinary step (seams, clamped edges)", (), _tiling),
+                _energy, linear=True),
+    RecordCheck("tiling", "the wrap step of the frames against an ordinary step (seams, clamped edges)", (), _tiling,
+                periodic=True, linear=True),
     RecordCheck("quantization", "noise of the lattice the heights are stored on, against the rms height", (),
                 _quantization),
     RecordCheck("standing", "phase locking of every mode's +omega and -omega parts (a sea that does not travel)",
@@ -190,33 +213,63 @@ RECORD_CHECKS = {c.name: c for c in (
     RecordCheck("ring_arrival", "share of eta^2 inside the calm disc r < c_g,min (t - t0) behind the first ring",
                 ("source",), _ring),
     RecordCheck("wake_edge", "outer edge of a moving source's wake in the first frame against the cusp line, degrees",
-                ("wake",), _wake("edge")),
-    RecordCheck("wake_max", "angle of maximum amplitude on arcs behind the source (Darmon et al.), degrees",
-                ("wake",), _wake("max")),
+                ("wake",), _wake("edge"), min_frames=1),
+    RecordCheck("wake_max", "angle of maximum amplitude on arcs behind the source (Darmon et al.; its size given), degrees",
+                ("wake",), _wake("max"), min_frames=1, also=_wake_size),
     RecordCheck("normals", "the normal map against the slopes of the first frame's heights (largest angle, degrees)",
-                ("normals",), _normals),
+                ("normals",), _normals, min_frames=1),
     RecordCheck("caustics_flux", "mean of a caustics map against flat water's irradiance (light conserved)",
-                ("caustics",), _caustics),
+                ("caustics",), _caustics, min_frames=1),
     RecordCheck("resolution", "variance per octave of |k| against the same sea exported at another resolution",
-                ("other",), _resolution),
+                ("other",), _resolution, min_frames=1),
     RecordCheck("seiche", "frequencies of a tank's strongest cosine modes against omega(k_mn) (walls at the edges)",
-                ("tank",), _seiche),
+                ("tank",), _seiche, min_frames=16),
     RecordCheck("shoaling", "a wave train's amplitude across a floor against sqrt(c_g,ref/c_g(h)) (Green's law)",
                 ("floor",), _shoaling),
     RecordCheck("wall_reflection", "amplitude kept per reflection at a tank's walls, from its modes' decay",
-                ("tank",), _reflection),
+                ("tank",), _reflection, min_frames=16),
     RecordCheck("mass", "the water's volume over a shallow-water record's frames (heights over a bed, closed domain)",
-                ("bed",), _mass),
+                ("bed",), _mass, min_frames=2),
     RecordCheck("lake_at_rest", "largest movement of a lake at rest's surface over an uneven bed, m",
-                ("bed", "at_rest"), _lake),
+                ("bed", "at_rest"), _lake, min_frames=2),
     RecordCheck("dam_break", "speed of a dam break's front (Ritter) or bore (Stoker) against the exact one, m/s",
-                ("bed", "dam"), _dam),
+                ("bed", "dam"), _dam, min_frames=3),
 )}
-LINEAR_ONLY = ("dispersion", "energy", "tiling")
-"""Checks of linear waves on a periodic sea, skipped for a shallow-water record (a bed claimed)."""
-PERIODIC_ONLY = {"dispersion": "seiche", "tiling": None}
-"""Checks that assume a periodic domain, skipped for a tank (and the check that takes their place)."""
-"""The registry of checks on a record, by name."""
+"""The registry of checks on a record, by name. A new check is one function and one row (:func:`register`)."""
+
+CLAIMS = tuple(claim_fields(extra=False))
+"""The names of the claims :class:`~wavephys.harness.Claims` holds (a check may bring its own)."""
+
+
+def register(row: RecordCheck) -> RecordCheck:
+    """Add a check to :data:`RECORD_CHECKS` (and any claim it brings to every place claims are taken).
+
+    Parameters
+    ----------
+    row : RecordCheck
+        The check; its name must be new, its ``needs`` claims known or its own.
+
+    Returns
+    -------
+    RecordCheck
+        The row, registered.
+
+    Raises
+    ------
+    ValueError
+        When a check of that name exists, or it needs a claim nobody declares.
+    """
+    if not isinstance(row, RecordCheck):
+        raise TypeError(f"row must be a RecordCheck, got {type(row).__name__}")
+    if row.name in RECORD_CHECKS:
+        raise ValueError(f"row: a check named {row.name!r} is registered already")
+    known = set(claim_fields()) | {c.name for c in row.claims}
+    unknown = [n for n in row.needs if n not in known]
+    if unknown:
+        raise ValueError(f"row: {row.name!r} needs claims nobody declares: {', '.join(unknown)} (declare them in its "
+                         f"claims=(Claim(...),))")
+    RECORD_CHECKS[row.name] = row
+    return row
 
 
 @dataclass(frozen=True)
@@ -251,6 +304,26 @@ class RecordReport:
         lines += [f"{name}: not run ({why})" for name, why in self.skipped.items()]
         return "\n".join(lines)
 
+    def table(self) -> str:
+        """The rows as a short table, one line per check: the verdict, what was measured against what it must
+        be, then each failure's likely cause on its own line (what a failing pytest shows)."""
+        lines = [f"{self.source or 'record'}: {sum(r.ok for r in self.rows.values())} of {len(self.rows)} checks "
+                 f"ok"]
+        width = max((len(n) for n in self.rows), default=0)
+        for name, row in self.rows.items():
+            rule = {"~=": "=", "<=": "<=", ">=": ">="}[row.relation]
+            unit = f" {row.unit}" if row.unit else ""
+            limit = (f"{row.expected:.4g}{unit} ± {row.tolerance:.3g}{'' if not row.relative else ' (relative)'}"
+                     if row.relation == "~=" else f"{row.expected:.4g}{unit}")
+            lines.append(f"  {'ok    ' if row.ok else 'FAILED'} {name:{width}s}  {row.measured:.4g}{unit} {rule} "
+                         f"{limit}")
+        for name, row in self.rows.items():
+            if not row.ok:
+                cause = row.note.split("likely cause: ", 1)[1] if "likely cause: " in row.note else row.note
+                lines.append(f"  {name}: {cause}")
+        lines += [f"  not run: {name} ({why})" for name, why in self.skipped.items()]
+        return "\n".join(lines)
+
     def as_dict(self) -> dict:
         """JSON-ready: source, ok, rows (each :meth:`Check.as_dict` with its seconds), skipped."""
         return dict(source=self.source, ok=self.ok,
@@ -258,61 +331,60 @@ class RecordReport:
                     skipped=dict(self.skipped))
 
 
-def _wanted(only, options) -> tuple[list, dict]:
-    have = {"direction": options.get("direction") is not None, "sea": bool(options.get("sea")),
-            "source": options.get("source") is not None, "packet": bool(options.get("packet")),
-            "wake": options.get("wake") is not None, "normals": options.get("normals") is not None,
-            "caustics": options.get("caustics") is not None, "other": options.get("other") is not None,
-            "tank": bool(options.get("tank")), "floor": options.get("floor") is not None,
-            "bed": options.get("bed") is not None, "at_rest": bool(options.get("at_rest")),
-            "dam": options.get("dam") is not None}
-    flags = {"direction": "direction= (--direction DEG)", "sea": "sea=True (--sea)",
-             "source": "source= (--source X,Y)", "packet": "packet=True (--packet)",
-             "wake": "wake=dict(speed=...) (--wake U)", "normals": "normals= (--normals FILE)",
-             "caustics": "caustics= (--caustics FILE)", "other": "other= (--other FRAMES)",
-             "tank": "tank=True (--tank)", "floor": "floor= (--floor FILE)", "bed": "bed= (--bed FILE)",
-             "at_rest": "at_rest=True (--at-rest)", "dam": "dam=dict(x=, h0=) (--dam X H0)"}
-    wake = options.get("wake") or {}
+def _why_not(row, claims, record) -> str:
+    """Why ``row`` cannot run on this record with these claims ("" when it can)."""
+    fields = claim_fields()
+    missing = [fields[n].words() for n in row.needs if not claims.given(n)]
+    if missing:
+        return "needs " + ", ".join(missing)
+    if row.also is not None and row.also(claims):
+        return "needs " + row.also(claims)
+    if row.periodic and claims.tank:
+        return "the record is a tank: it does not wrap" + (f" (its modes: the {row.instead} row)" if row.instead
+                                                           else "")
+    if row.linear and claims.given("bed"):
+        return "the record is shallow water over a bed: a check of linear waves on a periodic sea"
+    if record is not None and record.shape[0] < row.min_frames:
+        return (f"needs at least {row.min_frames} frames (the record has {record.shape[0]}): record "
+                f"{row.min_frames - record.shape[0]} more")
+    return ""
+
+
+def _wanted(only, claims, record) -> tuple:
+    """(the checks to run, the others with why not); a named check that cannot run is refused."""
+    from wavephys.core.inputs import describe
+
     if only is None:
-        names = [n for n, c in RECORD_CHECKS.items() if all(have[x] for x in c.needs)
-                 and (n != "wake_max" or wake.get("size") is not None)]
-        skipped = {n: "needs " + ", ".join(flags[x] for x in c.needs) for n, c in RECORD_CHECKS.items()
-                   if n not in names}
-        if have["tank"]:
-            for n, instead in PERIODIC_ONLY.items():
-                if n in names:
-                    names.remove(n)
-                    skipped[n] = "the record is a tank: it does not wrap" + (f" (its modes: the {instead} row)"
-                                                                            if instead else "")
-        if have["bed"]:
-            for n in LINEAR_ONLY:
-                if n in names:
-                    names.remove(n)
-                    skipped[n] = "the record is shallow water over a bed: a check of linear waves on a periodic sea"
+        names, skipped = [], {}
+        for name, row in RECORD_CHECKS.items():
+            why = _why_not(row, claims, record)
+            (skipped.__setitem__(name, why) if why else names.append(name))
+        if not names:
+            raise ValueError(f"record: no check can run on it: {'; '.join(f'{n} {w}' for n, w in skipped.items())}")
         return names, skipped
     if not isinstance(only, (list, tuple)) or not all(isinstance(n, str) for n in only):
         raise TypeError(f"only must be a list of check names, got {describe(only)}")
+    if not only:
+        raise ValueError(f"only: an empty list selects no check; name some of {', '.join(RECORD_CHECKS)}, or leave "
+                         f"only out to run every check the claims allow")
     unknown = [n for n in only if n not in RECORD_CHECKS]
     if unknown:
         raise ValueError(f"only: unknown check(s) {', '.join(unknown)}; the checks are {', '.join(RECORD_CHECKS)}")
     for n in only:
-        if have["tank"] and n in PERIODIC_ONLY:
+        row = RECORD_CHECKS[n]
+        why = _why_not(row, claims, record)
+        if why.startswith("needs"):
+            raise ValueError(f"only: the {n} check {why}")
+        if why and row.periodic and claims.tank:
             raise ValueError(f"only: the {n} check assumes a periodic domain, and the record is a tank (tank=True)"
-                             + (f": its modes are checked by {PERIODIC_ONLY[n]}" if PERIODIC_ONLY[n] else ""))
-        missing = [flags[x] for x in RECORD_CHECKS[n].needs if not have[x]]
-        if n == "wake_max" and have["wake"] and wake.get("size") is None:
-            missing.append("the source's size, wake=dict(size=...) (--wake-size SIGMA)")
-        if missing:
-            raise ValueError(f"only: the {n} check needs {', '.join(missing)}")
+                             + (f": its modes are checked by {row.instead}" if row.instead else ""))
+        if why:
+            raise ValueError(f"only: the {n} check cannot run: {why}")
     return list(dict.fromkeys(only)), {}
 
 
-def check_record(record, water: Optional[Water] = None, *, only=None, direction: Optional[float] = None,
-                 sea: bool = False, packet: bool = False, source=None, t0: float = 0.0, radius: float = 0.0,
-                 viscosity: float = 0.0, rtol: float = 0.02, energy_rtol: float = 0.01, k_range=(0.0, math.inf),
-                 wake: Optional[dict] = None, normals=None, convention: str = "auto", caustics=None, other=None,
-                 tank: bool = False, floor=None, bed=None, at_rest: bool = False, dam: Optional[dict] = None,
-                 progress: Optional[Callable[[str], None]] = None) -> RecordReport:
+def check_record(record, water=None, *, only=None, claims: Optional[Claims] = None,
+                 progress: Optional[Callable[[str], None]] = None, **kwargs) -> "RecordReport":
     """Run the checks of :data:`RECORD_CHECKS` on a record.
 
     Parameters
@@ -320,61 +392,18 @@ def check_record(record, water: Optional[Water] = None, *, only=None, direction:
     record : Record
         The frames (:class:`wavephys.harness.Record`).
     water : Water, optional
-        The water of the theory (default ``Water()``), with the record's claimed depth and σ applied.
+        The water of the theory (default ``Water()``), with the record's own depth and σ applied, then the
+        claimed ones.
     only : list of str, optional, keyword-only
-        The checks to run (default: every one whose claims are given); a named check whose claim is missing is
-        refused before any work.
-    direction : float, optional, keyword-only
-        The claimed direction of travel, degrees (0 = +x, 90 = +y).
-    sea : bool, optional, keyword-only
-        The record is a sea meant to travel (runs the standing-wave check).
-    packet : bool, optional, keyword-only
-        The record is one wave packet (runs the group-velocity check).
-    source : (float, float), optional, keyword-only
-        Where a single disturbance was, m (runs the ring-arrival check), with ``t0`` (s from the first frame)
-        and ``radius`` (m).
-    t0, radius : float, optional, keyword-only
-        See ``source``.
-    viscosity : float, optional, keyword-only
-        Kinematic viscosity the simulator claims to model, m²/s, >= 0 (default 0).
-    rtol : float, optional, keyword-only
-        Dispersion tolerance, relative, > 0 (default 0.02).
-    energy_rtol : float, optional, keyword-only
-        Energy drift tolerance over the record, > 0 (default 0.01).
-    k_range : (float, float), optional, keyword-only
-        Band of the dispersion check, rad/m (default all).
-    wake : dict, optional, keyword-only
-        A moving source in the first frame (runs the wake checks): ``speed`` (m/s, required), ``source`` (x, y)
-        where it is, m, in the grid convention (default the centre), ``direction`` its heading, degrees (default
-        0 = +x), ``size`` σ of a Gaussian pressure source, m (needed by ``wake_max``).
-    normals : array_like (n_y, n_x, 3), optional, keyword-only
-        The normal map exported with the first frame, packed 0.5 + 0.5 n or float n (runs ``normals``), with
-        ``convention`` ``"auto"`` (detect and report), ``"opengl"`` or ``"directx"``.
-    convention : {"auto", "opengl", "directx"}, optional, keyword-only
-        See ``normals``.
-    caustics : array_like (n_y, n_x) or (n_t, n_y, n_x), optional, keyword-only
-        A caustics map relative to flat water's irradiance (runs ``caustics_flux``).
-    other : Record, optional, keyword-only
-        The same sea exported at another resolution (runs ``resolution``).
-    tank : bool, optional, keyword-only
-        The record is water between four reflecting walls half a sample outside its edges (runs ``seiche`` and
-        ``wall_reflection``, measures the energy on the tank's modes, skips the periodic-only ``dispersion`` and
-        ``tiling``). A record that fails those without the claim and looks like a tank gets a note saying so.
-    floor : array_like (n_x,), optional, keyword-only
-        The still-water depth under each column, m, of a wave train travelling along x (runs ``shoaling``).
-    bed : array_like (n_y, n_x), optional, keyword-only
-        The record is shallow water: its frames are the surface over this bed elevation, m (dry where below it).
-        Runs ``mass`` (a closed domain's volume) and skips the linear-wave checks ``dispersion``, ``energy``
-        and ``tiling``.
-    at_rest : bool, optional, keyword-only
-        With ``bed``: the water was started at rest with a flat surface (runs ``lake_at_rest``).
-    dam : dict, optional, keyword-only
-        With ``bed``: a dam break on a flat bed, released at rest — ``x`` (the dam's position, m from the frames'
-        left edge), ``h0`` (depth behind it, m), optionally ``hr`` (ahead, default 0: dry) and ``t0`` (the first
-        frame's time after release, s). Runs ``dam_break`` (its tolerance: ``rtol`` or 5 %, whichever is
-        larger: the thin front of a consistent solver lags a few per cent on coarse cells).
+        The checks to run (default: every one whose claims are made and that the record is long enough for);
+        a named check that cannot run is refused before any work, naming what it needs.
+    claims : Claims, optional, keyword-only
+        What the record is claimed to be (:class:`~wavephys.harness.Claims`), as one object.
     progress : callable, optional, keyword-only
         Called with a line of text before each check.
+    **kwargs
+        The claims by name instead (``direction=30.0, sea=True, tank=True, bed=..., rtol=0.01`` …): every field of
+        :class:`~wavephys.harness.Claims` and any claim a registered check brings.
 
     Returns
     -------
@@ -383,86 +412,51 @@ def check_record(record, water: Optional[Water] = None, *, only=None, direction:
 
     Raises
     ------
+    TypeError
+        When a keyword is no claim, or a value is of the wrong kind.
     ValueError
-        When ``only`` names an unknown check or one whose claim is missing, or a value is out of range.
+        When ``only`` is empty, names an unknown check or one that cannot run (a claim missing, too few frames),
+        when no check can run at all, or a value is out of range.
 
     Examples
     --------
     >>> report = check_record(Record.from_files("frames/"), Water(sigma=0.0), sea=True)   # doctest: +SKIP
     >>> print(report.report())                                                            # doctest: +SKIP
     """
+    from wavephys.core.inputs import check_instance, describe
+    from wavephys.core.water import Water
     from wavephys.harness.record import Record
 
     check_instance("record", record, Record, "wavephys.harness.Record")
     if water is not None:
         check_instance("water", water, Water, "wavephys.Water")
-    water = record.water(water)
-    check_bool("sea", sea)
-    check_bool("packet", packet)
-    check_bool("tank", tank)
-    if direction is not None:
-        check_scalar("direction", direction)
-    check_scalar("t0", t0)
-    check_scalar("radius", radius, lo=0.0)
-    check_scalar("viscosity", viscosity, lo=0.0)
-    check_scalar("rtol", rtol, lo=0.0, lo_open=True)
-    check_scalar("energy_rtol", energy_rtol, lo=0.0, lo_open=True)
+    if claims is not None and kwargs:
+        raise TypeError(f"give the claims as claims=Claims(...) or as keywords, not both (got {sorted(kwargs)})")
+    if claims is None:
+        claims = Claims.from_kwargs(**kwargs)
+    check_instance("claims", claims, Claims, "wavephys.harness.Claims")
+    claims.with_record(record)
     if progress is not None and not callable(progress):
         raise TypeError(f"progress must be callable or None, got {describe(progress)}")
-    if wake is not None:
-        if not isinstance(wake, dict):
-            raise TypeError(f"wake must be a dict (speed=, source=, direction=, size=), got {describe(wake)}")
-        unknown = set(wake) - {"speed", "source", "direction", "size"}
-        if unknown or "speed" not in wake:
-            raise ValueError(f"wake must hold speed (m/s) and optionally source, direction, size; got keys "
-                             f"{sorted(wake)}")
-        check_scalar("wake['speed']", wake["speed"], lo=0.0, lo_open=True)
-        if wake.get("size") is not None:
-            check_scalar("wake['size']", wake["size"], lo=0.0, lo_open=True)
-        check_scalar("wake['direction']", wake.get("direction", 0.0), lo=-360.0, hi=360.0)
-    if other is not None:
-        check_instance("other", other, Record, "wavephys.harness.Record")
-    check_choice("convention", convention, ("auto", "opengl", "directx"))
-    if caustics is not None:
-        check_array("caustics", caustics, lo=0.0)
-        if np.ndim(caustics) not in (2, 3):
-            raise ValueError(f"caustics must be a map (n_y, n_x) or maps (n_t, n_y, n_x), got shape "
-                             f"{np.shape(caustics)}")
-    if normals is not None:
-        check_array("normals", normals, ndim=3)
-    options = dict(direction=direction, sea=sea, packet=packet, source=source, t0=t0, radius=radius,
-                   viscosity=viscosity, rtol=rtol, energy_rtol=energy_rtol, k_range=k_range, wake=wake,
-                   normals=normals, convention=convention, caustics=caustics, other=other, tank=tank, floor=floor)
-    if floor is not None:
-        check_array("floor", floor, ndim=1, shape_tail=(record.shape[2],), lo=0.0)
-    check_bool("at_rest", at_rest)
-    if bed is not None:
-        check_array("bed", bed, ndim=2, shape_tail=tuple(record.shape[1:]))
-    elif at_rest or dam is not None:
-        raise ValueError("at_rest and dam describe shallow water: give its bed elevation too, bed= (--bed FILE)")
-    if dam is not None:
-        if not isinstance(dam, dict):
-            raise TypeError(f"dam must be a dict (x=, h0=, hr=, t0=), got {describe(dam)}")
-        if set(dam) - {"x", "h0", "hr", "t0"} or not {"x", "h0"} <= set(dam):
-            raise ValueError(f"dam must hold x (m) and h0 (m), and optionally hr and t0; got keys {sorted(dam)}")
-        check_scalar("dam['x']", dam["x"])
-        check_scalar("dam['h0']", dam["h0"], lo=0.0, lo_open=True)
-        check_scalar("dam['hr']", dam.get("hr", 0.0), lo=0.0)
-        check_scalar("dam['t0']", dam.get("t0", 0.0), lo=0.0)
-    options.update(bed=bed, at_rest=at_rest, dam=dam)
-    if source is not None:
-        check_array("source", source, ndim=1, shape_tail=(2,))
-    names, skipped = _wanted(only, options)
+    water = _water(record.water(water), claims)
+    names, skipped = _wanted(only, claims, record)
     rows, seconds = {}, {}
     for i, name in enumerate(names):
         if progress is not None:
             progress(f"[{i + 1}/{len(names)}] {name}")
         start = time.perf_counter()
-        rows[name] = RECORD_CHECKS[name].run(record, water, options)
+        rows[name] = RECORD_CHECKS[name].run(record, water, claims)
         seconds[name] = time.perf_counter() - start
-    if not tank and any(not rows[n].ok for n in PERIODIC_ONLY.keys() | {"energy"} if n in rows):
+    if not claims.tank and any(not rows[n].ok for n in rows if RECORD_CHECKS[n].periodic or n == "energy"):
         _hint_tank(record, water, rows)
     return RecordReport(rows, skipped, seconds, record.source)
+
+
+def _water(water, claims):
+    from dataclasses import replace
+
+    changes = {k: getattr(claims, k) for k in ("depth", "sigma") if getattr(claims, k) is not None}
+    return replace(water, **changes) if changes else water
 
 
 def _hint_tank(record, water, rows):
@@ -474,7 +468,7 @@ def _hint_tank(record, water, rows):
     why = looks_like_tank(record, water)
     if not why:
         return
-    for n in list(PERIODIC_ONLY) + ["energy"]:
+    for n in [n for n in rows if RECORD_CHECKS[n].periodic] + ["energy"]:
         if n in rows and not rows[n].ok:
             rows[n] = replace(rows[n], note=f"{rows[n].note}; the record looks like a closed tank ({why}): if it "
                                             f"is, check it with tank=True (--tank)")
