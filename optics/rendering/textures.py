@@ -681,7 +681,7 @@ def _export_exr(scene, arrays, normals, out, half) -> dict:
 
 
 def export_height_frames(heights, length: float, dt: float, out_dir, *, start: float = 0.0, half: bool = False,
-                         prefix: str = "water_height") -> list:
+                         prefix: str = "water_height", attributes: dict | None = None) -> list:
     """Write a time series of height fields as numbered OpenEXR frames, each saying what it is.
 
     ``OUT/PREFIX_0000.exr``, ``_0001``, …: channel Y = the heights, m, in the grid convention; the header holds
@@ -705,6 +705,9 @@ def export_height_frames(heights, length: float, dt: float, out_dir, *, start: f
         16-bit floats instead of 32-bit (default False; heights below 6.1e-5 m are subnormal in half floats).
     prefix : str, optional, keyword-only
         File name before the frame number: letters, digits, ``_`` and ``-`` (default ``"water_height"``).
+    attributes : dict, optional, keyword-only
+        More header entries that say what the frames are, str keys and str, int or float values: ``boundary``
+        (``"walls"``: a tank, read as ``tank=True``; ``"periodic"``; ``"open"``), ``depth`` (m), ``sigma`` (N/m).
 
     Returns
     -------
@@ -724,6 +727,12 @@ def export_height_frames(heights, length: float, dt: float, out_dir, *, start: f
     check_bool("half", half)
     if not isinstance(prefix, str) or not re.fullmatch(r"[A-Za-z0-9_-]+", prefix):
         raise ValueError(f"prefix must be letters, digits, _ and - only, got {prefix!r}")
+    if attributes is not None and not isinstance(attributes, dict):
+        raise TypeError(f"attributes must be a dict of header entries (or None), got {type(attributes).__name__}")
+    clash = sorted(set(attributes or {}) & {"units", "quantity", "length", "dx", "dt", "time", "frame", "grid",
+                                            "precision"})
+    if clash:
+        raise ValueError(f"attributes: {clash} are written by the export itself")
     if isinstance(heights, (str, bytes)) or not hasattr(heights, "__iter__"):
         raise TypeError(f"heights must be an iterable of (n, n) height arrays, got {type(heights).__name__}")
     if hasattr(heights, "__len__") and len(heights) == 0:
@@ -740,7 +749,7 @@ def export_height_frames(heights, length: float, dt: float, out_dir, *, start: f
         paths.append(save_exr(out / f"{prefix}_{i:04d}.exr", {"Y": h}, half=half, attributes=dict(
             units="m", quantity="water height", length=float(length), dx=float(length) / h.shape[0],
             dt=float(dt), time=float(start + i * dt), frame=i, grid=GRID_CONVENTION,
-            precision="half" if half else "float")))
+            precision="half" if half else "float", **(attributes or {}))))
     if not paths:
         raise ValueError("heights holds no frames")
     return paths

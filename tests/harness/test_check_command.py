@@ -53,9 +53,10 @@ def test_third_party_exr_folder_through_the_command(sea, tmp_path, capsys):
 
 
 def test_textures_maps_through_the_command(tmp_path, capsys):
-    """Our pool's frames with its normal map (float EXR and packed 8-bit PNG) and caustics map."""
+    """A periodic scene's frames with its normal map (float EXR and packed 8-bit PNG) and caustics map (the pool's
+    frames are its tank alone, smaller than its maps of the whole square)."""
     out = tmp_path / "tx"
-    assert main(["textures", "--scene", "pool", "--n", "64", "--frames", "8", "--fps", "15", "--out",
+    assert main(["textures", "--scene", "calm", "--n", "64", "--frames", "8", "--fps", "15", "--out",
                  str(out)]) == 0
     capsys.readouterr()
     assert main(["check", str(out / "frames"), "--only", "normals", "caustics_flux", "--normals",
@@ -68,6 +69,19 @@ def test_textures_maps_through_the_command(tmp_path, capsys):
     assert exc.value.code == 2
     assert main(["check", str(out / "frames"), "--only", "normals", "--normals", str(tmp_path / "none.exr")]) == 2
     assert "--normals" in capsys.readouterr().err
+
+
+def test_the_pools_own_export_is_checked_as_the_tank_it_is(tmp_path, capsys):
+    """The pool's frames are its tank (boundary = walls in their headers, its depth and sigma): every check that
+    applies passes with nothing claimed, the periodic ones are not run on it."""
+    out = tmp_path / "tx"
+    assert main(["textures", "--scene", "pool", "--n", "64", "--frames", "24", "--fps", "15", "--out",
+                 str(out)]) == 0
+    capsys.readouterr()
+    assert main(["check", str(out / "frames")]) == 0
+    text = capsys.readouterr().out
+    assert "ok     seiche" in text and "ok     wall_reflection" in text and "ok     energy" in text
+    assert "skip   tiling: the record is a tank" in text and "FAILED" not in text
 
 
 def test_resolution_through_the_command(tmp_path, capsys):

@@ -195,6 +195,9 @@ def _option_words(text: str) -> str:
     from wavephys.harness.claims import claim_fields
 
     text = re.sub(r"^only:", "--only:", text)
+    for c in claim_fields().values():  # "direction= (--direction DEG)" → "--direction DEG"
+        text = text.replace(c.words(), c.option + (f" {c.metavar}" if c.metavar and c.kind != "flag" else ""))
+    text = re.sub(r"[\w']+(?:\[[^\]]*\])?=(?:dict\([^)]*\))? \((--[\w-]+(?: [^)]*)?)\)", r"\1", text)
     for name, c in sorted(claim_fields().items(), key=lambda kv: -len(kv[0])):
         text = re.sub(rf"(^|; |\()({name})(\[|\b(?=[ :]))", lambda m: m.group(1) + c.option + (
             m.group(3) if m.group(3) == "[" else ""), text)

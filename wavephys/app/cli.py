@@ -256,12 +256,12 @@ def cmd_textures(args, parser) -> int:
         import numpy as np
 
         from optics.rendering.textures import export_height_frames
-        from wavephys.app.scenes import scene_grid
+        from wavephys.app.scenes import scene_height_frames
 
         start = time.perf_counter()
-        series = (np.asarray(s.water) for s in scenes)
-        written = export_height_frames(series, float(scene_grid(args.scene, args.n).length), 1.0 / args.fps,
-                                       out / "frames", start=args.time)
+        series, length, said = scene_height_frames(args.scene, args.frames, fps=args.fps, n=args.n, start=args.time)
+        written = export_height_frames(series, length, 1.0 / args.fps, out / "frames", start=args.time,
+                                       attributes=said)
         print(f"frames          {out / 'frames'}/ ({len(written)} EXR height frames at {args.fps:g} fps, "
               f"{time.perf_counter() - start:.1f} s; check them with: wavephys check {out / 'frames'})")
     return 0

@@ -834,6 +834,52 @@ def scene_frames(name: str, count: int, *, fps: float = 30.0, n: int = 256, star
     return _frames(name, count, fps, n, start, caustics)
 
 
+def scene_height_frames(name: str, count: int, *, fps: float = 30.0, n: int = 256, start: float = 0.5):
+    """The water of ``count`` frames of a built-in scene as a record to check, with what it is.
+
+    The pool's frames are its tank alone (the water between its reflecting walls, the walls half a sample
+    outside the first and last samples: the texel convention ``check_record(..., tank=True)`` reads), not the
+    scene's square with its still rim; the other scenes' frames are their water on :func:`scene_grid`.
+
+    Parameters
+    ----------
+    name : str
+        A built-in scene, one of :data:`SCENES`.
+    count : int
+        Number of frames, ≥ 1.
+    fps : float, keyword-only
+        Frames per second, 1/s, in (0, 1000].
+    n : int, keyword-only
+        The scene's resolution (texels per side), even, 64 to 8192.
+    start : float, keyword-only
+        Time of the first frame, s, 0 to 3600; the frames must end by then too.
+
+    Returns
+    -------
+    (Iterator of numpy.ndarray, float, dict)
+        The frames (m) made one by one, the side of the square they cover (m), and the header entries that say
+        what they are: ``boundary`` ("walls" for a tank, "periodic" for a sea that wraps, "open" otherwise), and
+        ``depth`` (m) and ``sigma`` (N/m) where the scene's water has them.
+    """
+    frames = scene_frames(name, count, fps=fps, n=n, start=start, caustics=False)  # checks the arguments
+    if name != "pool":
+        boundary = "periodic" if name in ("calm", "storm") else "open"
+        return (np.asarray(s.water) for s in frames), float(scene_grid(name, n).length), dict(boundary=boundary)
+    sim, state = _pool_simulation(n, dt=1.0 / fps)
+
+    def tank():
+        nonlocal state
+        skip = int(round(start * fps))
+        if skip:
+            state, _ = sim.run(state, skip)
+        for _ in range(count):
+            yield np.asarray(sim.surface(state).eta, np.float32)
+            state, _ = sim.step(state)
+    water = sim.model.water
+    return tank(), float(sim.model.grid.length), dict(boundary="walls", depth=float(water.depth),
+                                                      sigma=float(water.sigma))
+
+
 def _frames(name, count, fps, n, start, caustics):
     if name == "storm":
         for water, foam in _storm_frames(n, [start + i / fps for i in range(count)]):

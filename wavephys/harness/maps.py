@@ -88,16 +88,17 @@ def tiling_check(field, *, max_ratio: float = 2.0):
         parts.append(f"{name}: wrap step {ratio:.3g} x an ordinary one")
         if score > worst:
             worst = score
-            if ratio < 1.0 / max_ratio:
+            if walls is not None and walls <= 0.5:
+                cause = (f"held borders: the heights' variance at the edges is {walls:.2f} x the interior's (edges "
+                         f"fixed at 0, still water around a tank, or an absorbing margin); the surface is not "
+                         f"periodic")
+            elif ratio < 1.0 / max_ratio:
                 cause = (f"the last {'column' if name == 'x' else 'row'} repeats the first (a grid of n + 1 points "
                          f"with both ends kept): drop one end so the texture tiles")
             elif walls is not None and walls >= 1.5:
                 cause = (f"reflecting (edge-clamped) borders: the heights' variance in the edge rows and columns is "
                          f"{walls:.2f} x the interior's, the antinode a reflecting wall makes (a texture read with "
                          f"CLAMP_TO_EDGE, or walls); the surface is a closed tank, not periodic")
-            elif walls is not None and walls <= 0.5:
-                cause = (f"held borders: the heights' variance at the edges is {walls:.2f} x the interior's (edges "
-                         f"fixed at 0, or an absorbing margin); the surface is not periodic")
             else:
                 cause = (f"a seam along {name}: the surface does not continue across the border (a crop of a larger "
                          f"surface, or a non-periodic simulation)")

@@ -158,6 +158,9 @@ class Record:
         The claimed surface tension, N/m, >= 0.
     source : str, optional
         Where the frames came from, in words.
+    tank : bool, optional
+        The frames say they are water between four reflecting walls (their files' ``boundary`` is ``walls``):
+        :func:`~wavephys.harness.check_record` then checks them as a tank, as ``tank=True`` does.
     """
 
     eta: np.ndarray
@@ -167,6 +170,7 @@ class Record:
     depth: Optional[float] = None
     sigma: Optional[float] = None
     source: str = ""
+    tank: bool = False
 
     def __post_init__(self):
         check_array("eta", self.eta, ndim=3)
@@ -191,6 +195,8 @@ class Record:
             object.__setattr__(self, "sigma", check_scalar("sigma", self.sigma, lo=0.0))
         if not isinstance(self.source, str):
             raise TypeError(f"source must be a string, got {describe(self.source)}")
+        if not isinstance(self.tank, bool):
+            raise TypeError(f"tank must be True or False, got {describe(self.tank)}")
 
     @property
     def shape(self) -> tuple:
@@ -331,7 +337,11 @@ class Record:
         depth = depth if depth is not None else _claim(meta, "depth")
         sigma = sigma if sigma is not None else _claim(meta, "sigma")
         where = frames.paths[0] if len(frames.paths) == 1 else f"{frames.paths[0]} ... ({len(frames.paths)} files)"
-        return cls(frames.heights, frames.dx, frames.dt, eta_dot, depth, sigma, where)
+        boundary = meta.get("boundary")
+        if boundary is not None and boundary not in ("walls", "periodic", "open"):
+            raise ValueError(f"source: {frames.paths[0]} says boundary = {boundary!r}; it must be 'walls', 'periodic' "
+                             f"or 'open'")
+        return cls(frames.heights, frames.dx, frames.dt, eta_dot, depth, sigma, where, tank=boundary == "walls")
 
     @classmethod
     def load(cls, path) -> "Record":
@@ -366,7 +376,7 @@ class Record:
 
     def save(self, path) -> "Path":
         """Write the record as one ``.npz`` (atomically): ``eta``, ``dx``, ``dt``, ``units``, and η̇ and the
-        claims when present.
+        claims when present (a tank as ``boundary = "walls"``).
 
         Parameters
         ----------
@@ -380,6 +390,8 @@ class Record:
         """
         path = output_file(path, "path", (".npz",))
         entries = dict(eta=self.eta, dx=self.dx, dt=self.dt, units="m", axes="tyx")
+        if self.tank:
+            entries["boundary"] = "walls"
         if self.eta_dot is not None:
             entries["eta_dot"] = self.eta_dot
         for name in ("depth", "sigma"):

@@ -436,6 +436,10 @@ def check_record(record, water=None, *, only=None, claims: Optional[Claims] = No
         claims = Claims.from_kwargs(**kwargs)
     check_instance("claims", claims, Claims, "wavephys.harness.Claims")
     claims.with_record(record)
+    if record.tank and not claims.tank:  # the files say so: a tank is a tank whoever forgets to claim it
+        from dataclasses import replace
+
+        claims = replace(claims, tank=True)
     if progress is not None and not callable(progress):
         raise TypeError(f"progress must be callable or None, got {describe(progress)}")
     water = _water(record.water(water), claims)
