@@ -106,10 +106,12 @@ def test_broken_tanks_fail_with_their_cause(seed):
     nx = ny = 48
     dx, dt = 2.0 / nx, 0.03
     cases = {
-        "non-dispersive": (dict(omega=lambda k: k * math.sqrt(water.g * water.depth)), "non-dispersive"),
+        "non-dispersive": (dict(omega=lambda k: k * math.sqrt(water.g * water.depth)), "h = 0.3 m, the claimed"),
         "periodic": (dict(omega=lambda k: _omega(2 * k, water)), "wrap around"),
         "vertex": (dict(length_cut=dx), "first and last samples"),
         "factor": (dict(omega=lambda k: 1.04 * _omega(k, water)), "same factor"),
+        "slower wave equation": (dict(omega=lambda k: 1.2 * k), "one speed c = 1.2 m/s"),
+        "shallower water": (dict(omega=lambda k: _omega(k, Water(sigma=0.0, depth=0.15))), "water 0.15 m deep"),
     }
     for name, (kw, cause) in cases.items():
         rec = _mode_sum(nx, ny, dx, dt, 240, water, seed, **kw)

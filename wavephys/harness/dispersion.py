@@ -57,7 +57,11 @@ class DispersionSamples:
 
     def select(self, k_min: float = 0.0, k_max: float = math.inf) -> "DispersionSamples":
         """The samples with k_min ≤ k ≤ k_max."""
-        m = (self.k >= k_min) & (self.k <= k_max)
+        return self.select_mask((self.k >= k_min) & (self.k <= k_max))
+
+    def select_mask(self, mask) -> "DispersionSamples":
+        """The samples where ``mask`` (one boolean per shell) is true."""
+        m = np.asarray(mask, bool)
         return DispersionSamples(self.k[m], self.omega[m], self.power[m], self.resolution,
                                  None if self.spectra is None else self.spectra[m])
 
@@ -222,7 +226,7 @@ def _worst(samples: DispersionSamples, water: Water, scale_k: float = 1.0, scale
     return float(np.max(np.abs(samples.omega * scale_w / theory - 1.0)))
 
 
-def _refine(error, lo: float, hi: float, points: int = 49) -> tuple[float, float]:
+def _refine(error, lo: float, hi: float, points: int = 49) -> tuple[float, float]:  # noqa: D401
     """(smallest error, its argument) over [lo, hi]: a log-spaced scan, then a bounded search around its best."""
     from scipy.optimize import minimize_scalar
 
@@ -407,11 +411,66 @@ def _scale_fit(samples, water, err, tolerance) -> str:
     return f"omega off by a constant factor {ratio:.4g}: {which}.{trade}"
 
 
+def _lattice(w, lo, hi) -> float:
+    """The base frequency ω₀ in [lo, hi] whose multiples the frequencies ``w`` sit on best (the phase coherence of
+    w/ω₀ modulo 1 over a fine grid of ω₀, then ω₀ refined by least squares on the multiples)."""
+    grid = np.geomspace(lo, hi, 6000)
+    coherence = np.abs(np.exp(2j * np.pi * w[None, :] / grid[:, None]).mean(axis=1))
+    # ω₀/2, ω₀/3 … fit as well as ω₀ itself: the largest base that fits is the lattice's
+    w0 = float(grid[np.flatnonzero(coherence >= 0.98 * coherence.max())[-1]])
+    n = np.maximum(np.round(w / w0), 1.0)
+    return float(np.sum(n * w) / np.sum(n * n))
+
+
+def _quantized(samples, theory, rtol) -> str:
+    """Frequencies on a lattice ω₀·n (a looping ocean: ω(k) rounded to multiples of one base frequency so that
+    the sea repeats every 2π/ω₀): ω₀ fitted, and how the rounding goes (down, to the nearest, up)."""
+    w = samples.omega
+    if w.size < 8:
+        return ""
+    lo, hi = 0.5 * samples.resolution, 0.7 * float(np.min(theory[theory > 0]))
+    if not hi > lo:
+        return ""
+    w0 = _lattice(w, lo, hi)
+    fits = [(float(np.max(np.abs(w - w0 * np.maximum(f(theory / w0), 1.0)))), kind)
+            for kind, f in (("down", np.floor), ("to the nearest", np.round), ("up", np.ceil))]
+    found, kind = min(fits)
+    typical = float(np.max(np.abs(w - theory)))
+    if not (found <= 0.25 * samples.resolution and found < 0.25 * typical):
+        return ""
+    worst = int(np.argmax(np.abs(w / theory - 1)))
+    period = 2 * math.pi / w0
+    need = 2 * math.pi / (rtol * float(theory.min()))
+    return (f"frequencies on a lattice: omega(k) rounded {kind} to multiples of omega0 = {w0:.4g} rad/s, as a looping "
+            f"ocean does to repeat every T = 2 pi/omega0 = {period:.4g} s (fitted within {found:.2g} rad/s over "
+            f"{w.size} shells). The error, up to omega0/omega(k), is largest for the longest waves "
+            f"({100 * abs(w[worst] / theory[worst] - 1):.3g} % at k = {samples.k[worst]:.4g} rad/m): a loop of "
+            f"T >= {need:.4g} s keeps every shell within rtol, or check the band where omega >> omega0 (k_range)")
+
+
 def _likely_cause(samples: DispersionSamples, water: Water, dt: float, err: np.ndarray, rtol: float = 0.005) -> str:
-    """A guess, in words, at why measured ω(k) departs from theory (empty when none fits)."""
+    """A guess, in words, at why measured ω(k) departs from theory (empty when none fits).
+
+    Where some shells' theory lies above the frames' Nyquist frequency, the shells the frames do sample are
+    explained first: when they fail on their own, aliasing is not the cause (ω = g k read at 15 fps fails by
+    6.6 × theory below the aliased band already)."""
+    theory = samples.omega / (1.0 + err)
+    nyquist = math.pi / dt
+    clean = (theory < 0.8 * nyquist) & (samples.omega < 0.8 * nyquist)
+    if (~clean).any() and clean.sum() >= 6 and np.max(np.abs(err[clean])) > rtol:
+        sub = samples.select_mask(clean)
+        found = _causes(sub, water, dt, err[clean], rtol, aliasing=False)
+        if found:
+            return (f"{found} (from the {int(clean.sum())} shells the frames sample without aliasing, which fail on "
+                    f"their own: aliasing above them is not the cause)")
+    return _causes(samples, water, dt, err, rtol)
+
+
+def _causes(samples, water, dt, err, rtol, aliasing=True) -> str:
     theory = samples.omega / (1.0 + err)
     tolerance = 0.25 * float(np.max(np.abs(err)))
-    for cause in (lambda: _aliasing(samples, dt, theory), lambda: _frequency_floor(samples, theory),
+    for cause in ((lambda: _aliasing(samples, dt, theory)) if aliasing else (lambda: ""),
+                  lambda: _frequency_floor(samples, theory), lambda: _quantized(samples, theory, rtol),
                   lambda: _scale_fit(samples, water, err, tolerance), lambda: _depth_fit(samples, water, tolerance),
                   lambda: _sigma_fit(samples, water, tolerance), lambda: _bound_components(samples, theory, err, rtol),
                   lambda: _non_dispersive(samples, theory)):

@@ -163,6 +163,35 @@ def _error(measured, expected, share):
     return float(rel[np.argmax(np.abs(rel))]), float(np.sum(share * np.abs(rel)) / np.sum(share))
 
 
+def _speed_and_depth(s: Seiches, water: Water, misfit) -> list:
+    """Fitted explanations: one speed for every mode (a non-dispersive solver: which depth √(g h) that speed is,
+    against the claimed one), and water of another depth (the dispersive relation at a fitted h)."""
+    from dataclasses import replace
+
+    from wavephys.harness.dispersion import _refine
+
+    found = []
+    g = float(water.g)
+    depth = float(water.depth)
+    claimed = f"{depth:.4g} m" if math.isfinite(depth) else "deep water"
+    weights = s.share / s.share.sum()
+    c = float(np.sum(weights * s.omega / s.k))
+    h = c * c / g
+    same = math.isfinite(depth) and abs(h / depth - 1) < 0.02
+    found.append((misfit(c * s.k), f"every mode has omega = c k with one speed c = {c:.4g} m/s: a non-dispersive "
+                                   f"solver (shallow water, virtual pipes, a wave equation) where theory's waves are "
+                                   f"dispersive (k h up to {float(s.k.max() * h):.3g}); c = sqrt(g h) for h = "
+                                   f"{h:.4g} m" + (f", the claimed depth" if same else f", where the claimed depth is "
+                                                   f"{claimed} (sqrt(g h) = {math.sqrt(g * depth):.4g} m/s)"
+                                                   if math.isfinite(depth) else ", and the water is claimed deep")))
+    best, fitted = _refine(lambda d: misfit(_theory(s.k, replace(water, depth=d))[0]), 0.05 / float(s.k.max()),
+                           20.0 / float(s.k.min()))
+    if not (math.isfinite(depth) and abs(fitted / depth - 1) < 0.02):
+        found.append((best, f"the modes ring as water {fitted:.4g} m deep, not the claimed {claimed}: claim that "
+                            f"depth (depth=, --depth), or the solver's depth is off"))
+    return found
+
+
 def _seiche_cause(s: Seiches, water: Water, rtol: float) -> str:
     """The explanation of measured seiche frequencies that fits best, in words."""
     k_periodic = 2 * s.k
@@ -182,12 +211,7 @@ def _seiche_cause(s: Seiches, water: Water, rtol: float) -> str:
                        f"the frequencies are those of a tank {s.dx:.4g} m shorter: the walls sit on the first and "
                        f"last samples (vertex-centred grid), not half a sample outside them; give the record's "
                        f"frames cell-centred, or check it as a tank of (n - 1) dx"))
-    if math.isfinite(float(water.depth)):
-        c0 = math.sqrt(float(water.g) * float(water.depth))
-        candidates.append((misfit(c0 * s.k),
-                           f"every mode has omega = k sqrt(g h) (c = {c0:.4g} m/s): a non-dispersive solver (shallow "
-                           f"water, virtual pipes, a wave equation) where theory's waves are dispersive "
-                           f"(k h up to {float(s.k.max() * float(water.depth)):.3g})"))
+    candidates += _speed_and_depth(s, water, misfit)
     if np.ptp(ratio) <= 0.2 * rtol * max(1.0, float(np.mean(ratio))) and abs(float(np.mean(ratio)) - 1) > rtol:
         f = float(np.mean(ratio))
         candidates.append((0.0, f"every mode's frequency is off by the same factor {f:.5g} (= {f * f:.5g}^(1/2)): "

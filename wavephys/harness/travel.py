@@ -48,6 +48,8 @@ class Travel:
         The best release time t₀, s from the first frame (meaningful when ``coherence`` is high).
     modes : int
         Number of modes that hold the record's power (those above 1e-4 of the strongest).
+    headings, powers : numpy.ndarray
+        Each mode's direction of travel (radians) and power (its wave along +k), for :meth:`share_against`.
     effective_modes : float
         ½(Σw)²/Σw² over the (up to 2048) strongest modes, w their amplitude √power (k and −k are one pair): how many
         independent pairs the coherence averages; a random sea's coherence is about 1/√(effective_modes), and
@@ -66,6 +68,17 @@ class Travel:
     modes: int
     effective_modes: float
     direction_error: float = math.nan
+    headings: np.ndarray = None
+    powers: np.ndarray = None
+
+    def share_against(self, direction: float) -> float:
+        """The share of the travelling power that runs against ``direction`` (degrees): modes whose direction of
+        travel has a negative component along it (NaN when nothing travels)."""
+        if self.powers is None or not self.powers.size:
+            return math.nan
+        d = math.radians(direction)
+        along = np.cos(self.headings - d)
+        return float(np.sum(self.powers[along < 0]) / max(np.sum(self.powers), 1e-300))
 
 
 def _peaks(spec, nt, min_bins):
@@ -146,7 +159,7 @@ def measure_travel(eta, dx: float, dt: float, *, min_bins: float = 2.0, locking:
     coherence, release, n_eff = (_locking(spec, power, i_neg, i_pos, faint, np.sqrt(total[faint]), nt, dt) if locking
                                  else (math.nan, math.nan, math.nan))
     return Travel(float(math.degrees(math.atan2(d[1], d[0]))), float(np.hypot(*d)), mean_balance, coherence,
-                  release, int(keep.sum()), n_eff, min(direction_error, 180.0))
+                  release, int(keep.sum()), n_eff, min(direction_error, 180.0), np.arctan2(uy, ux), p_neg[keep])
 
 
 def _locking(spec, power, i_neg, i_pos, keep, w, nt, dt):
@@ -280,14 +293,23 @@ def direction_check(record, direction: float, *, tolerance: float = 15.0, min_co
     row = compare("mean direction of travel", measured, claimed, atol=tolerance, unit="deg", note=note)
     if not row.ok:
         mirrored = (-claimed + 180.0) % 360.0 - 180.0
+        against = t.share_against(claimed)
         if abs(abs(diff) - 180.0) <= tolerance:
-            cause = ("the waves travel opposite to the claim: the sign of omega t (exp(+i w t) for exp(-i w t)) or "
-                     "of the wind vector is flipped")
+            cause = (f"the waves travel opposite to the claim ({100 * against:.0f} % of the power runs against it): "
+                     f"the sign of omega t is flipped (exp(+i w t) for exp(-i w t)), or the wind vector is, or the "
+                     f"spectrum keeps its upwind half (a directional mask or suppression factor that keeps k.wind < 0 "
+                     f"where k.wind > 0 is due); the frames cannot tell these apart")
+        elif 0.3 <= against <= 0.7:
+            cause = (f"the power runs both ways ({100 * against:.0f} % against the claim, mean direction "
+                     f"{t.direction:.1f} deg): the spectrum's directional factor keeps both halves (|k.wind|^2 without "
+                     f"the one-way mask, or h(k, t) built with both halves turning one way)")
         elif abs((t.direction - mirrored + 180.0) % 360.0 - 180.0) <= tolerance:
             cause = "the y axis is flipped (rows stored top-down, or a DirectX-style texture origin)"
         elif abs((t.direction - (90.0 - claimed) + 180.0) % 360.0 - 180.0) <= tolerance:
             cause = "x and y are swapped (a transposed texture)"
         else:
-            cause = f"the waves travel toward {t.direction:.1f} deg"
+            cause = (f"the waves travel toward {t.direction:.1f} deg ({100 * against:.0f} % of the power against the "
+                     f"claim; concentration {t.concentration:.2f}): the claimed direction, or the wind vector's "
+                     f"angle, is not the sea's")
         row = compare(row.quantity, measured, claimed, atol=tolerance, unit="deg", note=f"{note}; likely cause: {cause}")
     return row
