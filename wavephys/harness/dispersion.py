@@ -461,8 +461,9 @@ def _likely_cause(samples: DispersionSamples, water: Water, dt: float, err: np.n
         sub = samples.select_mask(clean)
         found = _causes(sub, water, dt, err[clean], rtol, aliasing=False)
         if found:
+            alias = _aliasing(samples, dt, theory)
             return (f"{found} (from the {int(clean.sum())} shells the frames sample without aliasing, which fail on "
-                    f"their own: aliasing above them is not the cause)")
+                    f"their own)" + (f"; and above them, {alias}" if alias else ""))
     return _causes(samples, water, dt, err, rtol)
 
 

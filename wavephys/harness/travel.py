@@ -299,14 +299,14 @@ def direction_check(record, direction: float, *, tolerance: float = 15.0, min_co
                      f"the sign of omega t is flipped (exp(+i w t) for exp(-i w t)), or the wind vector is, or the "
                      f"spectrum keeps its upwind half (a directional mask or suppression factor that keeps k.wind < 0 "
                      f"where k.wind > 0 is due); the frames cannot tell these apart")
-        elif 0.3 <= against <= 0.7:
-            cause = (f"the power runs both ways ({100 * against:.0f} % against the claim, mean direction "
-                     f"{t.direction:.1f} deg): the spectrum's directional factor keeps both halves (|k.wind|^2 without "
-                     f"the one-way mask, or h(k, t) built with both halves turning one way)")
         elif abs((t.direction - mirrored + 180.0) % 360.0 - 180.0) <= tolerance:
             cause = "the y axis is flipped (rows stored top-down, or a DirectX-style texture origin)"
         elif abs((t.direction - (90.0 - claimed) + 180.0) % 360.0 - 180.0) <= tolerance:
             cause = "x and y are swapped (a transposed texture)"
+        elif t.share_against(t.direction) >= 0.25:
+            cause = (f"the power runs both ways ({100 * t.share_against(t.direction):.0f} % against its own mean "
+                     f"direction {t.direction:.1f} deg, {100 * against:.0f} % against the claim): the spectrum's "
+                     f"directional factor keeps both halves (|k.wind|^2 without the one-way mask)")
         else:
             cause = (f"the waves travel toward {t.direction:.1f} deg ({100 * against:.0f} % of the power against the "
                      f"claim; concentration {t.concentration:.2f}): the claimed direction, or the wind vector's "
