@@ -467,11 +467,19 @@ def _likely_cause(samples: DispersionSamples, water: Water, dt: float, err: np.n
     return _causes(samples, water, dt, err, rtol)
 
 
+def _one_speed(samples) -> float:
+    """The worst relative misfit of ω = c k with one speed c (the median of ω/k) over the shells."""
+    c = float(np.median(samples.omega / samples.k))
+    return float(np.max(np.abs(samples.omega / (c * samples.k) - 1.0)))
+
+
 def _causes(samples, water, dt, err, rtol, aliasing=True) -> str:
     theory = samples.omega / (1.0 + err)
     tolerance = 0.25 * float(np.max(np.abs(err)))
+    exact_speed = samples.k.size >= 8 and _one_speed(samples) <= rtol  # one speed explains every shell exactly
     for cause in ((lambda: _aliasing(samples, dt, theory)) if aliasing else (lambda: ""),
                   lambda: _frequency_floor(samples, theory), lambda: _quantized(samples, theory, rtol),
+                  (lambda: _non_dispersive(samples, theory)) if exact_speed else (lambda: ""),
                   lambda: _scale_fit(samples, water, err, tolerance), lambda: _depth_fit(samples, water, tolerance),
                   lambda: _sigma_fit(samples, water, tolerance), lambda: _bound_components(samples, theory, err, rtol),
                   lambda: _non_dispersive(samples, theory)):
