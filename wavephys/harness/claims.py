@@ -102,12 +102,20 @@ class Claim:
         return f"{self.name}= ({self.option}{' ' + self.metavar if self.metavar else ''})"
 
     def given(self, value) -> bool:
-        """Whether ``value`` makes the claim (a flag that is true, anything else that is not None)."""
-        return bool(value) if self.kind == "flag" else value is not None
+        """Whether ``value`` makes the claim: a flag that is true, anything else that is not None and not the
+        claim's default."""
+        if self.kind == "flag":
+            return bool(value)
+        if value is None:
+            return False
+        try:
+            return bool(value != self.default) if self.default is not None else True
+        except (TypeError, ValueError):  # an array compared with a default
+            return True
 
     def validate(self, value, record=None):
         """The value checked and converted (``record``: the frames, for arrays of their shape)."""
-        if not self.given(value) and self.kind != "flag":
+        if value is None:
             return value
         from wavephys.core.inputs import check_bool, check_choice, check_scalar
 
