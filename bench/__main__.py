@@ -204,7 +204,14 @@ def run_harness(args) -> None:
     sens = harness.sensitivity_rows((64,) if args.quick else (64, 256), _say)
     for r in sens:
         print(f"{r['check']:<16}{r['frames']:>5} frames: smallest fault seen {r['smallest']} ({r['fault']})")
-    _write(dict(timing=timing, sensitivity=sens), {}, Path(args.json or "bench/results/harness.json"))
+    cost = harness.cost_rows(((128, 256),) if args.quick else ((128, 256), (256, 512)), _say)
+    print(f"{'check':<16}{'record':<14}{'read':>7}{'correct warm':>14}{'cold':>8}{'faulty warm':>13}{'cold':>8}"
+          f"{'faulty/correct':>16}")
+    for r in cost:
+        print(f"{r['check']:<16}{r['size']:<14}{r['read_seconds']:>7.2f}{r['correct_warm']:>14.3f}"
+              f"{r['correct_cold']:>8.3f}{r['faulty_warm']:>13.3f}{r['faulty_cold']:>8.3f}"
+              f"{r['faulty_warm'] / max(r['correct_warm'], 1e-9):>16.2f}")
+    _write(dict(timing=timing, sensitivity=sens, cost=cost), {}, Path(args.json or "bench/results/harness.json"))
 
 
 def run_halffloat(args) -> None:

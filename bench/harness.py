@@ -1,5 +1,11 @@
-"""``python -m bench harness``: every check of a record, timed on a 128² × 256 record, with what it
-measures on a correct record (its floor) and the smallest fault it sees at its default tolerance.
+"""``python -m bench harness``: every check of a record, timed cold and warm on 128² × 256 and 256² × 512
+records, a correct one and a faulty one each, against the time to read the frames from EXR files; with what
+each check measures on a correct record (its floor) and the smallest fault it sees at its default tolerance.
+
+Cold is a check's first run in the process (its imports and first allocations included); warm the median of
+three later runs. The faulty records are the real bugs of the corpus at full strength (a wave equation, damping
+per step, a cropped sea, a flipped sign, a standing sea, a wave-equation packet, a gravity-only stone, …): a check
+must cost no more on them than on a correct record (its searches are bounded).
 
 The records are generated here (numpy, seeded): a one-way Phillips sea (dispersion, energy,
 tiling, quantization, standing waves, direction), a Gaussian packet (group velocity), a dropped
@@ -56,6 +62,95 @@ CASES = (  # check, record, water, claims
     ("normals", "full", "deep", dict(normals="normals")),
     ("resolution", "full", "deep", dict(other="half")),
 )
+
+
+def _faults(n, frames):
+    """For each check, a faulty record of the given size (and its claims), from the corpus's real bugs."""
+    import corpus as c
+
+    from wavephys.harness import Record
+
+    sea = c.fft_ocean(c.phillips_h0(n, DX, seed=1), DX, DT, frames)
+    h0 = c.phillips_h0(n, DX, seed=1)
+    wave_eq = c.fft_ocean(h0, DX, DT, frames, depth=0.05)  # shallow: every k at one speed
+    damped = sea * np.exp(-0.02 * np.arange(frames))[:, None, None]
+    crop = c.fft_ocean(c.phillips_h0(n + n // 2, DX, seed=5), DX, DT, frames)[:, :n, :n]
+    standing = c.fft_ocean(c.phillips_h0(n, DX, seed=1, one_way=False), DX, DT, frames, standing=True)
+    flipped = c.fft_ocean(h0, DX, DT, frames, sign=+1)
+    packet = c.travelling_packet(n, 0.1, 1 / 30, frames, 2 * math.pi / 0.8, 1.0, wave_equation_speed=1.12)
+    stone = c.spectral_model(c.gaussian_bump(n, 0.005, 0.01), 0.005, 1 / 240, frames)[0]
+    return {
+        "dispersion": (Record.from_array(wave_eq, DX, DT, axes="tyx"), {}),
+        "energy": (Record.from_array(damped, DX, DT, axes="tyx"), {}),
+        "tiling": (Record.from_array(crop, DX, DT, axes="tyx"), {}),
+        "quantization": (Record.from_array(sea.astype(np.float16) * 1.0, DX, DT, axes="tyx"), {}),
+        "standing": (Record.from_array(standing, DX, DT, axes="tyx"), dict(sea=True)),
+        "direction": (Record.from_array(flipped, DX, DT, axes="tyx"), dict(direction=0.0)),
+        "group_velocity": (Record.from_array(packet, 0.1, 1 / 30, axes="tyx"), dict(packet=True)),
+        "ring_arrival": (Record.from_array(stone, 0.005, 1 / 240, axes="tyx"), dict(source=(0.0, 0.0), radius=0.03)),
+    }
+
+
+def _corrects(n, frames):
+    import corpus as c
+
+    from wavephys.harness import Record
+
+    sea = Record.from_array(c.fft_ocean(c.phillips_h0(n, DX, seed=1), DX, DT, frames), DX, DT, axes="tyx")
+    packet = c.travelling_packet(n, 0.1, 1 / 30, frames, 2 * math.pi / 0.8, 1.0)
+    stone = c.spectral_model(c.gaussian_bump(n, 0.005, 0.01), 0.005, 1 / 240, frames, sigma=0.0728)[0]
+    return {name: (sea, claims) for name, claims in (("dispersion", {}), ("energy", {}), ("tiling", {}),
+                                                     ("quantization", {}), ("standing", dict(sea=True)),
+                                                     ("direction", dict(direction=0.0)))} | {
+        "group_velocity": (Record.from_array(packet, 0.1, 1 / 30, axes="tyx"), dict(packet=True)),
+        "ring_arrival": (Record.from_array(stone, 0.005, 1 / 240, axes="tyx"), dict(source=(0.0, 0.0), radius=0.03))}
+
+
+def _read_seconds(record) -> float:
+    """Seconds to read the record back from one EXR file a frame (as an engine exports it)."""
+    import tempfile
+    import time
+
+    from optics.rendering.textures import export_height_frames
+    from wavephys.harness import Record
+
+    with tempfile.TemporaryDirectory() as tmp:
+        export_height_frames(record.eta, record.shape[2] * record.dx, record.dt, Path(tmp) / "frames")
+        start = time.perf_counter()
+        Record.from_files(Path(tmp) / "frames")
+        return time.perf_counter() - start
+
+
+def cost_rows(sizes=((128, 256), (256, 512)), progress=print) -> list[dict]:
+    """Every check cold and warm on a correct and a faulty record of each size, with the frames' read time."""
+    import time
+
+    from wavephys import Water
+    from wavephys.harness import check_record
+
+    rows = []
+    for n, frames in sizes:
+        good, bad = _corrects(n, frames), _faults(n, frames)
+        read = _read_seconds(good["dispersion"][0])
+        progress(f"{n}^2 x {frames}: reading the frames from EXR takes {read:.2f} s")
+        for name in good:
+            water = Water() if name == "ring_arrival" else Water(sigma=0.0)
+            times = {}
+            for kind, (record, claims) in (("correct", good[name]), ("faulty", bad[name])):
+                runs = []
+                for _ in range(4):
+                    start = time.perf_counter()
+                    report = check_record(record, water, only=[name], **claims)
+                    runs.append(time.perf_counter() - start)
+                times[kind] = (runs[0], float(np.median(runs[1:])), report.rows[name].ok)
+            rows.append(dict(check=name, size=f"{n}^2 x {frames}", read_seconds=read,
+                             correct_cold=times["correct"][0], correct_warm=times["correct"][1],
+                             faulty_cold=times["faulty"][0], faulty_warm=times["faulty"][1],
+                             correct_ok=times["correct"][2], faulty_ok=times["faulty"][2]))
+            r = rows[-1]
+            progress(f"  {name:15s} correct {r['correct_warm']:.3f} s warm ({r['correct_cold']:.3f} cold), faulty "
+                     f"{r['faulty_warm']:.3f} s ({r['faulty_cold']:.3f}); verdicts {r['correct_ok']}/{r['faulty_ok']}")
+    return rows
 
 
 def timing_rows(progress=print) -> list[dict]:

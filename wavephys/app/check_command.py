@@ -119,7 +119,17 @@ def _checks_help() -> str:
 def add_check_parser(sub, fmt, parser_class, helpers) -> None:
     """The ``check`` subcommand (exported frames, or a shader function, against the physics).
 
-    ``helpers``: the command's shared argument types (``setting``, ``float``)."""
+    Parameters
+    ----------
+    sub : argparse subparsers
+        Where the subcommand goes.
+    fmt : type
+        The help formatter.
+    parser_class : type
+        The command's parser class (usage errors on one line).
+    helpers : dict
+        The command's shared argument types: ``setting`` (KEY=VALUE) and ``checked`` (an output path check).
+    """
     ck = sub.add_parser("check", help="check exported frames, or a shader function, against the physics",
                         epilog=CHECK_EXIT_CODES, formatter_class=fmt,
                         description="Frames: read a folder, glob or list of EXR / 16-bit PNG / npy / npz height "
@@ -333,7 +343,22 @@ def _frames_words(exc) -> str:
 
 
 def cmd_check(args, parser, helpers=None) -> int:
-    """``wavephys check``: frames (a record) or a shader function."""
+    """``wavephys check``: frames (a record) or a shader function.
+
+    Parameters
+    ----------
+    args : argparse.Namespace
+        The parsed options.
+    parser : argparse.ArgumentParser
+        For usage errors (exit 2).
+    helpers : dict, optional
+        The command's shared argument types (default: the command's own).
+
+    Returns
+    -------
+    int
+        The exit status: 0 ok, 1 a check failed, 2 a usage error, 3 no OpenGL context or translator.
+    """
     if helpers is None:
         from wavephys.app.cli import HELPERS as helpers
     if args.frames:

@@ -31,7 +31,21 @@ frames (another record), and the two compound claims (a moving source; a dam bre
 def parse_number(text: str) -> float:
     """A number as the command reads it: ``0.0167``, ``1/60``, ``2/256``, ``1e-3``, ``inf``.
 
-    Raises ValueError naming what was read when it is not one."""
+    Parameters
+    ----------
+    text : str
+        A number or a fraction of two numbers.
+
+    Returns
+    -------
+    float
+        Its value (inf allowed, NaN refused).
+
+    Raises
+    ------
+    ValueError
+        When it is not a number, names what was read.
+    """
     num, sep, den = str(text).strip().partition("/")
     try:
         value = float(num) / float(den) if sep else float(num)
@@ -377,7 +391,13 @@ class Claims:
 
 
 def extra_claims() -> dict:
-    """The claims that registered checks bring beyond the fields of :class:`Claims`, by name."""
+    """The claims that registered checks bring beyond the fields of :class:`Claims`, by name.
+
+    Returns
+    -------
+    dict of str to Claim
+        Each claim a row of :data:`~wavephys.harness.RECORD_CHECKS` declares, first declaration first.
+    """
     from wavephys.harness.suite import RECORD_CHECKS
 
     found = {}
@@ -388,7 +408,18 @@ def extra_claims() -> dict:
 
 
 def claim_fields(extra: bool = True) -> dict:
-    """Every claim by name: the fields of :class:`Claims` (with ``extra``, the registered checks' own too)."""
+    """Every claim by name: the fields of :class:`Claims`, and the registered checks' own.
+
+    Parameters
+    ----------
+    extra : bool, optional
+        Include the claims registered checks bring (default True).
+
+    Returns
+    -------
+    dict of str to Claim
+        The claims, fields first in their order.
+    """
     out = {f.name: f.metadata["claim"] for f in dataclasses.fields(Claims) if "claim" in f.metadata}
     if extra:
         out.update(extra_claims())

@@ -411,11 +411,13 @@ def _scale_fit(samples, water, err, tolerance) -> str:
     return f"omega off by a constant factor {ratio:.4g}: {which}.{trade}"
 
 
-def _lattice(w, lo, hi) -> float:
+def _lattice(w, lo, hi, power=None) -> float:
     """The base frequency ω₀ in [lo, hi] whose multiples the frequencies ``w`` sit on best (the phase coherence of
-    w/ω₀ modulo 1 over a fine grid of ω₀, then ω₀ refined by least squares on the multiples)."""
+    w/ω₀ modulo 1 over a fine grid of ω₀, on the 128 strongest shells; then ω₀ refined by least squares on the
+    multiples of every shell)."""
+    strong = w if power is None or w.size <= 128 else w[np.argsort(power)[-128:]]
     grid = np.geomspace(lo, hi, 6000)
-    coherence = np.abs(np.exp(2j * np.pi * w[None, :] / grid[:, None]).mean(axis=1))
+    coherence = np.abs(np.exp(2j * np.pi * strong[None, :] / grid[:, None]).mean(axis=1))
     # ω₀/2, ω₀/3 … fit as well as ω₀ itself: the largest base that fits is the lattice's
     w0 = float(grid[np.flatnonzero(coherence >= 0.98 * coherence.max())[-1]])
     n = np.maximum(np.round(w / w0), 1.0)
@@ -431,7 +433,7 @@ def _quantized(samples, theory, rtol) -> str:
     lo, hi = 0.5 * samples.resolution, 0.7 * float(np.min(theory[theory > 0]))
     if not hi > lo:
         return ""
-    w0 = _lattice(w, lo, hi)
+    w0 = _lattice(w, lo, hi, samples.power)
     fits = [(float(np.max(np.abs(w - w0 * np.maximum(f(theory / w0), 1.0)))), kind)
             for kind, f in (("down", np.floor), ("to the nearest", np.round), ("up", np.ceil))]
     found, kind = min(fits)
