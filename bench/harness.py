@@ -83,7 +83,7 @@ def _faults(n, frames):
         "dispersion": (Record.from_array(wave_eq, DX, DT, axes="tyx"), {}),
         "energy": (Record.from_array(damped, DX, DT, axes="tyx"), {}),
         "tiling": (Record.from_array(crop, DX, DT, axes="tyx"), {}),
-        "quantization": (Record.from_array(sea.astype(np.float16) * 1.0, DX, DT, axes="tyx"), {}),
+        "quantization": (Record.from_array((sea * 5e-5).astype(np.float16) * 1.0, DX, DT, axes="tyx"), {}),
         "standing": (Record.from_array(standing, DX, DT, axes="tyx"), dict(sea=True)),
         "direction": (Record.from_array(flipped, DX, DT, axes="tyx"), dict(direction=0.0)),
         "group_velocity": (Record.from_array(packet, 0.1, 1 / 30, axes="tyx"), dict(packet=True)),

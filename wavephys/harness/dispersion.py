@@ -86,7 +86,7 @@ def _shells(power, dx):
 
 
 def measure_dispersion(eta, dx: float, dt: float, *, min_relative_power: float = 1e-6,
-                       min_bins: float = 4.0, axes=None) -> DispersionSamples:
+                       min_bins: float = 4.0, axes=None, spectrum=None) -> DispersionSamples:
     """Measure ω(k) from a space–time height field.
 
     The field is Hann-windowed in time and Fourier transformed in x, y and t. For each
@@ -113,6 +113,9 @@ def measure_dispersion(eta, dx: float, dt: float, *, min_relative_power: float =
         could be read more than one way: ``(n, n, m)`` (time last?) or a cube ``(n, n, n)``, which are refused
         without it. Default: infer, for ``(n_t, n, n)`` with n_t ≠ n and for a rectangular grid whose sides both
         differ from n_t.
+    spectrum : numpy.ndarray, optional, keyword-only
+        The frames' windowed space–time spectrum when already computed
+        (:func:`wavephys.harness.spectra.spacetime_spectrum`, ``Record.spectrum()``), in the ``"tyx"`` layout.
 
     Returns
     -------
@@ -153,9 +156,14 @@ def measure_dispersion(eta, dx: float, dt: float, *, min_relative_power: float =
     check_scalar("min_relative_power", min_relative_power, lo=0.0, hi=1.0)
     check_scalar("min_bins", min_bins, lo=0.0, hi=nt / 4)
 
-    eta = eta - eta.mean(axis=0)
-    window = np.hanning(nt + 2)[1:-1]
-    power = np.abs(np.fft.fft(np.fft.fft2(eta) * window[:, None, None], axis=0)) ** 2  # (ω, ky, kx)
+    from wavephys.harness.spectra import spacetime_spectrum
+
+    if spectrum is None:
+        spectrum = spacetime_spectrum(eta)
+    elif np.shape(spectrum) != eta.shape:
+        raise ValueError(f"spectrum must be the frames' (n_t, n_y, n_x) = {eta.shape} spectrum, got shape "
+                         f"{np.shape(spectrum)}")
+    power = (spectrum.real.astype(np.float64) ** 2 + spectrum.imag.astype(np.float64) ** 2)  # (ω, ky, kx)
     k_shell, shells = _shells(power, dx)
     half = nt // 2
     folded = shells[: half + 1].copy()

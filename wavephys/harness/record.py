@@ -22,7 +22,7 @@ Each returns its own error estimate, from the record's measured frequencies.
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, replace
+from dataclasses import dataclass, field, replace
 from typing import Optional
 
 import numpy as np
@@ -171,6 +171,7 @@ class Record:
     sigma: Optional[float] = None
     source: str = ""
     tank: bool = False
+    _cache: dict = field(default_factory=dict, init=False, repr=False, compare=False)
 
     def __post_init__(self):
         check_array("eta", self.eta, ndim=3)
@@ -202,6 +203,21 @@ class Record:
     def shape(self) -> tuple:
         """(n_t, n_y, n_x)."""
         return self.eta.shape
+
+    def spectrum(self) -> np.ndarray:
+        """The frames' windowed space–time spectrum (:func:`wavephys.harness.spectra.spacetime_spectrum`),
+        computed on first use and kept: the checks of one record share it.
+
+        Returns
+        -------
+        numpy.ndarray (n_t, n_y, n_x)
+            Complex, axes (ω, k_y, k_x) in numpy's FFT order.
+        """
+        if "spectrum" not in self._cache:
+            from wavephys.harness.spectra import spacetime_spectrum
+
+            self._cache["spectrum"] = spacetime_spectrum(self.eta)
+        return self._cache["spectrum"]
 
     @property
     def duration(self) -> float:

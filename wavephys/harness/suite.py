@@ -70,7 +70,7 @@ class RecordCheck:
 def _dispersion(record, water, c):
     from wavephys.harness.dispersion import dispersion_check, measure_dispersion
 
-    samples = measure_dispersion(record.eta, record.dx, record.dt, axes="tyx")
+    samples = measure_dispersion(record.eta, record.dx, record.dt, axes="tyx", spectrum=record.spectrum())
     return dispersion_check(samples, water, record.dt, rtol=c.rtol, k_range=c.k_range)
 
 

@@ -104,7 +104,8 @@ def _refined(power, i, nt):
     return np.clip(np.where(denom < 0, 0.5 * (a - c) / np.where(denom < 0, denom, -1.0), 0.0), -0.5, 0.5)
 
 
-def measure_travel(eta, dx: float, dt: float, *, min_bins: float = 2.0, locking: bool = True) -> Travel:
+def measure_travel(eta, dx: float, dt: float, *, min_bins: float = 2.0, locking: bool = True,
+                   spectrum=None) -> Travel:
     """Direction, balance and phase locking of the waves in frames ``(n_t, n_y, n_x)``.
 
     Parameters
@@ -120,6 +121,8 @@ def measure_travel(eta, dx: float, dt: float, *, min_bins: float = 2.0, locking:
     locking : bool, optional, keyword-only
         Measure the phase locking of the ± parts (``coherence``, ``release``, ``effective_modes``; default True);
         without it they are NaN and the measurement is cheaper (the direction needs none of them).
+    spectrum : numpy.ndarray, optional, keyword-only
+        The frames' windowed space–time spectrum when already computed (``Record.spectrum()``).
 
     Returns
     -------
@@ -134,8 +137,9 @@ def measure_travel(eta, dx: float, dt: float, *, min_bins: float = 2.0, locking:
     eta = np.asarray(eta, np.float64)
     nt, ny, nx = eta.shape
     check_scalar("min_bins", min_bins, lo=0.0, hi=nt / 4)
-    window = np.hanning(nt + 2)[1:-1]
-    spec = np.fft.fft(np.fft.fft2(eta - eta.mean(axis=0)) * window[:, None, None], axis=0).reshape(nt, -1)
+    from wavephys.harness.spectra import spacetime_spectrum
+
+    spec = (spacetime_spectrum(eta) if spectrum is None else np.asarray(spectrum)).reshape(nt, -1)
     p_neg, p_pos, i_neg, i_pos, power = _peaks(spec, nt, min_bins)
     ky, kx = angular_wavenumbers((ny, nx), dx, xp=np)
     kx, ky = np.broadcast_to(kx, (ny, nx)).ravel(), np.broadcast_to(ky, (ny, nx)).ravel()
@@ -227,7 +231,7 @@ def standing_check(record, *, max_coherence: float = 0.5):
 
     check_instance("record", record, Record, "wavephys.harness.Record")
     check_scalar("max_coherence", max_coherence, lo=0.0, hi=1.0, lo_open=True)
-    t = measure_travel(record.eta, record.dx, record.dt)
+    t = measure_travel(record.eta, record.dx, record.dt, spectrum=record.spectrum())
     chance = 5.0 / math.sqrt(max(t.effective_modes, 1e-12))  # a random sea stays below it
     limit = max(max_coherence, chance)
     note = (f"{t.modes} modes, {t.effective_modes:.0f} effective pairs; +-omega power balance {t.balance:.2f} "
@@ -279,7 +283,7 @@ def direction_check(record, direction: float, *, tolerance: float = 15.0, min_co
     check_scalar("direction", direction)
     check_scalar("tolerance", tolerance, lo=0.0, hi=180.0, lo_open=True)
     check_scalar("min_concentration", min_concentration, lo=0.0, hi=1.0)
-    t = measure_travel(record.eta, record.dx, record.dt, locking=False)
+    t = measure_travel(record.eta, record.dx, record.dt, locking=False, spectrum=record.spectrum())
     claimed = (float(direction) + 180.0) % 360.0 - 180.0
     diff = (t.direction - claimed + 180.0) % 360.0 - 180.0 if math.isfinite(t.direction) else math.nan
     tolerance = max(float(tolerance), 4.0 * t.direction_error) if math.isfinite(t.direction_error) else tolerance
