@@ -60,8 +60,12 @@ def _modes(fields, dx, tank: bool):
     a tank whose walls are half a sample outside the edges (docs/physics.md §1.11)."""
     ny, nx = fields.shape[-2:]
     if not tank:
+        import scipy.fft
+
+        from wavephys.harness.spectra import workers
+
         ky, kx = angular_wavenumbers((ny, nx), dx, xp=np)
-        return np.fft.fft2(fields), 1.0, np.sqrt(kx**2 + ky**2)
+        return scipy.fft.fft2(fields, workers=workers()), 1.0, np.sqrt(kx**2 + ky**2)
     from wavephys.core.spectral import cosine_transform2
 
     wy = np.where(np.arange(ny) == 0, 1.0, 2.0)[:, None]
@@ -175,10 +179,19 @@ def _shell_energy(eta, eta_dot, dx, water, tank=False):
     K = _surface_operator(k, water)
     invK = np.where(K > 0, 1.0 / np.where(K > 0, K, 1.0), 0.0)
     rho, g, sigma = float(water.rho), float(water.g), float(water.sigma)
-    e = 0.5 * w * ((rho * g + sigma * k**2) * np.abs(eh) ** 2 + rho * invK * np.abs(dh) ** 2) / (nx * ny) ** 2
+    def power(z):
+        p = np.abs(z)
+        p *= p
+        return p
+
+    e = power(eh)
+    e *= 0.5 * w * (rho * g + sigma * k**2) / (nx * ny) ** 2
+    e += power(dh) * (0.5 * w * rho * invK / (nx * ny) ** 2)
     dk = (1.0 if tank else 2.0) * np.pi / (dx * max(nx, ny))
     shell = np.rint(k / dk).astype(np.int64).ravel()
-    shells = np.stack([np.bincount(shell, weights=e[t].ravel(), minlength=shell.max() + 1) for t in range(nt)])
+    count = int(shell.max()) + 1
+    index = (shell[None, :] + count * np.arange(nt)[:, None]).ravel()  # one bincount for every frame at once
+    shells = np.bincount(index, weights=e.reshape(-1), minlength=count * nt).reshape(nt, count)
     k_shell = np.arange(shells.shape[1]) * dk
     return k_shell[1:], shells[:, 1:]
 

@@ -91,15 +91,16 @@ def group_velocity_check(record, water: Water, *, rtol: float = 0.05, direction=
     check_instance("water", water, Water, "wavephys.Water")
     check_scalar("rtol", rtol, lo=0.0, lo_open=True)
     if direction is None:
-        direction = measure_travel(record.eta, record.dx, record.dt).direction
+        direction = measure_travel(record.eta, record.dx, record.dt, locking=False,
+                                   spectrum=record.spectrum()).direction
     check_scalar("direction", direction)
     u = np.array([math.cos(math.radians(direction)), math.sin(math.radians(direction))])
     eta = record.eta - record.eta.mean(axis=0)
     nt, ny, nx = eta.shape
     # theory: the mean of c_g(k) k_hat . u over the wave components travelling along +k (numpy: e^{-i w t})
-    spec = np.fft.fft(np.fft.fft2(eta) * np.hanning(nt + 2)[1:-1, None, None], axis=0)
+    spec = record.spectrum()  # the frames less their mean, Hann in time, FFT in x, y, t
     f = np.fft.fftfreq(nt)
-    along = np.sum(np.abs(spec[f < 0]) ** 2, axis=0)
+    along = np.sum(np.abs(spec[f < 0].astype(np.complex128)) ** 2, axis=0)
     ky, kx = angular_wavenumbers((ny, nx), record.dx, xp=np)
     kx, ky = np.broadcast_to(kx, (ny, nx)), np.broadcast_to(ky, (ny, nx))
     k = np.hypot(kx, ky)

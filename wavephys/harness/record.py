@@ -75,7 +75,11 @@ def _dominant_frequencies(eta: np.ndarray, dt: float, fraction: float = 0.99) ->
     refined between bins)."""
     nt = eta.shape[0]
     window = np.hanning(nt + 2)[1:-1]
-    spec = np.abs(np.fft.rfft((eta - eta.mean(axis=0)) * window[:, None, None], axis=0)) ** 2
+    import scipy.fft
+
+    from wavephys.harness.spectra import workers
+
+    spec = np.abs(scipy.fft.rfft((eta - eta.mean(axis=0)) * window[:, None, None], axis=0, workers=workers())) ** 2
     power = spec.sum(axis=(1, 2))
     if power.sum() <= 0:
         return 0.0
@@ -127,8 +131,13 @@ def time_derivative(eta, dt: float, *, method: str = "auto") -> Rate:
         w = 2 * math.pi * np.fft.fftfreq(nt, dt)
         if nt % 2 == 0:
             w[nt // 2] = 0.0
-        rate = np.real(np.fft.ifft(1j * w[:, None, None] * np.fft.fft(eta, axis=0), axis=0))
-        spec = np.abs(np.fft.rfft(eta - eta.mean(axis=0), axis=0)) ** 2
+        import scipy.fft
+
+        from wavephys.harness.spectra import workers
+
+        rate = np.real(scipy.fft.ifft(1j * w[:, None, None] * scipy.fft.fft(eta, axis=0, workers=workers()), axis=0,
+                                      workers=workers()))
+        spec = np.abs(scipy.fft.rfft(eta - eta.mean(axis=0), axis=0, workers=workers())) ** 2
         power = spec.sum(axis=(1, 2))
         top = power[-max(1, power.size // 8):].sum() / max(power.sum(), 1e-300)
         return Rate(rate, slice(0, nt), "spectral", float(math.sqrt(top)))

@@ -15,10 +15,15 @@ import os
 
 import numpy as np
 
-__all__ = ["spacetime_spectrum", "SINGLE_ABOVE"]
+__all__ = ["spacetime_spectrum", "SINGLE_ABOVE", "workers"]
 
 SINGLE_ABOVE = 1 << 22
 """Records with more samples than this are transformed in single precision (module doc)."""
+
+
+def workers() -> int:
+    """How many threads the harness's FFTs use: the machine's cores, at most 4."""
+    return max(1, min(4, os.cpu_count() or 1))
 
 
 def spacetime_spectrum(eta) -> np.ndarray:
@@ -45,7 +50,6 @@ def spacetime_spectrum(eta) -> np.ndarray:
     eta = np.asarray(eta, real)
     nt = eta.shape[0]
     window = np.hanning(nt + 2)[1:-1].astype(real)
-    workers = max(1, min(4, os.cpu_count() or 1))
-    spatial = scipy.fft.fft2(eta - eta.mean(axis=0), workers=workers)
+    spatial = scipy.fft.fft2(eta - eta.mean(axis=0), workers=workers())
     spatial *= window[:, None, None]
-    return scipy.fft.fft(spatial, axis=0, workers=workers, overwrite_x=True)
+    return scipy.fft.fft(spatial, axis=0, workers=workers(), overwrite_x=True)
