@@ -157,7 +157,8 @@ def add_check_parser(sub, fmt, parser_class, helpers) -> None:
                                                           "only one)")
     frames.add_argument("--png-range", type=_pair(), metavar="OFFSET,AMPLITUDE",
                         help="16-bit PNGs without a JSON sidecar: heights = OFFSET + AMPLITUDE × level/65535, m "
-                             "(without it such PNGs are refused: their levels do not say metres)")
+                             "(without it such PNGs are refused: their levels do not say metres); write "
+                             "--png-range=-0.5,1 when OFFSET is negative")
     frames.add_argument("--only", nargs="+", metavar="CHECK", help="run only these checks (names above)")
     frames.add_argument("--junit", metavar="PATH", help="also write JUnit XML for a CI server")
     add_claim_options(ck.add_argument_group("claims", "what the frames are (each check's needs above)"))
