@@ -533,6 +533,12 @@ OVERRIDES = {
     "optics.shaders.check.describe_check": {"against": lambda: "fresnel"},
     "wavephys.app.pytest_plugin.Checker.glsl": {"source": lambda: _GLSL_FRESNEL, "function": lambda: "f",
                                                 "against": lambda: "fresnel", "tolerance": lambda: 2e-4},
+    "wavephys.app.pytest_plugin.Checker.hlsl": {"source": lambda: _HLSL_FRESNEL, "function": lambda: "F",
+                                                "against": lambda: "fresnel"},
+    "optics.light.fresnel.IndexRange": {"low": lambda: 1.33, "high": lambda: 1.35},
+    "optics.light.fresnel.IndexRange.f0_contains": {"f0": lambda: 0.02},
+    "wavephys.harness.claims.Claims.with_record": {"record": lambda: _record()},
+    "wavephys.harness.claims.parse_number": {"text": lambda: "1/60"},
     "optics.light.directions.refract": {"n": lambda: np.array([0.0, 0.0, 1.0])},
     "optics.light.directions.refract_components": {"d": lambda: (0.1, 0.2, -1.0), "n": lambda: (0.0, 0.0, 1.0)},
     "optics.rendering.reference.effect_change": {"effect": lambda: "caustics", "width": lambda: 8, "height": lambda: 6},
@@ -602,6 +608,8 @@ _GLSL_FRESNEL = """float f(float c, float n1, float n2) {
     return 0.5 * (rs * rs + rp * rp);
 }"""
 
+_HLSL_FRESNEL = "float F(float cosTheta) { return 0.0204 + 0.9796 * pow(saturate(1 - cosTheta), 5); }"
+
 SKIP = {
     # the shallow-water validation's own scenes (seconds per call), run by check_shallow_water and the tests
     "wavephys.checks.shallow_water.dam_break_errors", "wavephys.checks.shallow_water.thacker_errors",
@@ -630,6 +638,10 @@ SKIP = {
     "wavephys.core.frames.Frames", "wavephys.harness.suite.RecordReport",
     # a registry entry (name, words, claims, runner): the library's own table, not user input
     "wavephys.harness.suite.RecordCheck",
+    # a claim's declaration (name, kind, words, check): a check author's table entry, like RecordCheck
+    "wavephys.harness.claims.Claim", "wavephys.harness.claims.Claim.given", "wavephys.harness.claims.Claim.validate",
+    # register adds to the registry (a valid call would stay registered): tests/harness/test_claims.py
+    "wavephys.harness.suite.register", "wavephys.harness.suite.unregister", "wavephys.harness.claims.add_claims",
     "wavephys.harness.dispersion.DispersionSamples", "wavephys.physics.stokes.StokesWave",
     "wavephys.simulation.model.Operators", "wavephys.simulation.sources.Source",
     # a matplotlib Figure: its methods are matplotlib's
@@ -695,7 +707,8 @@ RANGE_FREE = {("wavephys.physics.wake.GaussianPressure", "amplitude"),  # signed
               ("wavephys.surfaces.gerstner.GerstnerWaves", "steepness"),  # Q = 0: a plain sum of cosines
               ("wavephys.harness.checks.Check", "tolerance"),  # 0 for bound rows
               ("wavephys.harness.packets.ring_arrival_check", "radius"),  # 0: a point disturbance
-              ("wavephys.harness.suite.check_record", "radius")}
+              ("wavephys.harness.suite.check_record", "radius"),
+              ("wavephys.harness.claims.Claims", "radius")}  # 0: a point disturbance
 INF_OK = {"depth", "depth0", "limit", "expected", "measured"}
 NAN_OK = {"measured"}
 FREE_TEXT = {("wavephys.core.frames.read_map", "name"),  # the caller's argument name, for messages
@@ -739,6 +752,9 @@ def instance(cls):
         makers.update({pl.Scene: _plan_scene, pl.SceneModel: _scene_model, pl.Plan: _plan, pl.Choices: pl.Choices,
                        pl.ShipSpec: lambda: pl.ShipSpec(0.0, 0.0, 1.0), pl.StoneSpec: lambda: pl.StoneSpec(0, 0, 0.1, 0.01),
                        pl.WindSpec: lambda: pl.WindSpec(5.0), pl.FloorSpec: lambda: pl.FloorSpec(0.05, 30.0)})
+        from optics.light.fresnel import IndexRange
+
+        makers[IndexRange] = lambda: IndexRange(1.33, 1.35)
         for base, make in makers.items():
             if issubclass(cls, base):
                 _INSTANCES[cls] = make()

@@ -175,7 +175,7 @@ def test_cli_limits_are_the_scenes():
     (["report", "--validation", "{folder}", "--out", "rep"], "--validation"),
     (["report", "--validation", "{bad_json}", "--out", "rep"], "--validation"),
     (["plan", "{folder}"], "folder"),
-    (["check", "{bad_json}"], "source"),
+    (["check", "{bad_json}"], "FRAMES"),
 ])
 def test_commands_refuse_bad_files_and_counts_in_one_line(argv, words, tmp_path, capsys, monkeypatch):
     monkeypatch.chdir(tmp_path)

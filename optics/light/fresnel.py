@@ -488,6 +488,10 @@ class IndexRange:
     """
 
     def __init__(self, low: float, high: float):
+        from wavephys.core.inputs import check_scalar
+
+        check_scalar("low", low, lo=1.0, lo_open=True, hi=MAX_INDEX)
+        check_scalar("high", high, lo=1.0, lo_open=True, hi=MAX_INDEX)
         if not 1.0 < low <= high:
             raise ValueError(f"low and high must satisfy 1 < low <= high, got {low} and {high}")
         self.low, self.high = float(low), float(high)
@@ -504,7 +508,20 @@ class IndexRange:
         return self.low <= float(m) <= self.high
 
     def f0_contains(self, f0) -> bool:
-        """Whether a normal-incidence reflectance belongs to the range."""
+        """Whether a normal-incidence reflectance belongs to the range.
+
+        Parameters
+        ----------
+        f0 : float
+            A reflectance at normal incidence, in [0, 1].
+
+        Returns
+        -------
+        bool
+        """
+        from wavephys.core.inputs import check_scalar
+
+        check_scalar("f0", f0, lo=0.0, hi=1.0)
         lo, hi = self.f0
         return lo <= float(f0) <= hi
 

@@ -350,6 +350,10 @@ def check_glsl(source, function: str, against: str, *, takes=None, result=None, 
         check_scalar("tolerance", tolerance, lo=0.0, lo_open=True)
         options["tolerance"] = tolerance
     _check_options(check, options)
+    from optics.shaders.source import check_defines, check_include_dirs
+
+    include_dirs = check_include_dirs(include_dirs)
+    check_defines(defines)
     prepared, translated, language = _read(source, function, language, defines, include_dirs)
     user_code = source if translated is not None else prepared.text
     decl, takes, how = _declaration(check, user_code, function, takes) if translated is None else \

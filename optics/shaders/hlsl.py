@@ -25,7 +25,7 @@ from dataclasses import dataclass, replace
 from pathlib import Path
 
 from optics.shaders.glsl import Declaration, GLSLError, Parameter, declarations
-from optics.shaders.source import Prepared, blank_function, check_defines, strip_comments
+from optics.shaders.source import Prepared, blank_function, check_defines, check_include_dirs, strip_comments
 
 __internal__ = True  # the runner's pieces: users call optics.shaders.check_glsl(..., language="hlsl")
 __all__ = ["TRANSLATOR_PACKAGES", "TranslatorMissing", "Translated", "translate", "hlsl_declaration"]
@@ -230,8 +230,7 @@ def translate(source: str, function: str, *, defines=None, include_dirs=(), name
     """
     glslang, cross = _tools()
     macros = check_defines(defines)
-    if isinstance(include_dirs, (str, Path)):
-        include_dirs = (include_dirs,)
+    include_dirs = check_include_dirs(include_dirs)
     returns, params, _ = hlsl_declaration(source, function)
     entry = _entry(returns, params, function)
     safe = re.sub(r"[^\w.-]", "_", Path(name).name) or "source.hlsl"

@@ -31,7 +31,7 @@ from pathlib import Path
 from wavephys.core.inputs import describe
 
 __internal__ = True  # the runner's pieces: users call optics.shaders.check_glsl
-__all__ = ["GLSLError", "LANGUAGES", "Prepared", "prepare", "strip_comments", "blank_function", "function_span",
+__all__ = ["GLSLError", "LANGUAGES", "Prepared", "prepare", "check_include_dirs", "strip_comments", "blank_function", "function_span",
            "detect_language", "check_defines"]
 
 LANGUAGES = ("auto", "glsl", "glsl_es", "webgl", "godot", "shadertoy", "hlsl")
@@ -168,6 +168,21 @@ def check_defines(defines) -> dict:
     return out
 
 
+def check_include_dirs(include_dirs) -> tuple:
+    """``include_dirs`` as a tuple of folders: one path, or a sequence of them, each an existing folder."""
+    import os
+
+    if isinstance(include_dirs, (str, os.PathLike)):
+        include_dirs = (include_dirs,)
+    if not isinstance(include_dirs, (tuple, list)) or not all(isinstance(d, (str, os.PathLike))
+                                                              for d in include_dirs):
+        raise TypeError(f"include_dirs must be a folder or a list of folders, got {describe(include_dirs)}")
+    missing = [str(d) for d in include_dirs if not Path(d).is_dir()]
+    if missing:
+        raise ValueError(f"include_dirs: {', '.join(missing)} is not a folder")
+    return tuple(include_dirs)
+
+
 def _includes(source: str, include_dirs) -> str:
     """``#include "file"`` lines resolved from ``include_dirs`` (each file marked with #line), or a clear error."""
     lines = source.split("\n")
@@ -255,8 +270,7 @@ def prepare(source: str, language: str = "auto", *, defines=None, include_dirs=(
     if not isinstance(language, str) or language not in LANGUAGES:
         raise ValueError(f"language must be one of {LANGUAGES}, got {language!r}")
     defines = check_defines(defines)
-    if isinstance(include_dirs, (str, Path)):
-        include_dirs = (include_dirs,)
+    include_dirs = check_include_dirs(include_dirs)
     read_as = detect_language(source) if language == "auto" else language
     notes, header = [], [f"#define {k} {v}" for k, v in defines.items()]
     text = strip_comments(source)

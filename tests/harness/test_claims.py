@@ -9,7 +9,7 @@ import pytest
 from wavephys import Water
 from wavephys.harness import Record, check_record
 from wavephys.harness.claims import Claim, Claims, claim_fields, parse_number
-from wavephys.harness.suite import RECORD_CHECKS, RecordCheck, register
+from wavephys.harness.suite import RECORD_CHECKS, RecordCheck, register, unregister
 
 
 def _level(record, water, claims):
@@ -28,7 +28,7 @@ def level_check():
     try:
         yield row
     finally:
-        RECORD_CHECKS.pop("mean_level")
+        unregister("mean_level")
 
 
 def _record(offset=0.0):
@@ -63,6 +63,8 @@ def test_registering_is_checked():
     with pytest.raises(ValueError, match="nobody declares: wind"):
         register(RecordCheck("gust", "gusts", ("wind",), _level))
     assert "gust" not in RECORD_CHECKS
+    with pytest.raises(ValueError, match="not a registered check"):
+        unregister("gust")
 
 
 def test_claims_are_checked_by_name_before_any_work():

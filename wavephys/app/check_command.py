@@ -14,6 +14,7 @@ import math
 import sys
 from pathlib import Path
 
+__internal__ = True  # the command's `check` subcommand: used through `wavephys check`, not fuzzed as public API
 __all__ = ["add_check_parser", "cmd_check"]
 
 CHECK_EXIT_CODES = """exit status:
@@ -29,8 +30,9 @@ _WAKE_FIELDS = (("at", "source", "X,Y", "where that source is in the first frame
                 ("size", "size", "M", "its size as a Gaussian pressure, m (wake_max check)"))
 
 
-def _number(claim=None, lo=None, hi=None, lo_open=False):
-    """An argparse type: a number or a fraction (1/60, 2/256) within the claim's range."""
+def _number(claim=None, lo=None, hi=None, lo_open=False, inf_ok=False):
+    """An argparse type: a number or a fraction (1/60, 2/256) within the claim's range; finite (a deep-water depth
+    is the default, not ``--depth inf``)."""
     if claim is not None:
         lo, hi, lo_open = claim.lo, claim.hi, claim.lo_open
 
@@ -41,14 +43,15 @@ def _number(claim=None, lo=None, hi=None, lo_open=False):
             value = parse_number(text)
         except ValueError as exc:
             raise argparse.ArgumentTypeError(str(exc)) from None
-        if not math.isfinite(value) and not (value == math.inf and lo is not None and lo >= 0 and hi is None):
+        if not math.isfinite(value) and not (value == math.inf and inf_ok):
             raise argparse.ArgumentTypeError(f"must be a finite number, got {text}")
         if (lo is not None and (value < lo or (lo_open and value == lo))) or (hi is not None and value > hi):
             raise argparse.ArgumentTypeError(f"must be {'>' if lo_open else '≥'} {lo:g}" if lo is not None else
                                              f"must be ≤ {hi:g}" + f", got {text}")
         return value
 
-    parse.limits = (lo, hi, lo_open)
+    if lo is not None:
+        parse.limits = (lo, hi, lo_open)  # for the tests: the documented range (lo, hi, lo excluded)
     return parse
 
 
@@ -195,7 +198,7 @@ def add_check_parser(sub, fmt, parser_class, helpers) -> None:
     sh.add_argument("--chart", metavar="PATH", help="also draw the error over the domain (a .png)")
     sh.add_argument("--list", action="store_true", help="list the shader checks, their roles and options, and exit")
     ck.add_argument("--json", metavar="PATH", help="also write the report as JSON")
-    ck.set_defaults(func=cmd_check)
+    ck.set_defaults(func=lambda args, parser: cmd_check(args, parser, helpers))
 
 
 def _option_words(text: str) -> str:
@@ -343,7 +346,7 @@ def _frames_words(exc) -> str:
     return re.sub(r"^(source|path)(\[\d+\])?:", lambda m: "FRAMES" + (m.group(2) or "") + ":", str(exc))
 
 
-def cmd_check(args, parser, helpers=None) -> int:
+def cmd_check(args, parser, helpers) -> int:
     """``wavephys check``: frames (a record) or a shader function.
 
     Parameters
@@ -352,16 +355,14 @@ def cmd_check(args, parser, helpers=None) -> int:
         The parsed options.
     parser : argparse.ArgumentParser
         For usage errors (exit 2).
-    helpers : dict, optional
-        The command's shared argument types (default: the command's own).
+    helpers : dict
+        The command's shared argument types (``setting``, ``checked``).
 
     Returns
     -------
     int
         The exit status: 0 ok, 1 a check failed, 2 a usage error, 3 no OpenGL context or translator.
     """
-    if helpers is None:
-        from wavephys.app.cli import HELPERS as helpers
     if args.frames:
         if args.glsl is not None or args.hlsl is not None or args.shader is not None or args.list:
             parser.error("give either FRAMES (a record) or --glsl/--hlsl/--shader FILE (a shader), not both")

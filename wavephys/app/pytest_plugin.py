@@ -249,6 +249,10 @@ class Checker:
 
         if water is not None:
             check_instance("water", water, Water, "wavephys.Water")
+        if png_range is not None:
+            from wavephys.core.inputs import check_array
+
+            check_array("png_range", png_range, ndim=1, shape_tail=(2,))
         try:
             if isinstance(frames, Record):
                 record = frames

@@ -20,7 +20,7 @@ import math
 from dataclasses import dataclass, field
 from typing import Any, Callable, Optional
 
-__all__ = ["Claim", "Claims", "CLAIM_KINDS", "claim_fields", "parse_number"]
+__all__ = ["Claim", "Claims", "CLAIM_KINDS", "claim_fields", "parse_number", "add_claims", "extra_claims"]
 
 CLAIM_KINDS = ("number", "flag", "pair", "range", "choice", "map", "array", "frames", "wake", "dam")
 """How a claim's value is given: a number (fractions such as 1/60 accepted on the command line), a flag (true
@@ -46,6 +46,8 @@ def parse_number(text: str) -> float:
     ValueError
         When it is not a number, names what was read.
     """
+    if not isinstance(text, str):
+        raise TypeError(f"text must be a number as text (str: '0.05', '1/60'), got {type(text).__name__}")
     num, sep, den = str(text).strip().partition("/")
     try:
         value = float(num) / float(den) if sep else float(num)
@@ -80,6 +82,8 @@ class Claim:
         The value when not claimed.
     requires : tuple of str
         Claims that must be made with this one (``at_rest`` requires ``bed``).
+    inf_ok : bool
+        A number that may be infinite (a depth: deep water).
     check : callable, optional
         ``check(value, record)`` → the value, validated and converted (arrays against the record's shape);
         raises TypeError/ValueError naming the claim.
@@ -97,6 +101,7 @@ class Claim:
     default: Any = None
     requires: tuple = ()
     check: Optional[Callable] = None
+    inf_ok: bool = False
 
     def __post_init__(self):
         if self.kind not in CLAIM_KINDS:
@@ -129,13 +134,15 @@ class Claim:
 
     def validate(self, value, record=None):
         """The value checked and converted (``record``: the frames, for arrays of their shape)."""
-        if value is None:
-            return value
         from wavephys.core.inputs import check_bool, check_choice, check_scalar
 
+        if value is None:
+            if self.default is not None:
+                raise TypeError(f"{self.name} must be given as {self.kind} (default {self.default!r}), got None")
+            return value
         if self.kind == "number":
             value = check_scalar(self.name, value, lo=self.lo, hi=self.hi, lo_open=self.lo_open,
-                                 allow_inf=self.hi is None and self.lo is not None and self.lo >= 0)
+                                 allow_inf=self.inf_ok)
         elif self.kind == "flag":
             value = check_bool(self.name, value)
         elif self.kind == "choice":
@@ -285,7 +292,7 @@ class Claims:
     """
 
     depth: Optional[float] = _claim(Claim("depth", "number", "the water's depth, m (default: deep)", lo=0.0,
-                                          lo_open=True, metavar="M"))
+                                          lo_open=True, metavar="M", inf_ok=True))
     sigma: Optional[float] = _claim(Claim("sigma", "number", "surface tension, N/m (default 0.0728; 0 for gravity "
                                           "waves)", lo=0.0, metavar="N/M"))
     direction: Optional[float] = _claim(Claim("direction", "number", "claimed direction of travel, degrees, 0 = +x",
@@ -364,7 +371,25 @@ class Claims:
         return cls(**direct, extra=extra)
 
     def get(self, name: str):
-        """A claim's value by name (a field or a registered check's own claim; its default when not made)."""
+        """A claim's value by name (a field or a registered check's own claim; its default when not made).
+
+        Parameters
+        ----------
+        name : str
+            A claim's name.
+
+        Returns
+        -------
+        object
+            Its value.
+
+        Raises
+        ------
+        ValueError
+            When no claim has that name.
+        """
+        if not isinstance(name, str):
+            raise TypeError(f"name must be a claim's name (str), got {type(name).__name__}")
         if name in self.extra:
             return self.extra[name]
         if name in claim_fields(extra=False):
@@ -372,22 +397,72 @@ class Claims:
         extra = extra_claims()
         if name in extra:
             return extra[name].default
-        raise KeyError(f"{name!r} is not a claim")
+        raise ValueError(f"name: {name!r} is not a claim; the claims are {', '.join(claim_fields())}")
 
     def given(self, name: str) -> bool:
-        """Whether the claim ``name`` is made."""
-        return claim_fields()[name].given(self.get(name))
+        """Whether the claim ``name`` is made.
+
+        Parameters
+        ----------
+        name : str
+            A claim's name.
+
+        Returns
+        -------
+        bool
+            True when its value makes the claim (a flag that is true, a value that is not its default).
+        """
+        value = self.get(name)
+        return claim_fields()[name].given(value)
 
     def made(self) -> dict:
         """The claims that are made, by name."""
         return {n: c for n, c in claim_fields().items() if c.given(self.get(n))}
 
     def with_record(self, record) -> "Claims":
-        """The claims checked against the record's shape (maps and arrays of its size)."""
+        """The claims checked against the record's shape (maps and arrays of its size).
+
+        Parameters
+        ----------
+        record : Record
+            The frames the claims are about.
+
+        Returns
+        -------
+        Claims
+            These claims, their arrays checked against the record.
+        """
+        from wavephys.core.inputs import check_instance
+        from wavephys.harness.record import Record
+
+        check_instance("record", record, Record, "wavephys.harness.Record")
         for c in claim_fields(extra=False).values():
             if c.check is not None and c.given(getattr(self, c.name)):
                 object.__setattr__(self, c.name, c.validate(getattr(self, c.name), record))
         return self
+
+
+_EXTRA: dict = {}  # check name -> the claims its row brings (filled by wavephys.harness.suite.register)
+
+
+def add_claims(check: str, claims: tuple) -> None:
+    """Declare the claims a registered check brings (:func:`wavephys.harness.suite.register` calls it).
+
+    Parameters
+    ----------
+    check : str
+        The check's name.
+    claims : tuple of Claim
+        Its own claims (an empty tuple forgets the check's).
+    """
+    if not isinstance(check, str):
+        raise TypeError(f"check must be a check's name (str), got {type(check).__name__}")
+    if not isinstance(claims, tuple) or not all(isinstance(c, Claim) for c in claims):
+        raise TypeError(f"claims must be a tuple of Claim, got {type(claims).__name__}")
+    if claims:
+        _EXTRA[check] = claims
+    else:
+        _EXTRA.pop(check, None)
 
 
 def extra_claims() -> dict:
@@ -396,13 +471,11 @@ def extra_claims() -> dict:
     Returns
     -------
     dict of str to Claim
-        Each claim a row of :data:`~wavephys.harness.RECORD_CHECKS` declares, first declaration first.
+        Each claim a registered check declares, first declaration first.
     """
-    from wavephys.harness.suite import RECORD_CHECKS
-
     found = {}
-    for row in RECORD_CHECKS.values():
-        for c in row.claims:
+    for claims in _EXTRA.values():
+        for c in claims:
             found.setdefault(c.name, c)
     return found
 
@@ -420,6 +493,8 @@ def claim_fields(extra: bool = True) -> dict:
     dict of str to Claim
         The claims, fields first in their order.
     """
+    if not isinstance(extra, bool):
+        raise TypeError(f"extra must be True or False, got {type(extra).__name__}")
     out = {f.name: f.metadata["claim"] for f in dataclasses.fields(Claims) if "claim" in f.metadata}
     if extra:
         out.update(extra_claims())

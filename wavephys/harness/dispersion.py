@@ -160,7 +160,7 @@ def measure_dispersion(eta, dx: float, dt: float, *, min_relative_power: float =
 
     if spectrum is None:
         spectrum = spacetime_spectrum(eta)
-    elif np.shape(spectrum) != eta.shape:
+    elif not isinstance(spectrum, np.ndarray) or spectrum.shape != eta.shape:
         raise ValueError(f"spectrum must be the frames' (n_t, n_y, n_x) = {eta.shape} spectrum, got shape "
                          f"{np.shape(spectrum)}")
     power = (spectrum.real.astype(np.float64) ** 2 + spectrum.imag.astype(np.float64) ** 2)  # (ω, ky, kx)

@@ -22,7 +22,13 @@ SINGLE_ABOVE = 1 << 22
 
 
 def workers() -> int:
-    """How many threads the harness's FFTs use: the machine's cores, at most 4."""
+    """How many threads the harness's FFTs use: the machine's cores, at most 4.
+
+    Returns
+    -------
+    int
+        The thread count, >= 1.
+    """
     return max(1, min(4, os.cpu_count() or 1))
 
 
@@ -45,6 +51,8 @@ def spacetime_spectrum(eta) -> np.ndarray:
     from wavephys.core.inputs import check_array
 
     check_array("eta", eta, ndim=3)
+    if min(np.shape(eta)) < 2:
+        raise ValueError(f"eta must be frames (n_t, n_y, n_x), each axis at least 2 long, got shape {np.shape(eta)}")
     single = np.size(eta) > SINGLE_ABOVE
     real = np.float32 if single else np.float64
     eta = np.asarray(eta, real)

@@ -20,10 +20,10 @@ import time
 from dataclasses import dataclass, field
 from typing import Callable, Optional
 
-from wavephys.harness.claims import Claim, Claims, claim_fields
+from wavephys.harness.claims import Claim, Claims, add_claims, claim_fields
 
-__all__ = ["RecordCheck", "RECORD_CHECKS", "RecordReport", "check_record", "CLAIMS", "register", "Claim",
-           "Claims"]
+__all__ = ["RecordCheck", "RECORD_CHECKS", "RecordReport", "check_record", "CLAIMS", "register", "unregister",
+           "Claim", "Claims"]
 
 
 @dataclass(frozen=True)
@@ -269,7 +269,32 @@ def register(row: RecordCheck) -> RecordCheck:
         raise ValueError(f"row: {row.name!r} needs claims nobody declares: {', '.join(unknown)} (declare them in its "
                          f"claims=(Claim(...),))")
     RECORD_CHECKS[row.name] = row
+    add_claims(row.name, tuple(row.claims))
     return row
+
+
+def unregister(name: str) -> RecordCheck:
+    """Take a check out of :data:`RECORD_CHECKS`, and the claims it brought.
+
+    Parameters
+    ----------
+    name : str
+        The check's name.
+
+    Returns
+    -------
+    RecordCheck
+        The row taken out.
+
+    Raises
+    ------
+    ValueError
+        When no check has that name.
+    """
+    if not isinstance(name, str) or name not in RECORD_CHECKS:
+        raise ValueError(f"name: {name!r} is not a registered check; they are {', '.join(RECORD_CHECKS)}")
+    add_claims(name, ())
+    return RECORD_CHECKS.pop(name)
 
 
 @dataclass(frozen=True)

@@ -137,9 +137,14 @@ def measure_travel(eta, dx: float, dt: float, *, min_bins: float = 2.0, locking:
     eta = np.asarray(eta, np.float64)
     nt, ny, nx = eta.shape
     check_scalar("min_bins", min_bins, lo=0.0, hi=nt / 4)
+    from wavephys.core.inputs import check_bool
     from wavephys.harness.spectra import spacetime_spectrum
 
-    spec = (spacetime_spectrum(eta) if spectrum is None else np.asarray(spectrum)).reshape(nt, -1)
+    check_bool("locking", locking)
+    if spectrum is not None and (not isinstance(spectrum, np.ndarray) or spectrum.shape != eta.shape):
+        raise ValueError(f"spectrum must be the frames' {eta.shape} space-time spectrum (Record.spectrum()), got "
+                         f"{type(spectrum).__name__} of shape {np.shape(spectrum)}")
+    spec = (spacetime_spectrum(eta) if spectrum is None else spectrum).reshape(nt, -1)
     p_neg, p_pos, i_neg, i_pos, power = _peaks(spec, nt, min_bins)
     ky, kx = angular_wavenumbers((ny, nx), dx, xp=np)
     kx, ky = np.broadcast_to(kx, (ny, nx)).ravel(), np.broadcast_to(ky, (ny, nx)).ravel()
