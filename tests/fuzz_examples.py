@@ -683,6 +683,7 @@ SHAPE_FREE = {
     ("wavephys.simulation.shallow_water.SWState", "fields"),  # shallow water runs on any rectangle of cells
     ("wavephys.core.grid.Grid.sample", "field"), ("optics.light.directions.normalize", "v"),
     ("wavephys.harness.dispersion.measure_dispersion", "eta"),
+    ("wavephys.harness.spectra.spacetime_spectrum", "eta"),  # any rectangle of frames, one row included
     ("wavephys.harness.tank.measure_seiches", "eta"),  # any rectangle of frames is a tank
     ("wavephys.app.pytest_plugin.Checker.dispersion", "eta"),
     ("wavephys.plot.plot_surface", "eta"), ("wavephys.plot.plot_wake", "eta"), ("wavephys.plot.plot_images", "images"),

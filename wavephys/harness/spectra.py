@@ -51,8 +51,9 @@ def spacetime_spectrum(eta) -> np.ndarray:
     from wavephys.core.inputs import check_array
 
     check_array("eta", eta, ndim=3)
-    if min(np.shape(eta)) < 2:
-        raise ValueError(f"eta must be frames (n_t, n_y, n_x), each axis at least 2 long, got shape {np.shape(eta)}")
+    if np.shape(eta)[0] < 2 or min(np.shape(eta)) < 1:
+        raise ValueError(f"eta must be frames (n_t, n_y, n_x) with n_t >= 2 (one row, n_y = 1, is a 1-D record), got "
+                         f"shape {np.shape(eta)}")
     single = np.size(eta) > SINGLE_ABOVE
     real = np.float32 if single else np.float64
     eta = np.asarray(eta, real)
