@@ -36,14 +36,13 @@ def test_third_party_exr_folder_through_the_command(sea, tmp_path, capsys):
     with_meta.mkdir()
     bare.mkdir()
     for i, frame in enumerate(sea):
-        pfm = tmp_path / f"{i}.pfm"
-        _pfm(pfm, frame)
-        subprocess.run(["oiiotool", str(pfm), "-d", "float", "--attrib:type=float", "dx", str(DX),
-                        "--attrib:type=float", "dt", repr(DT), "--attrib", "units", "m", "-o",
-                        str(with_meta / f"ocean.{i:04d}.exr")], check=True, capture_output=True)
-        if i < 16:
-            subprocess.run(["oiiotool", str(pfm), "-d", "half", "-o", str(bare / f"ocean.{i}.exr")], check=True,
-                           capture_output=True)
+        _pfm(tmp_path / f"f.{i:04d}.pfm", frame)
+    # one oiiotool process a folder (its frame-range loop writes each frame as its own file)
+    subprocess.run(["oiiotool", "--frames", f"0-{len(sea) - 1}", str(tmp_path / "f.#.pfm"), "-d", "float",
+                    "--attrib:type=float", "dx", str(DX), "--attrib:type=float", "dt", repr(DT), "--attrib", "units",
+                    "m", "-o", str(with_meta / "ocean.#.exr")], check=True, capture_output=True)
+    subprocess.run(["oiiotool", "--frames", "0-15", str(tmp_path / "f.#.pfm"), "-d", "half", "-o",
+                    str(bare / "ocean.#.exr")], check=True, capture_output=True)
     assert main(["check", str(with_meta), "--sigma", "0", "--sea", "--direction", "0"]) == 0
     out = capsys.readouterr().out
     assert "64 frames of 32 x 32, dx = 0.25 m" in out and "FAILED" not in out

@@ -42,6 +42,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from functools import partial
 
 import jax
 import jax.numpy as jnp
@@ -137,15 +138,36 @@ def stationary_wavenumber(target_speed, water: Water):
         k_hi = np.minimum(1e6 * g / np.maximum(target, 1e-12) ** 2, K_MAX)
     lo = np.full(target.shape, math.log(min(1e-9 * g / max(float(np.max(target)), 1e-12) ** 2, 1e-3 * K_MAX)))
     hi = np.log(np.broadcast_to(k_hi, target.shape).astype(np.float64))
-    speed = lambda u: np.asarray(phase_speed(jnp.asarray(np.exp(u)), water), np.float64)
-    for _ in range(80):
-        mid = 0.5 * (lo + hi)
-        faster = speed(mid) > target  # on the gravity branch c falls with k
-        lo, hi = np.where(faster, mid, lo), np.where(faster, hi, mid)
-    k = np.exp(0.5 * (lo + hi))
+    k = _bisect_log_k(lo, hi, target, water)
     c_long = phase_speed(jnp.asarray(0.0), water)
     none = (target <= c_min) | (target >= float(c_long)) | (k >= 0.999 * K_MAX)  # past the continuum limit
     return np.where(none, np.nan, k)
+
+
+def _bisect_log_k(lo, hi, target, water: Water):
+    """80 bisection steps in log k for c(k) = target (c falling with k): one compiled loop, float64.
+
+    Flattened inputs are padded to a power-of-two length (at least 64) so that calls of
+    many sizes share a handful of compilations; one compilation per distinct ``water``.
+    """
+    shape = target.shape
+    size = max(64, 1 << (max(int(target.size), 1) - 1).bit_length())
+    pad = lambda a, fill: np.concatenate([np.ravel(a), np.full(size - a.size, fill, np.float64)])
+    with jax.enable_x64(True):
+        lo_, hi_ = _bisect_steps(pad(lo, 0.0), pad(hi, 1.0), pad(target, 1.0), water)
+        k = np.exp(0.5 * (np.asarray(lo_) + np.asarray(hi_)))
+    return k[:target.size].reshape(shape)
+
+
+@partial(jax.jit, static_argnames=("water",))
+def _bisect_steps(lo, hi, target, water: Water):
+    def step(_, bounds):
+        lo, hi = bounds
+        mid = 0.5 * (lo + hi)
+        faster = phase_speed(jnp.exp(mid), water) > target  # on the gravity branch c falls with k
+        return jnp.where(faster, mid, lo), jnp.where(faster, hi, mid)
+
+    return jax.lax.fori_loop(0, 80, step, (lo, hi))
 
 
 def cusp_line(speed, water: Water = Water(sigma=0.0), samples: int = 4001) -> CuspLine:
@@ -188,7 +210,8 @@ def cusp_line(speed, water: Water = Water(sigma=0.0), samples: int = 4001) -> Cu
     if not np.isfinite(k).any():
         raise ValueError(f"speed {speed} m/s: no stationary gravity wave (below c_min = "
                          f"{min_phase_speed(water)[0]:.4g} m/s?), so there is no wake")
-    cg = np.asarray(group_speed(jnp.asarray(np.where(np.isfinite(k), k, 1.0)), water), np.float64)
+    with jax.enable_x64(True):  # the maximum is flat: float32 noise would move it
+        cg = np.asarray(group_speed(jnp.asarray(np.where(np.isfinite(k), k, 1.0)), water), np.float64)
     phi = np.where(np.isfinite(k), np.arctan2(cg * np.sin(theta), speed - cg * np.cos(theta)), -np.inf)
     i = int(np.argmax(phi))
     t, kk = theta[i], k[i]
@@ -199,7 +222,8 @@ def cusp_line(speed, water: Water = Water(sigma=0.0), samples: int = 4001) -> Cu
             off = 0.5 * (a - c) / den
             t = theta[i] + off * (theta[1] - theta[0])
             kk = float(stationary_wavenumber(np.array([speed * math.cos(t)]), water)[0])
-            cgt = float(group_speed(jnp.asarray(kk), water))
+            with jax.enable_x64(True):
+                cgt = float(group_speed(jnp.asarray(kk), water))
             return CuspLine(math.degrees(math.atan2(cgt * math.sin(t), speed - cgt * math.cos(t))), kk,
                             math.degrees(t))
     return CuspLine(math.degrees(float(phi[i])), float(kk), math.degrees(float(t)))
