@@ -13,6 +13,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
+import jax
 import jax.numpy as jnp
 import numpy as np
 
@@ -88,17 +89,16 @@ class Grid:
     @property
     def coordinates(self):
         """1-D sample coordinates (cell centres), m, shape ``(n,)``."""
-        return self.origin + jnp.arange(self.n) * self.dx
+        return _line(self.n, self.origin, self.dx)
 
     @property
     def edges(self):
         """1-D cell boundaries, m, shape ``(n + 1,)``: −L/2, −L/2 + dx, …, L/2."""
-        return -0.5 * self.length + jnp.arange(self.n + 1) * self.dx
+        return _line(self.n + 1, -0.5 * self.length, self.dx)
 
     def mesh(self):
         """``(x, y)`` sample coordinates, each shape ``(n, n)``, m."""
-        c = self.coordinates
-        return jnp.broadcast_to(c[None, :], (self.n, self.n)), jnp.broadcast_to(c[:, None], (self.n, self.n))
+        return _mesh(self.n, self.origin, self.dx)
 
     @validate(x=_POINTS, y=_POINTS)
     def texel(self, x, y):
@@ -137,8 +137,7 @@ class Grid:
     @validate(real=Bool())
     def wavenumber_magnitude(self, real: bool = False):
         """|k| on the spectrum, rad/m, shape ``(n, n)`` or ``(n, n//2 + 1)``."""
-        ky, kx = self.wavenumbers(real)
-        return jnp.sqrt(kx * kx + ky * ky)
+        return _magnitude(self.n, self.dx, bool(real))
 
     @property
     def nyquist(self):
@@ -215,3 +214,43 @@ class Grid:
 
 
 register(Grid, ("length",), ("n",))
+
+
+# The Grid's arrays for concrete numbers are made by NumPy in JAX's float dtype, operation for
+# operation as jax.numpy rounds them, then handed over with device_put (jnp.asarray compiles a
+# program per shape): made eagerly by JAX, each operation
+# would be compiled by itself for every new n. Traced numbers (a Grid inside jit) use jax.numpy.
+def _concrete(*values) -> bool:
+    return all(isinstance(v, (int, float, np.number)) for v in values)
+
+
+def _float_dtype():
+    return np.dtype(jax.dtypes.canonicalize_dtype(np.float64))  # float32, or float64 with jax_enable_x64
+
+
+def _line(count, start, step):
+    if not _concrete(start, step):
+        return start + jnp.arange(count) * step
+    return jax.device_put(_host_line(count, start, step))
+
+
+def _host_line(count, start, step):
+    dtype = _float_dtype()
+    return dtype.type(start) + np.arange(count).astype(dtype) * dtype.type(step)
+
+
+def _mesh(n, origin, dx):
+    if not _concrete(origin, dx):
+        c = _line(n, origin, dx)
+        return jnp.broadcast_to(c[None, :], (n, n)), jnp.broadcast_to(c[:, None], (n, n))
+    c = _host_line(n, origin, dx)
+    return (jax.device_put(np.ascontiguousarray(np.broadcast_to(c[None, :], (n, n)))),
+            jax.device_put(np.ascontiguousarray(np.broadcast_to(c[:, None], (n, n)))))
+
+
+def _magnitude(n, dx, real):
+    if not _concrete(dx):
+        ky, kx = spectral.angular_wavenumbers((n, n), dx, real, xp=jnp)
+        return jnp.sqrt(kx * kx + ky * ky)
+    ky, kx = spectral.jax_rounded_wavenumbers((n, n), dx, real)
+    return jax.device_put(np.sqrt(kx * kx + ky * ky))

@@ -15,12 +15,17 @@ split into compiled programs that each *start* with their FFTs. Under a user's o
 
 from __future__ import annotations
 
+import functools
 import math
+
+import jax
+import jax.numpy as jnp
+import numpy as np
 
 from wavephys.core.sampling import array_module
 
 __internal__ = True  # tooling for the library's own modules (users call the Grid's methods)
-__all__ = ["angular_wavenumbers", "cosine_refine", "spectral_gradient", "central_gradient", "central_laplacian", "GRADIENT_METHODS",
+__all__ = ["angular_wavenumbers", "jax_rounded_wavenumbers", "cosine_refine", "spectral_gradient", "central_gradient", "central_laplacian", "GRADIENT_METHODS",
            "cosine_transform", "inverse_cosine_transform", "cosine_transform2", "inverse_cosine_transform2",
            "mode_transform", "inverse_mode_transform", "mode_wavenumbers",
            "gradient", "spectral_laplacian", "fourier_refine", "spectral_derivatives", "bspline_coefficients"]
@@ -28,12 +33,43 @@ __all__ = ["angular_wavenumbers", "cosine_refine", "spectral_gradient", "central
 
 def angular_wavenumbers(shape: tuple[int, int], spacing, real: bool = False, xp=None):
     """``(ky, kx)`` angular wavenumbers, rad/m, shaped ``(ny, 1)`` and ``(1, nx)`` (or
-    ``(1, nx//2 + 1)`` with ``real``) to broadcast against a spectrum."""
+    ``(1, nx//2 + 1)`` with ``real``) to broadcast against a spectrum.
+
+    For ``jax.numpy`` with a concrete spacing they are made by NumPy in JAX's float dtype,
+    operation for operation as ``jax.numpy`` rounds them, and then handed over: made eagerly by
+    JAX, each operation would be compiled for every new shape."""
     xp = xp or array_module(spacing)
+    if xp is not np and isinstance(spacing, (int, float, np.number)):
+        ky, kx = jax_rounded_wavenumbers(shape, spacing, real)
+        return jax.device_put(ky), jax.device_put(kx)  # (jnp.asarray compiles a program per shape)
+    return _wavenumbers(shape, spacing, real, xp)
+
+
+def jax_rounded_wavenumbers(shape: tuple[int, int], spacing: float, real: bool = False):
+    """:func:`angular_wavenumbers` as NumPy arrays in JAX's float dtype, rounded as ``jax.numpy`` rounds them."""
+    dtype = np.dtype(jax.dtypes.canonicalize_dtype(np.float64))  # float32, or float64 with jax_enable_x64
+    return _wavenumbers(shape, dtype.type(spacing), real, np, dtype)
+
+
+def _wavenumbers(shape, spacing, real, xp, dtype=None):
     ny, nx = shape
-    ky = 2.0 * math.pi * xp.fft.fftfreq(ny) / spacing
-    kx = (xp.fft.rfftfreq(nx) if real else xp.fft.fftfreq(nx)) * (2.0 * math.pi) / spacing
+    two_pi = 2.0 * math.pi if dtype is None else dtype.type(2.0 * math.pi)
+    if dtype is None:
+        fy = xp.fft.fftfreq(ny)
+        fx = xp.fft.rfftfreq(nx) if real else xp.fft.fftfreq(nx)
+    else:  # jax.numpy's fftfreq: integers divided by n in the float dtype
+        fy = _divide(((np.arange(ny) + ny // 2) % ny - ny // 2).astype(dtype), dtype.type(ny))
+        fx = _divide(np.arange(nx // 2 + 1).astype(dtype) if real
+                     else ((np.arange(nx) + nx // 2) % nx - nx // 2).astype(dtype), dtype.type(nx))
+    divide = (lambda a, b: a / b) if dtype is None else _divide
+    ky = divide(two_pi * fy, spacing)
+    kx = divide(fx * two_pi, spacing)
     return ky[:, None], kx[None, :]
+
+
+def _divide(a, b):
+    """a / b for a scalar b as XLA on a CPU computes it: a times the rounded reciprocal of b."""
+    return a * (b.dtype.type(1) / b)
 
 
 def spectral_gradient(field, spacing, wavenumbers=None):
@@ -98,8 +134,13 @@ def fourier_refine(field, factor: int):
     """
     if factor == 1:
         return field
-    xp = array_module(field)
-    f = xp.asarray(field)
+    if array_module(field) is jnp:
+        return _fourier_refine_jax(jnp.asarray(field), int(factor))
+    return _fourier_refine(np.asarray(field), factor, np)
+
+
+def _fourier_refine(f, factor: int, xp):
+    """:func:`fourier_refine` in the array module ``xp``."""
     n = f.shape[-1]
     m, h = n * factor, n // 2
     spec = xp.fft.rfft2(f)
@@ -111,6 +152,9 @@ def fourier_refine(field, factor: int):
     ky, kx = angular_wavenumbers((m, m), 1.0 / m, real=True, xp=xp)  # on a unit square
     shift = 0.5 / m - 0.5 / n  # fine origin − coarse origin, in units of L
     return xp.fft.irfft2(full * xp.exp(1j * (kx + ky) * shift) * (factor * factor), s=(m, m)).astype(f.dtype)
+
+
+_fourier_refine_jax = jax.jit(functools.partial(_fourier_refine, xp=jnp), static_argnums=1)
 
 
 def cosine_refine(field, factor: int):

@@ -19,6 +19,7 @@ where it passes a threshold (the method's failure boundary).
 
 from __future__ import annotations
 
+import functools
 import math
 
 import jax
@@ -138,10 +139,16 @@ def cutoff_profile(n: int, margin: int, method: str = "quadratic", dtype=jnp.flo
     dtype = _DTYPE("dtype", _dtype_name(dtype), {})
     if margin == 0:
         return jnp.ones(n, dtype)
-    p = jnp.arange(n, dtype=dtype)
     if not isinstance(ends, (tuple, list)) or len(ends) != 2 or not all(isinstance(e, (bool, np.bool_)) for e in ends):
         raise TypeError(f"ends must be a pair (low, high) of bools, got {ends!r}")
-    low, high = (bool(e) for e in ends)
+    return _profile(n, margin, method, dtype, bool(ends[0]), bool(ends[1]))
+
+
+@functools.partial(jax.jit, static_argnums=(0, 1, 2, 3, 4, 5))
+def _profile(n: int, margin: int, method: str, dtype: str, low: bool, high: bool):
+    """:func:`cutoff_profile` past its checks: one program per size and options."""
+    shape = CUTOFF_METHODS.check(method)
+    p = jnp.arange(n, dtype=dtype)
     big = jnp.asarray(n, dtype)
     dist = jnp.minimum(p if low else big, n - 1 - p if high else big)  # distance to the nearer open edge
     return jnp.where(dist < margin, shape(jnp.minimum(dist / margin, 1.0)), 1.0).astype(dtype)

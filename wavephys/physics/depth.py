@@ -213,12 +213,18 @@ def depth_weights(depth, levels):
     """
     check_array("depth", depth)
     check_array("levels", levels, ndim=1, lo=0.0)
-    lev = jnp.asarray(levels)
-    h = jnp.clip(jnp.asarray(depth), lev[0], lev[-1])
+    lev, h = jnp.asarray(levels), jnp.asarray(depth)
     if lev.shape[0] == 1:
-        return jnp.ones((1,) + h.shape, h.dtype)
+        return jnp.ones((1,) + h.shape, jnp.result_type(h, lev))
     if not is_traced(levels) and bool(np.any(np.diff(np.asarray(levels, np.float64)) <= 0)):
         raise ValueError(f"levels must increase, got {np.asarray(levels)}")
+    return _level_weights(h, lev)
+
+
+@jax.jit
+def _level_weights(depth, lev):
+    """:func:`depth_weights` past its checks: one program."""
+    h = jnp.clip(depth, lev[0], lev[-1])
     j = jnp.clip(jnp.searchsorted(lev, h, side="right") - 1, 0, lev.shape[0] - 2)
     t = (h - lev[j]) / (lev[j + 1] - lev[j])
     idx = jnp.arange(lev.shape[0]).reshape((-1,) + (1,) * h.ndim)

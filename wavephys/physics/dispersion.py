@@ -14,10 +14,12 @@ All functions are pure ``jnp`` code: they broadcast over any shape, work under
 
 from __future__ import annotations
 
+import functools
 import math
 
 import jax
 import jax.numpy as jnp
+import numpy as np
 from jax import lax
 
 from wavephys.core.inputs import Array, Int, check_array, is_traced, validate
@@ -50,11 +52,39 @@ _K = Array(lo=0.0, hi=K_MAX)
 _OMEGA = Array(lo=0.0, hi=OMEGA_MAX)
 
 
+def _compiled(fn=None, *, static=()):
+    """``fn(k, water, *static)`` as one compiled program per shape and dtype of ``k``.
+
+    The water's four numbers are traced arguments (its checks pass tracers), so one program
+    serves every water, fitted ones included; ``static`` names arguments that select a program
+    (``iterations``). Called eagerly, each of the dozen operations of a formula would otherwise
+    be compiled by itself for every new shape, about 40 ms each on a CPU. Under an outer
+    ``jit``, ``vmap`` or ``grad`` the program is traced inline as before.
+    """
+    if fn is None:
+        return functools.partial(_compiled, static=static)
+
+    def traced(k, numbers, *rest):
+        return fn(k, Water(*numbers), *rest)
+
+    compiled = jax.jit(traced, static_argnums=tuple(range(2, 2 + len(static))))
+
+    @functools.wraps(fn)
+    def call(k, water, *rest):
+        k = k if isinstance(k, jax.Array) else jnp.asarray(k)  # a list is one array, not a tree of numbers
+        numbers = tuple(float(v) if isinstance(v, (int, float, np.number)) else v  # weak-typed, as eagerly
+                        for v in (water.g, water.rho, water.sigma, water.depth))
+        return compiled(k, numbers, *rest)
+
+    return call
+
+
 def _deep(water: Water):
     return jnp.isinf(water.depth)
 
 
 @validate(k=_K, water=WATER)
+@_compiled
 def depth_factor(k, water: Water):
     """tanh(k h), with the deep-water limit 1 exactly when ``water.depth`` is infinite.
 
@@ -81,6 +111,7 @@ def depth_factor(k, water: Water):
 
 
 @validate(k=_K, water=WATER)
+@_compiled
 def surface_operator(k, water: Water):
     """K(k) = k·tanh(k h), rad/m: the Fourier symbol of ∂φ/∂z at the surface.
 
@@ -107,6 +138,7 @@ def surface_operator(k, water: Water):
 
 
 @validate(k=_K, water=WATER)
+@_compiled
 def restoring_acceleration(k, water: Water):
     """g + (σ/ρ)k², m/s²: gravity plus the capillary restoring term of mode k.
 
@@ -143,6 +175,7 @@ def _safe_sqrt(x):
 
 
 @validate(k=_K, water=WATER)
+@_compiled
 def angular_frequency(k, water: Water):
     r"""Angular frequency ω(k) of a linear capillary-gravity wave, rad/s.
 
@@ -195,6 +228,7 @@ def _positive(k):
 
 
 @validate(k=_K, water=WATER)
+@_compiled
 def phase_speed(k, water: Water):
     """Phase speed c = ω/k, m/s.
 
@@ -223,6 +257,7 @@ def phase_speed(k, water: Water):
 
 
 @validate(k=_K, water=WATER)
+@_compiled
 def group_speed(k, water: Water):
     r"""Group speed c_g = dω/dk in closed form, m/s.
 
@@ -280,6 +315,7 @@ def _bracket(omega2, water: Water):
 
 
 @validate(omega=_OMEGA, water=WATER, iterations=Int(lo=8, hi=1000))
+@_compiled(static=("iterations",))
 def wavenumber(omega, water: Water, iterations: int = 60):
     r"""Inverse dispersion relation: the k ≥ 0 with ω(k) = ``omega``, rad/m.
 

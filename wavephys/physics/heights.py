@@ -34,7 +34,7 @@ import numpy as np
 
 from wavephys.core.inputs import Array, Int, Real, check_array, check_int, check_scalar, validate
 from wavephys.core.specs import BOOL, COMPLEX_FIELD, FIELD, GRID, POSITIVE, WATER
-from wavephys.physics.dispersion import angular_frequency, surface_operator
+from wavephys.physics.dispersion import _compiled, angular_frequency, surface_operator
 from wavephys.core.grid import Grid
 from wavephys.core.water import Water
 
@@ -52,6 +52,7 @@ __all__ = [
 
 
 @validate(k=Array(lo=0.0), water=WATER)
+@_compiled
 def height_multiplier(k, water: Water):
     """K(k)/ω(k), s/m: η̂_c = i·(K/ω)·ψ̂. Set to 0 at k = 0 (the mean level is fixed).
 

@@ -327,6 +327,11 @@ def natural(model: Model, ops: Operators) -> Operators:
     return Operators(*(a[..., :half] for a in ops[:-1]), ops.mask)
 
 
+_build_once = jax.jit(_build, static_argnums=(1, 2))
+"""The multipliers in one program (the grid's length, the water and Δt traced: one compilation per size and
+options, not one per operation)."""
+
+
 @functools.lru_cache(maxsize=8)
 def _concrete(model: Model) -> Operators:
     return _build_float64(model)
@@ -339,7 +344,7 @@ def _build_float64(model: Model) -> Operators:
     columns, so no device ever holds the whole float64 spectrum."""
     with jax.enable_x64(True):
         if model.mesh is None:
-            return _build(model, jnp.float64, model.dtype)
+            return _build_once(model, jnp.float64, model.dtype)
         n, mesh, axis = model.grid.n, model.mesh, model.mesh_axis
         spread = spectrum_sharding(mesh, axis, 2)
         shardings = Operators(*([spread] * 9), field_sharding(mesh, axis, 2) if model.margin else None)
