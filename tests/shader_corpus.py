@@ -338,6 +338,15 @@ JENSEN_GOLIAS = """
 float fresnelJensenGolias(float c) { return 1.0 / pow(1.0 + c, 8.0); }
 """
 
+LOVISCACH = """
+// Loviscach's cheap reflectance for water seen from the air
+float fresnelLoviscach(float cosTheta) { return clamp(1.0 - 2.5 * cosTheta, 0.0, 1.0); }
+"""
+RIM_RAMP = """
+// a rim term used as the reflection weight: a clamped linear ramp of the facing ratio
+float rimFresnel(vec3 N, vec3 V) { return clamp(1.0 - dot(N, V) * 1.5, 0.0, 1.0); }
+"""
+
 SHADE_MIX = """
 // a water shader's final mix: the reflected colour by Fresnel, the rest refracted
 float3 ShadeWater(float3 reflection, float3 refraction, float NdotV)
@@ -437,13 +446,14 @@ FRESNEL = [
            lambda c, front: _fr(c, *side_indices(front))),
     Shader("a WebGL demo's mix(0.25, 1, (1 − cos)^3)", "a popular WebGL water's reflectance term", "fresnel",
            WEBGL_WATER_MIX, "reflectance", lambda n, i: mix(0.25, 1.0, (1.0 - dot(n, -i)) ** 3),
-           cause="not Fresnel's shape"),
+           cause="(1 − f0)(1 − cos θ)^p with f0 = 0.25, p = 3"),
     Shader("a Shadertoy sea's halved cube", "a Shadertoy sea: pow(clamp(1 − dot(n, −eye)), 3) × 0.5", "fresnel",
-           SEASCAPE_STYLE, "getFresnel", lambda n, i: sat(1.0 - dot(n, -i)) ** 3 * 0.5, cause="not Fresnel's shape",
+           SEASCAPE_STYLE, "getFresnel", lambda n, i: sat(1.0 - dot(n, -i)) ** 3 * 0.5,
+           cause="R = b (1 − cos θ)^p with b = 0.5, p = 3",
            options=dict(takes=("normal", "incident"), sides=("above",))),
     Shader("the Cg tutorial's empirical reflection factor", "bias 0.1, scale 1, power 2 in bias + scale (1 + I·N)^p",
            "fresnel", CG_TUTORIAL_EMPIRICAL, "reflectionFactor", lambda i, n: 0.1 + (1.0 + dot(i, n)) ** 2,
-           cause="not Fresnel's shape", options=dict(uniforms={"fresnelBias": 0.1, "fresnelScale": 1.0,
+           cause="bias = 0.1, scale = 1, power = 2", options=dict(uniforms={"fresnelBias": 0.1, "fresnelScale": 1.0,
                                                                "fresnelPower": 2.0}, sides=("above",))),
     Shader("Godot's fresnel(amount, normal, view) at amount 5", "the Godot tutorials' pow(1 − clamp(dot(N, V)), "
            "amount)", "fresnel", GODOT_FRESNEL, "fresnel", lambda a, n, v: (1 - np.clip(dot(normalize(n),
@@ -465,6 +475,12 @@ FRESNEL = [
            JENSEN_GOLIAS, "fresnelJensenGolias", lambda c: 1.0 / (1.0 + c) ** 8, options=dict(form="jensen_golias")),
     Shader("Jensen & Goliáš taken for Fresnel", "the same, with no form named", "fresnel", JENSEN_GOLIAS,
            "fresnelJensenGolias", lambda c: 1.0 / (1.0 + c) ** 8, cause="form='jensen_golias'"),
+    Shader("Loviscach's clamp taken for Fresnel", "clamp(1 − 2.5 cos θ), with no form named", "fresnel", LOVISCACH,
+           "fresnelLoviscach", lambda c: np.clip(1.0 - 2.5 * c, 0.0, 1.0), cause="form='loviscach'"),
+    Shader("a clamped rim ramp as Fresnel", "clamp(1 − 1.5 N·V, 0, 1)", "fresnel", RIM_RAMP, "rimFresnel",
+           lambda n, v: np.clip(1.0 - 1.5 * dot(n, v), 0.0, 1.0), cause="a linear ramp R = a + b (1 − cos θ) with "
+                                                                          "a = -0.5, b = 1.5",
+           options=dict(sides=("above",))),
     Shader("the reflected/refracted mix (HLSL)", "lerp(refraction, reflection, F) with F Schlick's", "fresnel",
            SHADE_MIX, "ShadeWater", lambda refl, refr, c: mix(refr, refl, 0.02 + 0.98 * sat(1 - c) ** 5),
            options=dict(language="hlsl")),
@@ -504,6 +520,7 @@ vec3 refrManual(vec3 I, vec3 N, float eta) {
     return eta * I + (eta * cosi - sqrt(k)) * N;      // no k < 0 test
 }
 """
+REFRACT_NEGATED = "vec3 refrNeg(vec3 I, vec3 N, float eta) { return refract(I, -N, eta); }   // N negated"
 REFRACT_HLSL = "float3 RefractWater(float3 I, float3 N, float eta) { return refract(I, N, eta); }"
 REFRACT_VIEW = "vec3 refrV(vec3 V, vec3 N, float eta) { return refract(V, N, eta); }   // V points to the eye"
 REFLECT_BUILTIN = "vec3 reflectRay(vec3 I, vec3 N) { return reflect(I, N); }"
@@ -538,9 +555,11 @@ RAYS = [
            "refractTwoSided", lambda i, n, f: glsl_refract(i, n, np.where(f > 0.5, 1 / 1.33, 1.33))),
     Shader("refract with the up normal from below", "the normal not flipped for rays from the water", "refract",
            REFRACT_UP_NORMAL, "refrUp", lambda i, n, a, b: glsl_refract(i, n, a / b),
-           cause="the normal faces the wrong way", options=dict(takes=("incident", "normal", "n1", "n2"))),
+           cause="from below, the normal faces the wrong way", options=dict(takes=("incident", "normal", "n1", "n2"))),
     Shader("hand-written refract without a TIR test", "sqrt(k) without k < 0", "refract", REFRACT_NO_TIR,
            "refrManual", _manual_refract, cause="NaN past the critical angle"),
+    Shader("refract with the normal negated", "refract(I, −N, eta) on every ray", "refract", REFRACT_NEGATED,
+           "refrNeg", lambda i, n, e: glsl_refract(i, -n, e), cause="the normal faces the wrong way on every ray"),
     Shader("HLSL refract (HLSL)", "HLSL's refract intrinsic", "refract", REFRACT_HLSL, "RefractWater", glsl_refract,
            options=dict(language="hlsl")),
     Shader("refract of the view vector", "V towards the eye passed as I", "refract", REFRACT_VIEW, "refrV",
@@ -575,6 +594,7 @@ vec3 beerMin(float d, vec3 sigma) { return exp(-sigma * (d + 0.5)); }
 BEER_BGR = "vec3 beerBgr(float d, vec3 sigma) { return exp(-sigma.bgr * d); }"
 BEER_LINEAR = "vec3 beerLin(float d, vec3 sigma) { return clamp(1.0 - sigma * d, 0.0, 1.0); }"
 BEER_EXP2 = "vec3 beerExp2(float d, vec3 sigma) { return exp2(-sigma * d); }"
+BEER_TINTED = "vec3 beerTint(float d, vec3 sigma) { return 0.9 * exp(-sigma * d); }   // a tint folded in"
 BEER_PER_CM = "vec3 beerCm(float distance, vec3 absorption) { return exp(-absorption * distance * 100.0); }"
 WATER_FIT = "vec3 waterTint(float d) { return exp(-vec3(0.3353, 0.05035, 0.000547) * d); }"
 WATER_BGR = "vec3 waterBgr(float d) { return exp(-vec3(0.000547, 0.05035, 0.3353) * d); }"
@@ -600,6 +620,8 @@ ABSORPTION = [
            lambda d, s: np.clip(1 - s * d, 0, 1), cause="not exponential"),
     Shader("exp2 absorption", "exp2(−σd)", "transmittance", BEER_EXP2, "beerExp2", lambda d, s: 2.0 ** (-s * d),
            cause="exp2"),
+    Shader("Beer–Lambert with a tint folded in", "0.9 exp(−σd)", "transmittance", BEER_TINTED, "beerTint",
+           lambda d, s: 0.9 * np.exp(-s * d), cause="the transmittance is scaled by 0.9"),
     Shader("Beer–Lambert per cm", "coefficients per cm with the path in metres", "transmittance", BEER_PER_CM,
            "beerCm", lambda d, s: np.exp(-s * d * 100), cause="per cm"),
     Shader("pure water's RGB fit", "exp(−(0.3353, 0.05035, 0.000547) d)", "rgb_absorption", WATER_FIT, "waterTint",
@@ -695,6 +717,14 @@ vec3 heightForward(sampler2D h, vec2 uv, vec2 texel, float dx) {
     return normalize(vec3((c - r) / dx, (c - u) / dx, 1.0));
 }
 """
+HEIGHT_BACKWARD = """
+vec3 heightBackward(sampler2D h, vec2 uv, vec2 texel, float dx) {
+    float c = texture(h, uv).r;
+    float l = texture(h, uv - vec2(texel.x, 0.0)).r;
+    float d = texture(h, uv - vec2(0.0, texel.y)).r;
+    return normalize(vec3((l - c) / dx, (d - c) / dx, 1.0));
+}
+"""
 HEIGHT_NO_HALF = HEIGHT_CENTRAL.replace("(2.0 * dx)", "dx").replace("heightNormal", "heightNoHalf")
 HEIGHT_SIGN = HEIGHT_CENTRAL.replace("(l - r)", "(r - l)").replace("(d - u)", "(u - d)").replace(
     "heightNormal", "heightSign")
@@ -779,6 +809,13 @@ def _forward(h, uv, t, dx):
     return normalize(np.column_stack([(c - r) / dx, (c - u) / dx, np.ones_like(c)]))
 
 
+def _backward(h, uv, t, dx):
+    c = texture(h, uv)[:, :1]
+    l = texture(h, uv - np.column_stack([t[:, 0], 0 * t[:, 0]]))[:, :1]
+    d = texture(h, uv - np.column_stack([0 * t[:, 1], t[:, 1]]))[:, :1]
+    return normalize(np.column_stack([(l - c) / dx, (d - c) / dx, np.ones_like(c)]))
+
+
 def _displaced(p, uv, t, dx, heights_only=False):
     def s(o):
         return texture(p, uv + o)[:, :3]
@@ -798,7 +835,9 @@ HEIGHTS = [
            _central),
     Shader("Sobel filter", "a 3×3 Sobel normal", "height_normal", HEIGHT_SOBEL, "heightSobel", _sobel),
     Shader("one-sided differences", "(h₊ − h)/Δx", "height_normal", HEIGHT_ONE_SIDED, "heightForward", _forward,
-           cause="one-sided"),
+           cause="one-sided differences (h₊ − h)/Δx"),
+    Shader("backward differences", "(h − h₋)/Δx, the other one-sided stencil", "height_normal", HEIGHT_BACKWARD,
+           "heightBackward", _backward, cause="one-sided differences (h − h₋)/Δx"),
     Shader("central difference not halved", "(h₊ − h₋)/Δx", "height_normal", HEIGHT_NO_HALF, "heightNoHalf",
            lambda *a: _central(*a, half=1.0), cause="not divided by 2"),
     Shader("slopes of the wrong sign", "(h₊ − h₋) for (h₋ − h₊)", "height_normal", HEIGHT_SIGN, "heightSign",

@@ -141,10 +141,8 @@ def _transform_faults(base, c, above, m_param):
         n1, n2 = _indices(v[0], above)
         return col(_form(base, c, n2, n1))
 
-    def no_tir(v, swap=False):
+    def no_tir(v):  # Schlick's F0 is symmetric in n1, n2: an inverted ratio without a TIR test is this curve
         n1, n2 = _indices(v[0], above)
-        if swap:
-            n1, n2 = n2, n1
         return col(_schlick(c, n1, n2, tir_test=False, transmitted=False))
 
     def wrong_ray(v):
@@ -167,15 +165,12 @@ def _transform_faults(base, c, above, m_param):
                         "(Schlick's formula with the water side's cos θi and no TIR test)"),
         Model("wrong ray", wrong_ray, (m_param,), False,
               "cos θ of the wrong ray: it uses the refracted ray's cos θt where the incident ray's cos θi is due"),
-        Model("inverted, no TIR", lambda v: no_tir(v, True), (m_param,), False,
-              "the index ratio is inverted (n2/n1 where n1/n2 is due) and there is no total internal reflection "
-              "test"),
         Model("cos^5 typo", typo, (m_param,), False,
               "it raises cos θ to the 5th power where (1 − cos θ)⁵ is due (the misprint of Schneider & Westermann "
               "2001): R = 1 at normal incidence"),
     ]
     if base == "exact":  # the no-TIR faults are Schlick's; exact Fresnel without a TIR test gives NaN (early)
-        faults = [f for f in faults if f.name not in ("no TIR", "inverted, no TIR", "cos^5 typo")]
+        faults = [f for f in faults if f.name not in ("no TIR", "cos^5 typo")]
     return faults
 
 
@@ -344,12 +339,13 @@ def refract_domain(*, sides=("above", "below"), n_air=None, n_water=None, sample
               "the index ratio is inverted: it refracts with n2/n1 where eta = n1/n2 is due"),
         model("up normal", d, nu, eta, "from below, the normal faces the wrong way: GLSL's refract(I, N, eta) wants "
                                        "N against I (use −N for rays from the water)"),
-        model("flipped normal", d, -nf, eta, "the normal faces the wrong way: GLSL's refract(I, N, eta) wants N "
-                                             "against I"),
+        model("flipped normal", d, -nf, eta, "the normal faces the wrong way on every ray: GLSL's refract(I, N, "
+                                             "eta) wants N against I"),
         model("view vector", -d, nf, eta, "it refracts the view vector (towards the eye) where the incident "
                                           "direction (−V) is due"),
         model("view vector, flipped normal", -d, -nf, eta, "it refracts the view vector (towards the eye) where the "
-                                                           "incident direction (−V) is due"),
+                                                           "incident direction (−V) is due, and the normal faces "
+                                                           "the wrong way"),
         model("inverted, up normal", d, nu, lambda m: 1.0 / eta(m), "the index ratio is inverted and, from below, "
                                                                      "the normal faces the wrong way"),
     ]
