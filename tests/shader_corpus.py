@@ -636,6 +636,7 @@ ABSORPTION = [
 
 # -- normal maps -------------------------------------------------------------------------------------
 DECODE = "vec3 decodeNormal(vec4 t) { return normalize(t.rgb * 2.0 - 1.0); }"
+DECODE_SWAPPED = "vec3 decodeSwizzled(vec4 t) { return normalize(t.grb * 2.0 - 1.0); }   // a swizzle typo"
 DECODE_RAW = "vec3 decodeRaw(vec4 t) { return normalize(t.rgb); }"
 DECODE_TWICE = """
 vec3 unpack(vec3 t) { return t * 2.0 - 1.0; }
@@ -674,6 +675,8 @@ NORMAL_MAPS = [
            options=dict(convention="directx")),
     Shader("decode a DirectX map", "green negated", "normal_decode", DECODE_DX, "decodeDX",
            lambda t: normalize(_unpack(t) * [1, -1, 1]), options=dict(convention="directx")),
+    Shader("decode with x and y swapped", "t.grb for t.rgb", "normal_decode", DECODE_SWAPPED, "decodeSwizzled",
+           lambda t: normalize(t[:, [1, 0, 2]] * 2.0 - 1.0), cause="x and y are swapped"),
     Shader("decode without unpacking", "normalize(rgb)", "normal_decode", DECODE_RAW, "decodeRaw",
            lambda t: normalize(t[:, :3]), cause="not unpacked"),
     Shader("decode unpacking twice", "2(2 rgb − 1) − 1", "normal_decode", DECODE_TWICE, "decodeTwice",
@@ -699,6 +702,9 @@ vec3 heightNormal(sampler2D h, vec2 uv, vec2 texel, float dx) {
     return normalize(vec3((l - r) / (2.0 * dx), (d - u) / (2.0 * dx), 1.0));
 }
 """
+HEIGHT_SWAPPED = HEIGHT_CENTRAL.replace("vec3((l - r) / (2.0 * dx), (d - u) / (2.0 * dx), 1.0)",
+                                        "vec3((d - u) / (2.0 * dx), (l - r) / (2.0 * dx), 1.0)").replace(
+    "heightNormal", "heightSwapped")
 HEIGHT_SOBEL = """
 float hs(sampler2D h, vec2 uv, vec2 t, float i, float j) { return texture(h, uv + vec2(i, j) * t).r; }
 vec3 heightSobel(sampler2D h, vec2 uv, vec2 t, float dx) {
@@ -838,6 +844,8 @@ HEIGHTS = [
            cause="one-sided differences (h₊ − h)/Δx"),
     Shader("backward differences", "(h − h₋)/Δx, the other one-sided stencil", "height_normal", HEIGHT_BACKWARD,
            "heightBackward", _backward, cause="one-sided differences (h − h₋)/Δx"),
+    Shader("slopes in the wrong components", "the y slope written to x and the x slope to y", "height_normal",
+           HEIGHT_SWAPPED, "heightSwapped", lambda *a: _central(*a)[:, [1, 0, 2]], cause="x and y are swapped"),
     Shader("central difference not halved", "(h₊ − h₋)/Δx", "height_normal", HEIGHT_NO_HALF, "heightNoHalf",
            lambda *a: _central(*a, half=1.0), cause="not divided by 2"),
     Shader("slopes of the wrong sign", "(h₊ − h₋) for (h₋ − h₊)", "height_normal", HEIGHT_SIGN, "heightSign",
