@@ -409,8 +409,9 @@ def quantization_check(eta, *, max_noise: float = 0.01):
     signal = _rms(f - f.mean())
     sample = f.ravel()[:: max(1, f.size // 1_000_000)]
     values = np.unique(sample)
-    lattice, step = "no coarse lattice", 0.0
+    lattice, step, storage = "no coarse lattice", 0.0, "storage"
     if np.array_equal(sample.astype(np.float16).astype(np.float64), sample):
+        storage = "float16 storage"
         typical = np.float16(min(np.median(np.abs(sample)) + 1e-300, 65504.0))
         step = float(np.spacing(typical))
         lattice = (f"float16 (steps of {step:.3g} at |eta| ~ {float(typical):.3g} m"
@@ -418,10 +419,11 @@ def quantization_check(eta, *, max_noise: float = 0.01):
     elif values.size < 0.5 * sample.size and values.size > 1:
         step = float(np.min(np.diff(values)))
         lattice = f"{values.size} distinct values, steps of {step:.3g}"
+        storage = f"storage (steps of {step:.3g})"
     noise = step / math.sqrt(12) / signal if signal > 0 else (math.inf if step > 0 else 0.0)
     row = bound("quantization noise / rms height", noise, max_noise, note=f"heights on {lattice}")
     if not row.ok:
         row = bound(row.quantity, noise, max_noise,
-                    note=f"heights on {lattice}; likely cause: the heights are too small for their storage; scale "
+                    note=f"heights on {lattice}; likely cause: the heights are too small for their {storage}; scale "
                          f"them (store eta / amplitude) or store float32")
     return row
