@@ -50,13 +50,54 @@ from wavephys.core.pytree import register
 from wavephys.physics.shallow_water import water_depth
 from wavephys.physics.walls import SIDES
 
-__all__ = ["ShallowWater", "Inflow", "SWState", "sw_state", "stable_dt", "sw_step", "sw_run", "sw_frames",
+__all__ = ["ShallowWater", "Inflow", "Open", "SWState", "sw_state", "stable_dt", "sw_step", "sw_run", "sw_frames",
            "sw_mass", "sw_surface", "SIDE_KINDS", "advance_fields", "stable_dt_fields", "check_run"]
 
 SIDE_KINDS = ("wall", "open", "periodic", "inflow")
-"""What a side of the domain can be: a reflecting wall, an open side (zero-gradient: waves leave,
-imperfectly), periodic (with the opposite side), or an :class:`Inflow` (a given surface and
-velocity outside)."""
+"""What a side of the domain can be: a reflecting wall, an open side (:class:`Open`: a sea at rest
+outside, which outgoing waves leave into), periodic (with the opposite side), or an :class:`Inflow` (a
+given surface and velocity outside)."""
+
+
+@dataclass(frozen=True)
+class Open:
+    """An open side: the water outside is a sea at rest at ``level``; waves leave through the side.
+
+    The ghost cells take the outgoing Riemann invariant u·n + 2√(gh) from the edge cell and the incoming
+    one from the sea at rest outside, −2√(g h_sea) (a characteristic, absorbing condition: a long wave at
+    normal incidence leaves without reflection in the linear limit; docs/physics.md §1.13). Flow leaving
+    faster than √(gh) takes the edge cell's state. A lake at rest at the sea's level stays at rest to
+    rounding over any bed.
+
+    Parameters
+    ----------
+    level : float or array_like, optional
+        The sea's surface outside, m (same datum as the bed): one value, or one per cell along the side
+        (rows for ``left``/``right``, columns for ``bottom``/``top``). ``None`` (the default, and the
+        plain string ``"open"``): the surface on the side's edge cells when a run starts
+        (:meth:`ShallowWater.settle`).
+
+    Examples
+    --------
+    >>> solver = ShallowWater(0.05, sides={"left": Open(level=0.0)})
+    >>> solver.sides
+    ('open', 'wall', 'wall', 'wall')
+    """
+
+    level: Any = None
+    depth: Any = field(default=None, repr=False)
+    """The sea's depth over each edge cell's bed, m (set by :meth:`ShallowWater.settle`)."""
+
+    def __post_init__(self):
+        if self.level is None or isinstance(self.level, jax.core.Tracer):
+            return
+        if np.ndim(self.level) == 0:
+            check_scalar("level", self.level)
+        else:
+            check_array("level", self.level, ndim=1)
+
+
+register(Open, ("level", "depth"))
 
 
 @dataclass(frozen=True)
@@ -131,8 +172,9 @@ class ShallowWater:
         Cell size, m, > 0 (square cells; a field is (ny, nx) with x along the last axis).
     sides : str, or mapping side → kind, or 4-tuple
         Each of ``left`` (x min), ``right`` (x max), ``bottom`` (row 0), ``top`` (last row):
-        ``"wall"``, ``"open"``, ``"periodic"`` (both sides of the axis) or an :class:`Inflow`.
-        A single string sets all four; a mapping leaves the sides it omits as walls.
+        ``"wall"``, ``"open"`` (an :class:`Open` side whose sea is at the level the run starts with there),
+        an :class:`Open` with its level, ``"periodic"`` (both sides of the axis) or an :class:`Inflow`.
+        A single value sets all four; a mapping leaves the sides it omits as walls.
     g : float
         Gravity, m/s², > 0.
     cfl : float
@@ -174,12 +216,58 @@ class ShallowWater:
         object.__setattr__(self, "inflows", inflows)
         object.__setattr__(self, "order", order)
 
+    @property
+    def settled(self) -> bool:
+        """Whether every open side knows its sea's depth (:meth:`settle`)."""
+        return all(not isinstance(o, Open) or o.depth is not None for o in self.inflows)
+
+    def settle(self, bed, state) -> "ShallowWater":
+        """This solver with each open side's sea fixed: from its ``level``, or, for ``level=None``, from
+        the surface on the side's edge cells in ``state`` (the runs call it on their starting state; call
+        it once yourself before a loop of :func:`sw_step`).
+
+        Parameters
+        ----------
+        bed : array_like (ny, nx)
+            Bed elevation, m.
+        state : SWState
+            The state the run starts from.
+
+        Returns
+        -------
+        ShallowWater
+            The same settings, every open side settled (unchanged when there is none).
+        """
+        if all(not isinstance(o, Open) for o in self.inflows):
+            return self
+        b = _checked(self, bed, state)
+        h = state.fields[0]
+        edges = ((h[:, 0], b[:, 0]), (h[:, -1], b[:, -1]), (h[0], b[0]), (h[-1], b[-1]))
+        outside = []
+        for side, o, (he, be) in zip(SIDES, self.inflows, edges):
+            if isinstance(o, Open) and o.depth is None:
+                if o.level is None:
+                    depth = he
+                else:
+                    level = jnp.asarray(o.level, h.dtype)
+                    if level.ndim and level.shape != he.shape:
+                        raise ValueError(f"sides[{side!r}]: an Open level along the side needs {he.shape[0]} "
+                                         f"values (one per edge cell), got {level.shape[0]}")
+                    depth = jnp.maximum(level - be, 0.0)
+                o = Open(o.level, depth)
+            outside.append(o)
+        settled = object.__new__(ShallowWater)
+        for name in ("dx", "g", "cfl", "dry", "order", "sides"):
+            object.__setattr__(settled, name, getattr(self, name))
+        object.__setattr__(settled, "inflows", tuple(outside))
+        return settled
+
 
 register(ShallowWater, ("dx", "g", "cfl", "dry", "inflows"), ("sides", "order"))
 
 
 def _normalize_sides(sides):
-    if isinstance(sides, str) or isinstance(sides, Inflow):
+    if isinstance(sides, (str, Inflow, Open)):
         values = [sides] * 4
     elif isinstance(sides, dict):
         unknown = set(sides) - set(SIDES)
@@ -197,13 +285,17 @@ def _normalize_sides(sides):
         if isinstance(v, Inflow):
             kinds.append("inflow")
             inflows.append(v)
+        elif isinstance(v, Open) or (isinstance(v, str) and v == "open"):
+            kinds.append("open")
+            inflows.append(v if isinstance(v, Open) else Open())
         elif isinstance(v, str) and v in SIDE_KINDS and v != "inflow":
             kinds.append(v)
             inflows.append(None)
         elif isinstance(v, str):
-            raise ValueError(f"sides[{side!r}] must be 'wall', 'open', 'periodic' or an Inflow, got {v!r}")
+            raise ValueError(f"sides[{side!r}] must be 'wall', 'open', 'periodic', an Open or an Inflow, got {v!r}")
         else:
-            raise TypeError(f"sides[{side!r}] must be 'wall', 'open', 'periodic' or an Inflow, got {describe(v)}")
+            raise TypeError(f"sides[{side!r}] must be 'wall', 'open', 'periodic', an Open or an Inflow, got "
+                            f"{describe(v)}")
     for a, b in ((0, 1), (2, 3)):
         if (kinds[a] == "periodic") != (kinds[b] == "periodic"):
             raise ValueError(f"sides: {SIDES[a]} and {SIDES[b]} must both be periodic or neither, got "
@@ -366,7 +458,28 @@ def _ghost_index(n, kind, lo):
     return idx, 1.0
 
 
-def _pad_axis(q, axis, axis_sides, inflows, t):
+def _open_ghost(ghost, lo, axis, sea, g, dry):
+    """The ghost cells (4, …) of an open side, from the edge cell repeated (``ghost``) and the sea's depth
+    over each edge cell (``sea``, along the side): the outgoing invariant u·n + 2c from the edge, the
+    incoming −2c_sea from the sea at rest; the edge's own state where the flow leaves supercritically.
+    Written as c_g = c + (u·n − 2(c − c_sea))/4 so that at rest over the sea's depth the ghost is the edge
+    cell bit for bit (a lake at rest stays so to rounding)."""
+    h, hn, ht, b = ghost[0], ghost[1], ghost[2], ghost[3]
+    sea = jnp.expand_dims(jnp.asarray(sea, h.dtype), axis)
+    out = -1.0 if lo else 1.0  # the outward normal along the axis
+    un = out * _safe_div(hn, h, dry)
+    c, c_sea = _sqrt_gh(g, h), _sqrt_gh(g, sea)
+    leaving = (un >= c) & (h > dry)
+    cg = jnp.maximum(c + 0.25 * (un - 2.0 * (c - c_sea)), 0.0)
+    ug = 0.5 * un + (c - c_sea)
+    hg = jnp.maximum(h + (cg - c) * (cg + c) / g, 0.0)
+    ug = jnp.where(leaving, un, jnp.where(hg > 0, ug, 0.0))
+    hg = jnp.where(leaving, h, hg)
+    vt = jnp.where(ug >= 0, _safe_div(ht, h, dry), 0.0)  # the tangential velocity leaves with the water
+    return jnp.stack([hg, out * hg * ug, hg * vt, b])
+
+
+def _pad_axis(q, axis, axis_sides, inflows, t, g=9.81, dry=0.0):
     """q: (4, ny, nx) = (h, normal discharge, tangential discharge, bed) for the faces across ``axis`` (−1: x,
     −2: y); returns q with two ghost cells at each end of that axis."""
     n = q.shape[axis]
@@ -375,6 +488,13 @@ def _pad_axis(q, axis, axis_sides, inflows, t):
         idx, sign = _ghost_index(n, kind, lo)
         ghost = jnp.take(q, jnp.asarray(idx), axis=axis)
         ghost = ghost.at[1].multiply(sign)
+        if kind == "open":
+            sea = inflow.depth
+            if sea is None:  # a level given, not settled: the sea's depth over the edge's bed
+                level = jnp.asarray(inflow.level, q.dtype)
+                edge = jnp.take(q[3], 0 if lo else n - 1, axis=axis)
+                sea = jnp.maximum(level - edge, 0.0)
+            ghost = _open_ghost(ghost, lo, axis, sea, g, dry)
         if kind == "inflow":
             eta, u = (v.astype(q.dtype) for v in inflow.at(t))
             b = ghost[3]
@@ -489,13 +609,15 @@ def _rate(solver: ShallowWater, bed, fields, t):
     h, hu, hv = fields[0], fields[1], fields[2]
     ny, nx = h.shape
     out = jnp.zeros_like(fields)
-    if nx > 1 or solver.sides[0] != "wall" or solver.sides[1] != "wall":
-        p = _pad_axis(jnp.stack([h, hu, hv, bed]), -1, solver.sides[:2], solver.inflows[:2], t)
+    if nx > 1 or "inflow" in solver.sides[:2]:  # an axis one cell long: a 1-D problem along the other one
+        p = _pad_axis(jnp.stack([h, hu, hv, bed]), -1, solver.sides[:2], solver.inflows[:2], t, solver.g,
+                      solver.dry)
         r = _axis_rate(p, -1, solver.g, solver.dx, solver.order, solver.dry,
                        (solver.sides[0] == "wall", solver.sides[1] == "wall"))
         out = out + jnp.stack([r[0], r[1], r[2]])
-    if ny > 1 or solver.sides[2] != "wall" or solver.sides[3] != "wall":
-        p = _pad_axis(jnp.stack([h, hv, hu, bed]), -2, solver.sides[2:], solver.inflows[2:], t)
+    if ny > 1 or "inflow" in solver.sides[2:]:
+        p = _pad_axis(jnp.stack([h, hv, hu, bed]), -2, solver.sides[2:], solver.inflows[2:], t, solver.g,
+                      solver.dry)
         r = _axis_rate(p, -2, solver.g, solver.dx, solver.order, solver.dry,
                        (solver.sides[2] == "wall", solver.sides[3] == "wall"))
         out = out + jnp.stack([r[0], r[2], r[1]])
@@ -561,6 +683,7 @@ def advance_fields(solver: ShallowWater, bed, fields, t, dt):
     check_array("fields", fields, ndim=3, shape_tail=(3,) + tuple(np.shape(bed)))
     check_scalar("t", t)
     check_scalar("dt", dt, lo=0.0, hi=1e6, lo_open=True)
+    _check_settled(solver)
     return _advance(solver, jnp.asarray(bed), jnp.asarray(fields), t, dt)
 
 
@@ -593,6 +716,14 @@ def stable_dt_fields(solver: ShallowWater, fields, bed=None, t=None):
     if t is not None:
         check_scalar("t", t)
     return _stable_dt(solver, jnp.asarray(fields), bed, t)
+
+
+def _check_settled(solver):
+    for side, o in zip(SIDES, solver.inflows):
+        if isinstance(o, Open) and o.level is None and o.depth is None:
+            raise ValueError(f"solver: the open side {side!r} takes its sea's level from the state a run starts "
+                             f"with; call solver = solver.settle(bed, state) once before stepping, or give "
+                             f"Open(level=...)")
 
 
 def _checked(solver, bed, state):
@@ -655,6 +786,7 @@ def sw_step(solver: ShallowWater, bed, state: SWState, dt: Optional[float] = Non
         At t + Δt. Pure: ``jax.jit``, ``jax.vmap`` and (with a fixed ``dt``) ``jax.grad`` apply.
     """
     b = _checked(solver, bed, state)
+    _check_settled(solver)
     if dt is None:
         dt = jnp.inf
     else:
@@ -733,6 +865,7 @@ def sw_run(solver: ShallowWater, bed, state: SWState, until: Optional[float] = N
     (0.5, True)
     """
     b = _checked(solver, bed, state)
+    solver = solver.settle(b, state)
     if (until is None) == (steps is None):
         raise ValueError("give either until (adaptive steps) or steps and dt (fixed steps)")
     if steps is not None:
@@ -778,6 +911,7 @@ def sw_frames(solver: ShallowWater, bed, state: SWState, times, max_steps: int =
         ``fields`` (T, 3, ny, nx), ``time`` (T,).
     """
     b = _checked(solver, bed, state)
+    solver = solver.settle(b, state)
     check_array("times", times, ndim=1)
     ts = np.asarray(times, np.float64)
     if np.any(np.diff(ts) < 0) or ts[0] < float(state.time) - 1e-12:
