@@ -317,7 +317,8 @@ def test_noise_over_a_smooth_bed_stays_quiet():
 @pytest.mark.xfail(strict=True, reason="measured failure (docs/physics.md §1.15): over a shelf with steps of "
                                       "0.75 m in one cell, the water on both sides deeper than taper[1], a "
                                       "grid-scale mode (k near π/dx) grows from 1e-6 m to ~0.3 m in 300 s, between "
-                                      "walls or periodic; cause not found yet")
+                                      "walls or periodic; the linearized step shows two causes (the level blend, and the "
+                                      "bulk's dispersion correction over a varying bed), the second not fixed")
 def test_noise_over_bed_steps_stays_quiet():
     assert _noise_run({"left": "wall", "right": "wall", "bottom": "periodic", "top": "periodic"}, 300.0,
                       "steps") < 1e-5
