@@ -362,6 +362,8 @@ OVERRIDES = {
     "wavephys.simulation.shallow_water.Inflow": {"times": lambda: np.array([0.0, 1.0]),
                                                  "eta": lambda: np.array([0.0, 0.1]), "u": lambda: np.zeros(2)},
     "wavephys.simulation.shallow_water.Inflow.at": {"t": lambda: 0.5},
+    "wavephys.simulation.shallow_water.Open": {"level": lambda: 0.0, "depth": lambda: np.ones(N)},
+    "wavephys.simulation.shallow_water.ShallowWater.settle": {"bed": _bed, "state": _sw_state},
     "wavephys.harness.shallow_water.mass_check": {"depth": lambda: np.ones((3, N, N)), "dx": lambda: 0.1},
     "wavephys.harness.shallow_water.lake_at_rest_check": {"depth": lambda: np.stack([0.5 - _bed().clip(max=0.5)] * 3),
                                                           "bed": _bed, "dx": lambda: 0.1, "atol": lambda: 1e-3},
@@ -749,7 +751,10 @@ def instance(cls):
         from wavephys import planner as pl
         from wavephys.simulation.shallow_water import Inflow
 
+        from wavephys.simulation.shallow_water import ShallowWater
+
         makers[Inflow] = lambda: Inflow(np.array([0.0, 1.0]), np.array([0.0, 0.1]))
+        makers[ShallowWater] = lambda: ShallowWater(0.1, sides={"left": "open"})
         from wavephys.simulation.split import MovingPressure
 
         makers[MovingPressure] = lambda: MovingPressure((0.5, 0.5), (1.0, 0.0), 0.05, 0.3, 0.2)

@@ -11,7 +11,7 @@ from wavephys.core.grid import Grid
 from wavephys.core.water import Water
 from wavephys.harness.checks import Check, bound
 
-__all__ = ["travelling_packet", "packet_potential", "measure_shoaling", "lamb_beach_error", "check_depth"]
+__all__ = ["travelling_packet", "packet_potential", "measure_shoaling", "lamb_beach_error", "lamb_shoreline_errors", "check_depth"]
 
 G = 9.81
 
@@ -215,6 +215,70 @@ def lamb_beach_error(n: int = 128, periods: int = 3, method: str = "shallow") ->
     eta0 = lamb_beach(x, omega, slope, 1e-3)
     state, _ = run_depth(model, Floor(slope * x), depth_state(model, eta0), 40 * periods, method)
     return float(np.abs(np.asarray(state.eta) - eta0 * math.cos(omega * 40 * periods * model.dt)).max() / 1e-3)
+
+
+def lamb_shoreline_errors(wet_cells: int = 64, slope: float = 0.1, offset: float = 0.0, periods: int = 3,
+                          mode: int = 1) -> dict:
+    """Lamb's standing wave on a plane beach whose still shoreline lies inside the grid, ``offset`` of a cell
+    past a face, with dry land beyond (a quarter of the grid) and a wall at the offshore end: the linear
+    shallow-water stepper's errors after ``periods`` periods (float64).
+
+    The exact mode is η = A J₀(2ω√((x − x_s)/(g tan β))), ω = j₁,ₘ / (2√(L/(g tan β))) with L the wet length
+    (Lamb 1932, §186); a cell whose centre is dry but whose face is wet holds the shoreline's value A.
+
+    Parameters
+    ----------
+    wet_cells : int
+        Cells across the wet part (rounded: the shoreline lies ``offset`` past a face), ≥ 8.
+    slope : float
+        tan β, > 0.
+    offset : float
+        Where the shoreline lies inside its cell, a fraction of dx in [0, 1).
+    periods : int
+        ≥ 1.
+    mode : int
+        Which zero of J₁ (1: the gravest mode with a node offshore), ≥ 1.
+
+    Returns
+    -------
+    dict
+        ``omega`` (fitted ω over the exact one, − 1), ``amplitude`` (fitted amplitude − 1), ``max`` and
+        ``l2`` (the field's error at the end over A, max and root-mean-square over the wet cells).
+    """
+    from scipy.optimize import curve_fit
+    from scipy.special import j0, jn_zeros
+
+    import jax
+
+    from wavephys.core.inputs import check_int, check_scalar
+    from wavephys.simulation import Model
+    from wavephys.simulation.depth import Floor, depth_state, run_depth
+
+    wet_cells = check_int("wet_cells", wet_cells, lo=8)
+    slope = check_scalar("slope", slope, lo=0.0, lo_open=True)
+    offset = check_scalar("offset", offset, lo=0.0, hi=1.0, hi_open=True)
+    periods = check_int("periods", periods, lo=1)
+    mode = check_int("mode", mode, lo=1)
+    n = int(math.ceil(wet_cells * 4 / 3 / 2)) * 2
+    dx, amplitude, per = 1.0, 1e-3, 40
+    grid = Grid(n, n * dx)
+    x = np.asarray(grid.mesh()[0])
+    shore = n * dx / 2 - (wet_cells - offset) * dx
+    omega = jn_zeros(1, mode)[-1] / (2 * math.sqrt((n * dx / 2 - shore) / (G * slope)))
+    with jax.enable_x64(True):
+        model = Model(grid, Water(sigma=0.0), dt=2 * math.pi / omega / per, walls="x", dtype="float64")
+        eta0 = np.where(x + dx / 2 > shore + 1e-9,
+                        amplitude * j0(2 * omega * np.sqrt(np.maximum(x - shore, 0.0) / (G * slope))), 0.0)
+        state, surfaces = run_depth(model, Floor(np.maximum(slope * (x - shore), 0.0)), depth_state(model, eta0),
+                                    per * periods, "shallow")
+        frames = np.asarray(surfaces)[:, 0]
+        end = np.asarray(state.eta)
+    t = np.arange(len(frames)) * model.dt
+    proj = np.tensordot(frames, eta0, axes=([1, 2], [0, 1])) / np.sum(eta0 * eta0)
+    (a, w, _), _ = curve_fit(lambda t, a, w, p: a * np.cos(w * t + p), t, proj, p0=[1.0, omega, 0.0])
+    err = (end - eta0 * math.cos(omega * per * periods * model.dt))[eta0 != 0] / amplitude
+    return dict(omega=float(w / omega - 1), amplitude=float(abs(a) - 1), max=float(np.abs(err).max()),
+                l2=float(np.sqrt(np.mean(err ** 2))))
 
 
 def check_depth() -> list[Check]:

@@ -73,7 +73,7 @@ def dam_break_errors(n: int, hl: float = 1.0, hr: float = 0.0, t: float = 1.0, o
         water has not reached the domain's open ends), ``min_depth`` (m).
     """
     from wavephys.physics.shallow_water import ritter, stoker, stoker_middle
-    from wavephys.simulation.shallow_water import ShallowWater, sw_run, sw_state
+    from wavephys.simulation.shallow_water import ShallowWater, _past_limit, sw_run, sw_state
 
     n = check_int("n", n, lo=16)
     check_scalar("hl", hl, lo=0.0, lo_open=True)
@@ -83,7 +83,7 @@ def dam_break_errors(n: int, hl: float = 1.0, hr: float = 0.0, t: float = 1.0, o
     dx = 2 * half / n
     x = (np.arange(n) + 0.5) * dx - half
     bed = np.zeros((1, n))
-    solver = ShallowWater(dx, sides="open", order=order, cfl=cfl)
+    solver = _past_limit(ShallowWater(dx, sides="open", order=order), cfl)  # cfl past 1 measures the failure
     state = sw_state(bed, depth=np.where(x < 0, hl, hr)[None], dtype=_dtype(dtype))
     end, _ = sw_run(solver, bed, state, until=t)
     h = np.asarray(end.h[0], np.float64)
@@ -125,7 +125,7 @@ def thacker_errors(n: int, h0: float = 0.1, a: float = 1.0, shift: float = 0.5, 
         ``l1``, ``max`` (depth errors, m), ``mass`` (relative change), ``min_depth`` (m), ``steps``.
     """
     from wavephys.physics.shallow_water import thacker, thacker_period
-    from wavephys.simulation.shallow_water import ShallowWater, sw_mass, sw_run, sw_state
+    from wavephys.simulation.shallow_water import ShallowWater, _past_limit, sw_mass, sw_run, sw_state
 
     n = check_int("n", n, lo=8)
     side = 4.0 * a
@@ -133,7 +133,7 @@ def thacker_errors(n: int, h0: float = 0.1, a: float = 1.0, shift: float = 0.5, 
     c = (np.arange(n) + 0.5) * dx - side / 2
     xx, yy = np.meshgrid(c, c)
     bed, h, u, v = thacker(xx, yy, 0.0, h0, a, shift)
-    solver = ShallowWater(dx, order=order, cfl=cfl)
+    solver = _past_limit(ShallowWater(dx, order=order), cfl)  # cfl past 1 measures the failure
     state = sw_state(bed, depth=h, u=u, v=v, dtype=_dtype(dtype))
     t = periods * thacker_period(h0, a)
     end, steps = sw_run(solver, bed, state, until=t)
@@ -326,7 +326,9 @@ def pipes_seiche(depth: float = 0.05, n: int = 64, area="depth", courant: float 
     """
     from scipy.optimize import curve_fit
 
-    from wavephys.models.pipes import Pipes, pipes_run, pipes_state
+    import jax.numpy as jnp
+
+    from wavephys.models.pipes import Pipes, PipesState, _run_program, pipes_state
 
     n = check_int("n", n, lo=8)
     dx = 1.0 / n
@@ -343,7 +345,9 @@ def pipes_seiche(depth: float = 0.05, n: int = 64, area="depth", courant: float 
     samples, t = [], []
     s = state
     for i in range(int(periods * period / dt) // chunk):
-        s = pipes_run(pipes, bed, s, chunk, dt)
+        # the compiled run itself: this measures where the pipes fail, past the Courant limit pipes_run refuses
+        s = PipesState(*_run_program(pipes, jnp.asarray(bed, s.depth.dtype), s.depth, s.flows, s.time,
+                                     jnp.asarray(dt, s.depth.dtype), chunk))
         samples.append(float(np.mean((np.asarray(s.depth, np.float64) - depth) * np.cos(np.pi * x)[None])) * 2)
         t.append((i + 1) * chunk * dt)
     growth = float(np.abs(np.asarray(s.depth, np.float64) - depth).max() / amplitude)

@@ -208,6 +208,16 @@ def check_float_dtype(name: str, dtype: Any):
     return kind
 
 
+def check_state_dtype(name: str, dtype: Any):
+    """:func:`check_float_dtype`, and a ValueError for float64 while JAX is not set to keep it (arrays made
+    with it would silently be float32); returns the dtype."""
+    kind = check_float_dtype(name, dtype)
+    if kind == np.dtype(np.float64) and not jax.config.jax_enable_x64:
+        raise ValueError(f"{name} float64 needs jax_enable_x64: call jax.config.update('jax_enable_x64', True) "
+                         f"(or work inside jax.enable_x64(True)) before making the state")
+    return kind
+
+
 def check_choice(name: str, value: Any, choices) -> Any:
     """Check that ``value`` is one of ``choices`` (TypeError for another kind of object)."""
     kinds = {type(c) for c in choices}

@@ -252,6 +252,66 @@ def _faces(depth, axis, walled):
     return faces
 
 
+def _axis_shore(h, axis, walled):
+    """Along one axis of the sampled depth h (≥ 0, 0 dry): the depth at each face between sample i and i + 1,
+    and the wet length of each cell (a fraction of dx) as seen along this axis.
+
+    Where a wet sample meets a dry one, the shoreline is placed by extending the bed's slope from the wet side
+    (the depth drop between the wet sample and its wet neighbour further in): it lies d = h/drop cells past
+    the wet sample. The face then has the bed's depth there, drop·(d − ½) ≥ 0 (0 when the shoreline falls
+    before the face), a wet cell is wet over ½ + min(d, ½) of its length, and a dry cell past a wet face over
+    d − ½ of it, which stores water. With no slope to extend (a vertical shore, a lone wet sample) the
+    shoreline is the face. A wall end (``walled``) is a face of depth 0 with the wall at the cell's edge."""
+    def shift(a, k):  # a at i + k, nan past a wall end
+        out = np.roll(a, -k, axis)
+        if walled and k:
+            index = [slice(None)] * a.ndim
+            index[axis] = slice(-k, None) if k > 0 else slice(None, -k)
+            out[tuple(index)] = np.nan
+        return out
+
+    wet = h > 0
+    h1, hm1 = shift(h, 1), shift(h, -1)
+    dry1, drym1 = h1 == 0, hm1 == 0  # a dry neighbour (not a wall end: nan there)
+    with np.errstate(invalid="ignore", divide="ignore"):
+        # the shoreline past wet sample i towards +1 (drop from i − 1 to i) and towards −1 (drop from i + 1 to i)
+        drop_up, drop_down = hm1 - h, h1 - h
+        d_up = np.where(wet & (hm1 > 0) & (drop_up > 0), h / drop_up, np.nan)
+        d_down = np.where(wet & (h1 > 0) & (drop_down > 0), h / drop_down, np.nan)
+        face = np.where(wet & (h1 > 0), 0.5 * (h + h1), 0.0)
+        past = wet & dry1 & np.isfinite(d_up)  # wet i, dry i + 1: the face from i's side
+        face = np.where(past, np.maximum(h - 0.5 * drop_up, 0.0), face)
+        before = ~wet & (h1 > 0) & np.isfinite(shift(d_down, 1))  # dry i, wet i + 1: from i + 1's side
+        face = np.where(before, np.maximum(h1 - 0.5 * shift(drop_down, 1), 0.0), face)
+        face = np.nan_to_num(face)
+        upper = np.where(wet & dry1 & np.isfinite(d_up), np.minimum(d_up, 0.5), 0.5)
+        lower = np.where(wet & drym1 & np.isfinite(d_down), np.minimum(d_down, 0.5), 0.5)
+        length_wet = upper + lower
+        from_below = np.nan_to_num(np.maximum(shift(d_up, -1) - 0.5, 0.0))
+        from_above = np.nan_to_num(np.maximum(shift(d_down, 1) - 0.5, 0.0))
+        length_dry = np.minimum(from_below + from_above, 1.0)
+    length = np.where(wet, length_wet, length_dry)
+    if walled:
+        index = [slice(None)] * h.ndim
+        index[axis] = slice(-1, None)
+        face[tuple(index)] = 0.0
+    return face, length
+
+
+def _shore_geometry(depth, walls):
+    """The linear shallow-water stepper's geometry on a sampled floor: face depths along x and y, and the
+    inverse of each cell's wet area fraction (0 where a cell holds no water) — wet cells take the smaller
+    of their two axes' wet lengths, dry cells the larger (a straight shoreline along either axis is exact).
+    ``walls`` = (x walled, y walled)."""
+    h = np.asarray(depth, np.float64)
+    hx, lx = _axis_shore(h, -1, walls[0])
+    hy, ly = _axis_shore(h, -2, walls[1])
+    wet = h > 0
+    area = np.where(wet, np.minimum(lx, ly), np.maximum(lx, ly))
+    inv = np.where(area > 0, 1.0 / np.where(area > 0, area, 1.0), 0.0)
+    return hx, hy, inv
+
+
 def shallow_substeps(model: Model, floor: Floor) -> int:
     """Sub-steps per Δt that keep the shallow-water update stable: c_max·δ/dx ≤ 0.5 (the 2-D limit is 1/√2).
 
@@ -271,14 +331,16 @@ def shallow_substeps(model: Model, floor: Floor) -> int:
     return _substeps(c * float(model.dt) / (0.5 * float(model.grid.dx)), float(model.dt), "shallow")
 
 
-def _shallow_steps(dx, g, dt, hx, hy, mask, fields, substeps):
-    """``substeps`` symplectic-Euler sub-steps of the linear shallow-water equations over Δt on any (ny, nx)."""
+def _shallow_steps(dx, g, dt, hx, hy, mask, fields, substeps, inv_area=None):
+    """``substeps`` symplectic-Euler sub-steps of the linear shallow-water equations over Δt on any (ny, nx);
+    ``inv_area``: 1 / each cell's wet fraction (0 for a cell that holds no water; None: every cell whole)."""
     d = dt / substeps
 
     def divergence(phi):
         fx = hx * (jnp.roll(phi, -1, -1) - phi) / dx
         fy = hy * (jnp.roll(phi, -1, -2) - phi) / dx
-        return (fx - jnp.roll(fx, 1, -1) + fy - jnp.roll(fy, 1, -2)) / dx
+        div = (fx - jnp.roll(fx, 1, -1) + fy - jnp.roll(fy, 1, -2)) / dx
+        return div if inv_area is None else div * inv_area
 
     def body(_, f):
         eta, phi = f[0], f[1]
@@ -293,8 +355,8 @@ def _shallow_steps(dx, g, dt, hx, hy, mask, fields, substeps):
     return new, jnp.stack([fields[0], eta_dot])
 
 
-def _shallow_program(model: Model, hx, hy, mask, fields, substeps):
-    return _shallow_steps(model.grid.dx, model.water.g, model.dt, hx, hy, mask, fields, substeps)
+def _shallow_program(model: Model, hx, hy, inv_area, mask, fields, substeps):
+    return _shallow_steps(model.grid.dx, model.water.g, model.dt, hx, hy, mask, fields, substeps, inv_area)
 
 
 _shallow_jit = jax.jit(_shallow_program, static_argnums=(0, 5))
@@ -325,10 +387,8 @@ def step_shallow(model: Model, floor: Floor, state: DepthState):
     H. Lamb (1932). *Hydrodynamics*, §§169, 186 (long waves over a varying depth).
     """
     _check(model, floor, state)
-    wx, wy = model.wall_axes
-    hx = _faces(floor.depth, -1, wx).astype(model.dtype)
-    hy = _faces(floor.depth, -2, wy).astype(model.dtype)
-    new, surf = _shallow_jit(model, hx, hy, operators(model).mask, state.fields, shallow_substeps(model, floor))
+    hx, hy, inv = (a.astype(model.dtype) for a in _shore_geometry(floor.depth, model.wall_axes))
+    new, surf = _shallow_jit(model, hx, hy, inv, operators(model).mask, state.fields, shallow_substeps(model, floor))
     return DepthState(new.astype(model.dtype), state.time + model.dt), surf
 
 
@@ -560,10 +620,9 @@ def run_depth(model: Model, floor: Floor, state: DepthState, steps: int, method:
         big_k, restoring, roots, substeps = _symmetric_tables(model, floor)
         fields, surfaces = _scan(model, "symmetric", (big_k, restoring, roots, mask), state.fields, steps, substeps)
     else:
-        wx, wy = model.wall_axes
-        hx = _faces(floor.depth, -1, wx).astype(model.dtype)
-        hy = _faces(floor.depth, -2, wy).astype(model.dtype)
-        fields, surfaces = _scan(model, "shallow", (hx, hy, mask), state.fields, steps, shallow_substeps(model, floor))
+        hx, hy, inv = (a.astype(model.dtype) for a in _shore_geometry(floor.depth, model.wall_axes))
+        fields, surfaces = _scan(model, "shallow", (hx, hy, inv, mask), state.fields, steps,
+                                 shallow_substeps(model, floor))
     return DepthState(fields.astype(model.dtype), state.time + steps * model.dt), surfaces
 
 
@@ -645,10 +704,11 @@ def run_profile(depth, dx: float, water: Water, dt: float, eta, phi, steps: int,
                                              None if args[1] is None else jnp.asarray(args[1], dtype), water.g, dt,
                                              None, f, sub)[0]
         else:
-            hx, hy = _faces(h, -1, False), np.zeros((2, n))
+            hx, _, inv = _shore_geometry(h, (False, False))
+            hy = np.zeros((2, n))
             c = math.sqrt(float(water.g) * float(h.max()))
             sub = _substeps(c * dt / (0.5 * dx), dt, "shallow")
             one = lambda f: _shallow_steps(dx, water.g, dt, jnp.asarray(hx, dtype), jnp.asarray(hy, dtype), None, f,
-                                           sub)[0]
+                                           sub, jnp.asarray(inv, dtype))[0]
     out = jax.jit(lambda f: jax.lax.fori_loop(0, steps, lambda _, f: one(f), f))(fields)
     return out[0, 0], out[1, 0]

@@ -44,7 +44,7 @@ import jax
 import jax.numpy as jnp
 import numpy as np
 
-from wavephys.core.inputs import (check_array, check_float_dtype, check_instance, check_int, check_scalar, describe,
+from wavephys.core.inputs import (check_array, check_state_dtype, check_instance, check_int, check_scalar, describe,
                                   is_traced)
 from wavephys.core.pytree import register
 from wavephys.physics.shallow_water import water_depth
@@ -89,12 +89,13 @@ class Open:
     """The sea's depth over each edge cell's bed, m (set by :meth:`ShallowWater.settle`)."""
 
     def __post_init__(self):
-        if self.level is None or isinstance(self.level, jax.core.Tracer):
-            return
-        if np.ndim(self.level) == 0:
-            check_scalar("level", self.level)
-        else:
-            check_array("level", self.level, ndim=1)
+        if self.level is not None and not is_traced(self.level):
+            if np.ndim(self.level) == 0:
+                check_scalar("level", self.level)
+            else:
+                check_array("level", self.level, ndim=1)
+        if self.depth is not None and not is_traced(self.depth):
+            check_array("depth", self.depth, ndim=1, lo=0.0)
 
 
 register(Open, ("level", "depth"))
@@ -178,9 +179,9 @@ class ShallowWater:
     g : float
         Gravity, m/s², > 0.
     cfl : float
-        Courant number C of the adaptive step, Δt = C·dx / max(|u| + c + |v| + c), in (0, 2] (values past
-        1 are for measuring where the scheme fails); h ≥ 0 is guaranteed for C ≤ 0.5 in 1-D and measured to
-        C = 1 on dam breaks and Thacker's bowl (default 0.45).
+        Courant number C of the adaptive step, Δt = C·dx / max(|u| + c + |v| + c), in (0, 1]: h ≥ 0 is
+        guaranteed for C ≤ 0.5 in 1-D and measured to C = 1 on dam breaks and Thacker's bowl; past 1 order 1
+        makes negative depths (1.2) and order 2 blows up (1.5), so larger values are refused (default 0.45).
     dry : float
         Depth below which a cell counts as dry (no velocity), m, ≥ 0 (default 1e-6).
     order : {1, 2}
@@ -206,7 +207,7 @@ class ShallowWater:
             return
         check_scalar("dx", self.dx, lo=0.0, lo_open=True)
         check_scalar("g", self.g, lo=0.0, lo_open=True)
-        check_scalar("cfl", self.cfl, lo=0.0, hi=2.0, lo_open=True)
+        check_scalar("cfl", self.cfl, lo=0.0, hi=1.0, lo_open=True)
         check_scalar("dry", self.dry, lo=0.0)
         order = check_int("order", self.order, lo=1, hi=2)
         for name in ("dx", "g", "cfl", "dry"):  # Python floats: weakly typed under jit, so a float32 state stays so
@@ -264,6 +265,17 @@ class ShallowWater:
 
 
 register(ShallowWater, ("dx", "g", "cfl", "dry", "inflows"), ("sides", "order"))
+
+
+def _past_limit(solver: ShallowWater, cfl: float) -> ShallowWater:
+    """``solver`` with a Courant number past the stable range (≤ 2) that the settings refuse: only for
+    measuring where the scheme fails (wavephys.checks.shallow_water)."""
+    check_scalar("cfl", cfl, lo=0.0, hi=2.0, lo_open=True)
+    copy = object.__new__(ShallowWater)
+    for name in ("dx", "g", "dry", "order", "sides", "inflows"):
+        object.__setattr__(copy, name, getattr(solver, name))
+    object.__setattr__(copy, "cfl", float(cfl))
+    return copy
 
 
 def _normalize_sides(sides):
@@ -325,7 +337,11 @@ class SWState:
         shape = np.shape(self.fields)
         if shape[-3] != 3:
             raise ValueError(f"fields must stack (h, hu, hv), shape (..., 3, ny, nx), got {shape}")
-        if float(np.min(np.asarray(self.fields)[..., 0, :, :])) < 0:
+        values = np.asarray(self.fields)
+        if not np.all(np.isfinite(values)):
+            raise ValueError("fields hold NaN or inf values: a state must be finite (a run that went non-finite "
+                             "is refused where it happens)")
+        if float(np.min(values[..., 0, :, :])) < 0:
             raise ValueError("fields: the depth h (fields[..., 0, :, :]) must be >= 0 everywhere")
         check_array("time", self.time)
         if np.shape(self.time) != shape[:-3]:
@@ -388,7 +404,7 @@ def sw_state(bed, eta=None, *, depth=None, u=None, v=None, time: float = 0.0, dt
                                                              np.float64)
         fields.append(h * vel)
     check_scalar("time", time)
-    dtype = check_float_dtype("dtype", dtype)
+    dtype = check_state_dtype("dtype", dtype)
     return SWState(jnp.asarray(np.stack(fields), dtype), jnp.asarray(time, dtype))
 
 
@@ -671,8 +687,9 @@ def advance_fields(solver: ShallowWater, bed, fields, t, dt):
     fields : jax.Array (3, ny, nx)
         (h, hu, hv).
     t, dt : float or jax.Array
-        Time and step (0 … 10⁶; past the stable step the result is not finite: :func:`stable_dt_fields`), s.
-        Under a trace only shapes are checked.
+        Time and step, s: with concrete inputs a step past Courant number 1 (:func:`stable_dt_fields` over
+        ``cfl``) is refused (ValueError naming ``dt``); under a trace only shapes are checked, and a step too
+        long gives non-finite or negative depths.
 
     Returns
     -------
@@ -684,6 +701,7 @@ def advance_fields(solver: ShallowWater, bed, fields, t, dt):
     check_scalar("t", t)
     check_scalar("dt", dt, lo=0.0, hi=1e6, lo_open=True)
     _check_settled(solver)
+    _check_step(solver, bed, fields, t, dt)
     return _advance(solver, jnp.asarray(bed), jnp.asarray(fields), t, dt)
 
 
@@ -711,6 +729,8 @@ def stable_dt_fields(solver: ShallowWater, fields, bed=None, t=None):
     if bed is not None:
         check_array("bed", bed, ndim=2, shape_tail=np.shape(fields)[1:])
         bed = jnp.asarray(bed)
+    if not is_traced(fields) and not np.all(np.isfinite(np.asarray(fields))):
+        raise ValueError("fields hold NaN or inf values; no step is stable for them")
     if not is_traced(fields) and float(np.min(np.asarray(fields)[0])) < 0:
         raise ValueError("fields: the depth h (fields[0]) must be >= 0 everywhere")
     if t is not None:
@@ -757,9 +777,31 @@ def stable_dt(solver: ShallowWater, state: SWState, bed=None):
     if np.ndim(state.fields) != 3:
         raise ValueError(f"state.fields must have shape (3, ny, nx) (use jax.vmap for a batch), got "
                          f"{np.shape(state.fields)}")
+    if not is_traced(state.fields) and not np.all(np.isfinite(np.asarray(state.fields))):
+        raise ValueError("state: the fields hold NaN or inf values; no step is stable for them")
     if bed is None:
         return _stable_dt(solver, state.fields)
     return _stable_dt(solver, state.fields, _checked(solver, bed, state), state.time)
+
+
+@jax.jit
+def _limit_program(solver, fields, bed, t):
+    return _stable_dt(solver, fields, bed, t) / solver.cfl
+
+
+def _check_step(solver, bed, fields, t, dt, name="dt"):
+    """ValueError naming ``dt`` for a concrete step past Courant number 1 (the measured stable range: past it
+    order 1 makes negative depths and order 2 blows up), or for fields that are not finite; nothing under a
+    trace (there a step too long gives NaN or negative depths, refused when the run's result is read)."""
+    if any(is_traced(v) for v in (fields, t, dt)):
+        return
+    if not np.all(np.isfinite(np.asarray(fields))):
+        raise ValueError("state: the fields hold NaN or inf values; a step needs a finite state")
+    limit = float(_limit_program(solver, jnp.asarray(fields), jnp.asarray(bed, fields.dtype), t))
+    if float(dt) > limit * (1 + 1e-5):
+        raise ValueError(f"{name} = {float(dt):.4g} s is past the stable step: Courant number {float(dt) / limit:.3g} "
+                         f"> 1 (the largest stable step here is {limit:.4g} s; stable_dt gives {limit * solver.cfl:.4g} "
+                         f"s at cfl = {solver.cfl:g}); take shorter steps, or leave dt out for adaptive ones")
 
 
 @jax.jit
@@ -789,8 +831,10 @@ def sw_step(solver: ShallowWater, bed, state: SWState, dt: Optional[float] = Non
     _check_settled(solver)
     if dt is None:
         dt = jnp.inf
+        _check_step(solver, b, state.fields, state.time, 0.0)
     else:
         check_scalar("dt", dt, lo=0.0, lo_open=True)
+        _check_step(solver, b, state.fields, state.time, dt)
     fields, t = _step_program(solver, b, state.fields, state.time, jnp.asarray(dt, state.fields.dtype))
     if not isinstance(fields, jax.core.Tracer):
         _check_result(solver, fields, t, dt)
@@ -873,6 +917,7 @@ def sw_run(solver: ShallowWater, bed, state: SWState, until: Optional[float] = N
         if dt is None:
             raise ValueError("steps needs dt (s)")
         check_scalar("dt", dt, lo=0.0, lo_open=True)
+        _check_step(solver, b, state.fields, state.time, dt)
         fields, t = _fixed_program(solver, b, state.fields, state.time, jnp.asarray(dt, state.fields.dtype), steps)
         if not isinstance(fields, jax.core.Tracer):
             _check_result(solver, fields, t, dt)

@@ -416,6 +416,25 @@ def _split_dt(split, fields):
 
 
 @functools.partial(jax.jit, static_argnums=0)
+def _limit_program(split, fields):
+    return _split_dt(split, fields) / split.solver.cfl
+
+
+def _check_step(split, fields, dt):
+    """ValueError naming ``dt`` for a concrete step past Courant number 1 of the bulk (or of the still-water
+    waves and the boat); nothing under a trace."""
+    if is_traced(fields) or is_traced(dt):
+        return
+    if not np.all(np.isfinite(np.asarray(fields))):
+        raise ValueError("state: the fields hold NaN or inf values; a step needs a finite state")
+    limit = float(_limit_program(split, jnp.asarray(fields)))
+    if float(dt) > limit * (1 + 1e-5):
+        raise ValueError(f"dt = {float(dt):.4g} s is past the stable step of the split: Courant number "
+                         f"{float(dt) / limit:.3g} > 1 (the largest stable step here is {limit:.4g} s); take shorter "
+                         f"steps, or leave dt out for the bulk's adaptive ones")
+
+
+@functools.partial(jax.jit, static_argnums=0)
 def _step_program(split, bed, fields, t, dt):
     dt = jnp.where(jnp.isfinite(dt), dt, _split_dt(split, fields))
     return _split_advance(split, bed, fields, t, dt), t + dt
@@ -432,7 +451,7 @@ def split_step(split: Split, bed, state: SWState, dt: Optional[float] = None) ->
     state : SWState
         Depth and discharges (:func:`~wavephys.simulation.shallow_water.sw_state`).
     dt : float, optional
-        s, > 0 (the shallow-water solver's Courant limit applies: :func:`~wavephys.simulation.stable_dt`).
+        s, > 0; a step past Courant number 1 of the bulk (the adaptive step over ``cfl``) is refused.
 
     Returns
     -------
@@ -442,8 +461,10 @@ def split_step(split: Split, bed, state: SWState, dt: Optional[float] = None) ->
     b = _checked(split, bed, state)
     if dt is None:
         dt = jnp.inf
+        _check_step(split, state.fields, 0.0)
     else:
         check_scalar("dt", dt, lo=0.0, lo_open=True)
+        _check_step(split, state.fields, dt)
     fields, t = _step_program(split, b, state.fields, state.time, jnp.asarray(dt, state.fields.dtype))
     if not is_traced(fields):
         _check_split_run(split, fields, t, dt if np.isfinite(float(dt)) else None)
@@ -515,6 +536,7 @@ def split_run(split: Split, bed, state: SWState, until: Optional[float] = None, 
         if dt is None:
             raise ValueError("steps needs dt (s)")
         check_scalar("dt", dt, lo=0.0, lo_open=True)
+        _check_step(split, state.fields, dt)
         fields, t = _fixed_program(split, b, state.fields, state.time, jnp.asarray(dt, state.fields.dtype), steps)
         if not is_traced(fields):
             _check_split_run(split, fields, t, dt)
