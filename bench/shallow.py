@@ -35,9 +35,9 @@ def _dam(n, hr):
 
 def dam_break_rows(sizes=(100, 200, 400, 800, 1600), progress=print) -> list[dict]:
     """Time to solution and error of each method on Ritter's and Stoker's dam breaks (module doc)."""
-    from wavephys.models.pipes import Pipes, pipes_run, pipes_state
+    from wavephys.models.pipes import Pipes, _pipes_run, pipes_state
     from wavephys.physics.shallow_water import ritter, stoker
-    from wavephys.simulation.shallow_water import ShallowWater, sw_run, sw_state
+    from wavephys.simulation.shallow_water import ShallowWater, _sw_run, sw_state
 
     rows = []
     with jax.enable_x64(True):
@@ -51,10 +51,10 @@ def dam_break_rows(sizes=(100, 200, 400, 800, 1600), progress=print) -> list[dic
                     solver = ShallowWater(dx, sides="open", order=order)
                     state = sw_state(bed, depth=depth[None], dtype=jnp.float64)
                     runs[f"finite volumes, order {order}"] = (
-                        lambda s=solver, st=state: sw_run(s, bed, st, until=1.0)[0].h[0])
+                        lambda s=solver, st=state: _sw_run(s, bed, st, until=1.0)[0].h[0])
                 steps = int(math.ceil(1.0 / (0.25 * dx / math.sqrt(G))))
                 pstate = pipes_state(bed, depth=depth[None], dtype=jnp.float64)
-                runs["virtual pipes"] = lambda st=pstate, dx=dx, k=steps: pipes_run(Pipes(dx), bed, st, k, 1.0 / k).depth[0]
+                runs["virtual pipes"] = lambda st=pstate, dx=dx, k=steps: _pipes_run(Pipes(dx), bed, st, k, 1.0 / k).depth[0]
                 for method, fn in runs.items():
                     h = np.asarray(fn(), np.float64)
                     seconds = median_seconds(fn, repeats=3)
@@ -66,10 +66,10 @@ def dam_break_rows(sizes=(100, 200, 400, 800, 1600), progress=print) -> list[dic
 def step_rows(sizes=(256, 512), progress=print) -> list[dict]:
     """Seconds per step of each model at n × n against the spectral step (module doc)."""
     from wavephys import Grid, Stones, Water
-    from wavephys.models.pipes import Pipes, pipes_run, pipes_state
+    from wavephys.models.pipes import Pipes, _pipes_run, pipes_state
     from wavephys.simulation import Model
     from wavephys.simulation.depth import Floor, depth_state, run_depth
-    from wavephys.simulation.shallow_water import ShallowWater, sw_run, sw_state
+    from wavephys.simulation.shallow_water import ShallowWater, _sw_run, sw_state
     from wavephys.simulation.stepping import add_source, initial_state, run
 
     rows = []
@@ -90,7 +90,7 @@ def step_rows(sizes=(256, 512), progress=print) -> list[dict]:
         sw = sw_state(bed, eta)
         pipes = Pipes(dx)
         ps = pipes_state(bed, eta + 0 * bed)
-        from wavephys.simulation.split import Split, split_run
+        from wavephys.simulation.split import Split, _split_run
 
         wet_floor = Floor(np.maximum(-bed, 0.05))
         split2 = Split(fv2, levels=(0.5, 2.0))
@@ -99,12 +99,12 @@ def step_rows(sizes=(256, 512), progress=print) -> list[dict]:
         fns = {
             "spectral step (walls)": lambda: run(model, spectral, k)[0].psi,
             "linear shallow water (varying depth)": lambda: run_depth(model, floor, linear, k, "shallow")[0].fields,
-            "finite volumes, order 2": lambda: sw_run(fv2, bed, sw, steps=k, dt=dt)[0].fields,
-            "finite volumes, order 1": lambda: sw_run(fv1, bed, sw, steps=k, dt=dt)[0].fields,
-            "virtual pipes": lambda: pipes_run(pipes, bed, ps, k, dt).depth,
+            "finite volumes, order 2": lambda: _sw_run(fv2, bed, sw, steps=k, dt=dt)[0].fields,
+            "finite volumes, order 1": lambda: _sw_run(fv1, bed, sw, steps=k, dt=dt)[0].fields,
+            "virtual pipes": lambda: _pipes_run(pipes, bed, ps, k, dt).depth,
             "levels (4 depths, linear, dispersive)": lambda: run_depth(model, wet_floor, linear, k, "levels")[0].fields,
-            "split, 2 levels": lambda: split_run(split2, bed, sw, steps=k, dt=dt)[0].fields,
-            "split, 4 levels": lambda: split_run(split4, bed, sw, steps=k, dt=dt)[0].fields,
+            "split, 2 levels": lambda: _split_run(split2, bed, sw, steps=k, dt=dt)[0].fields,
+            "split, 4 levels": lambda: _split_run(split4, bed, sw, steps=k, dt=dt)[0].fields,
         }
         times = interleaved(fns, repeats=7, block=3)
         for name in fns:
@@ -119,8 +119,8 @@ def split_dispersion_rows(bands=(0.1, 0.4, 1.6, 6.4), progress=print) -> list[di
     from wavephys.core.water import Water
     from wavephys.harness.dispersion import dispersion_check, measure_dispersion
     from wavephys.physics.dispersion import angular_frequency
-    from wavephys.simulation.shallow_water import ShallowWater, sw_frames, sw_state
-    from wavephys.simulation.split import Split, split_frames
+    from wavephys.simulation.shallow_water import ShallowWater, _sw_frames, sw_state
+    from wavephys.simulation.split import Split, _split_frames
 
     water = Water(sigma=0.0, depth=1.0)
     rows = []
@@ -136,8 +136,8 @@ def split_dispersion_rows(bands=(0.1, 0.4, 1.6, 6.4), progress=print) -> list[di
         dt = np.pi / float(angular_frequency(jnp.asarray(4 * k0), water)) / 3
         times = np.arange(1, int(8 * 2 * np.pi / w0 / dt) + 1) * dt
         solver = ShallowWater(dx, sides="periodic")
-        for model, run in (("split", lambda st: split_frames(Split(solver, levels=(1.0,)), bed, st, times)),
-                           ("finite volumes, order 2", lambda st: sw_frames(solver, bed, st, times))):
+        for model, run in (("split", lambda st: _split_frames(Split(solver, levels=(1.0,)), bed, st, times)),
+                           ("finite volumes, order 2", lambda st: _sw_frames(solver, bed, st, times))):
             frames = run(sw_state(bed, eta[None]))
             record = np.asarray(frames.fields[:, 0] + bed, np.float64)
             row = dispersion_check(measure_dispersion(record, dx, dt), water, dt, k_range=(0.9 * k0, 4.1 * k0))

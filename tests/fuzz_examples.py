@@ -623,7 +623,18 @@ SKIP = {
     "wavephys.checks.shallow_water.pipes_dam_break", "wavephys.checks.shallow_water.convergence_order",
     # the depth validation's own scenes (seconds per call), run by check_depth and tests/simulation/test_depth.py
     "wavephys.checks.depth.travelling_packet", "wavephys.checks.depth.measure_shoaling",
-    "wavephys.checks.depth.lamb_beach_error",
+    "wavephys.checks.depth.lamb_beach_error", "wavephys.checks.depth.lamb_shoreline_errors",
+    # the abstract stepper (its pieces are the subclasses'), and a run's result record
+    "wavephys.core.stepper.Stepper", "wavephys.core.stepper.Run",
+    # the steppers: their bad inputs are refused by name in tests/simulation/test_steppers.py (fuzzed, a step
+    # count or a time drawn large runs up to 10⁶ compiled steps a call: 14 minutes for the set)
+    *(f"{cls}{method}" for cls in ("wavephys.simulation.steppers.SpectralStepper",
+                                   "wavephys.simulation.steppers.DepthStepper",
+                                   "wavephys.simulation.shallow_water.ShallowWaterStepper",
+                                   "wavephys.simulation.split.SplitStepper", "wavephys.models.pipes.PipesStepper",
+                                   "wavephys.models.finite_difference.FiniteDifferenceStepper",
+                                   "wavephys.models.truncated_kernel.KernelStepper")
+      for method in ("", ".init", ".step", ".run", ".advance", ".advance_to", ".frames")),
     # a method of a floor made by the caller (its argument is checked by the steppers, tested in test_depth)
     "wavephys.simulation.depth.Floor.check",
     # the harness's fitted tank modes, made by measure_seiches (its fields are what was measured)
@@ -738,6 +749,8 @@ def instance(cls):
     from optics.rendering import Renderer
     from wavephys.harness import Record
 
+    if cls not in _INSTANCES and cls in _STEPPER_MAKERS:
+        _INSTANCES[cls] = _STEPPER_MAKERS[cls]()
     if cls not in _INSTANCES:
         makers = {Grid: _grid, Water: Water, Model: _model, Simulation: lambda: Simulation(_grid(), Water(), dt=0.05),
                   Stones: lambda: Stones(0.1, -0.2, 0.25, 1e-3), Hull: lambda: Hull("gaussian", 0.3, 0.15),
@@ -771,3 +784,66 @@ def instance(cls):
         else:
             _INSTANCES[cls] = cls()
     return _INSTANCES[cls]
+
+
+# -- the steppers (wavephys.steppers): one instance and one state each, and the calls of the interface --------
+def _stepper_cases():
+    """{class: (make the stepper, make a valid state)} on small grids."""
+    from wavephys.core.stepper import TwoLevelState
+    from wavephys.models.finite_difference import FiniteDifferenceStepper
+    from wavephys.models.pipes import Pipes, PipesStepper, pipes_state
+    from wavephys.models.truncated_kernel import KernelStepper
+    from wavephys.simulation.depth import Floor, depth_state
+    from wavephys.simulation.shallow_water import ShallowWater, ShallowWaterStepper
+    from wavephys.simulation.split import Split, SplitStepper
+    from wavephys.simulation.steppers import DepthStepper, SpectralStepper
+
+    flat = -np.full((N, N), 0.5)
+    return {
+        SpectralStepper: (lambda: SpectralStepper(_model()), lambda: initial_state(_model())),
+        DepthStepper: (lambda: DepthStepper(_model(), Floor(np.full((N, N), 0.5)), "shallow"),
+                       lambda: depth_state(_model(), np.zeros((N, N)))),
+        ShallowWaterStepper: (lambda: ShallowWaterStepper(ShallowWater(0.1), _bed()), _sw_state),
+        SplitStepper: (lambda: SplitStepper(Split(ShallowWater(0.1), levels=(0.5,)), flat),
+                       lambda: __import__("wavephys.simulation.shallow_water", fromlist=["x"]).sw_state(flat, 0.0)),
+        PipesStepper: (lambda: PipesStepper(Pipes(0.1), flat, 0.005), lambda: pipes_state(flat, 0.0)),
+        FiniteDifferenceStepper: (lambda: FiniteDifferenceStepper(0.5, 0.05),
+                                  lambda: TwoLevelState(np.zeros((N, N)), np.zeros((N, N)))),
+        KernelStepper: (lambda: KernelStepper(EXAMPLES["stencil"](), 0.05),
+                        lambda: TwoLevelState(np.zeros((N, N)), np.zeros((N, N)))),
+    }
+
+
+def _register_steppers():
+    from wavephys.models.pipes import Pipes
+    from wavephys.simulation.depth import Floor
+    from wavephys.simulation.shallow_water import ShallowWater
+    from wavephys.simulation.split import Split
+
+    for cls, (make, state) in _stepper_cases().items():
+        name = f"{cls.__module__}.{cls.__qualname__}"
+        _STEPPER_MAKERS[cls] = make
+        OVERRIDES[f"{name}.init"] = {"state": state}
+        OVERRIDES[f"{name}.step"] = {"state": state}
+        OVERRIDES[f"{name}.run"] = {"state": state, "steps": lambda: 2}
+        OVERRIDES[f"{name}.advance"] = {"state": state, "steps": lambda: 2}
+        OVERRIDES[f"{name}.advance_to"] = {"state": state, "until": lambda: 0.05}
+        OVERRIDES[f"{name}.frames"] = {"state": state, "times": lambda: np.array([0.05, 0.1])}
+    mod = "wavephys.simulation"
+    OVERRIDES.update({
+        f"{mod}.steppers.SpectralStepper": {"model": _model},
+        f"{mod}.steppers.DepthStepper": {"model": _model, "floor": lambda: Floor(np.full((N, N), 0.5)),
+                                         "method": lambda: "shallow"},
+        f"{mod}.shallow_water.ShallowWaterStepper": {"solver": lambda: ShallowWater(0.1), "bed": _bed},
+        f"{mod}.split.SplitStepper": {"split": lambda: Split(ShallowWater(0.1), levels=(0.5,)),
+                                      "bed": lambda: -np.full((N, N), 0.5)},
+        "wavephys.models.pipes.PipesStepper": {"pipes": lambda: Pipes(0.1), "bed": lambda: -np.full((N, N), 0.5),
+                                               "dt": lambda: 0.005},
+        "wavephys.models.finite_difference.FiniteDifferenceStepper": {"courant": lambda: 0.5, "dt": lambda: 0.05},
+        "wavephys.models.truncated_kernel.KernelStepper": {"dt": lambda: 0.05},
+        "wavephys.core.stepper.TwoLevelState": {"eta": lambda: np.zeros((N, N)), "eta_prev": lambda: np.zeros((N, N))},
+    })
+
+
+_STEPPER_MAKERS = {}
+_register_steppers()

@@ -9,7 +9,7 @@ import pytest
 
 ROOT = Path(__file__).parent.parent
 NUMPYDOC = ("wavephys/core", "wavephys/physics", "wavephys/surfaces", "wavephys/models", "wavephys/harness",
-            "wavephys/checks", "wavephys/planner", "wavephys/simulation", "wavephys/parallel", "wavephys/app",
+            "wavephys/checks", "wavephys/planner", "wavephys/simulation", "wavephys/steppers", "wavephys/parallel", "wavephys/app",
             "wavephys/plot.py", "optics/light", "optics/caustics", "optics/gpu", "optics/rendering", "optics/shaders",
             "optics/checks.py")
 """Every package and module of the public API (a new one is added here)."""

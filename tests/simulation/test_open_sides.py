@@ -60,7 +60,7 @@ def test_the_linearized_scheme_with_open_ends_has_no_growing_mode(order):
     """Every eigenvalue of the linearized rate about a lake at rest has a negative real part, for beds the
     zero-gradient ends made unstable (there: +0.90 s⁻¹ on a ramp, +3.06 s⁻¹ on a sine, at any resolution)."""
     rng = np.random.default_rng(10 + order)
-    for n in (8, 24):
+    for n in (16,):  # the growth of zero-gradient sides was the same from 8 to 128 cells
         for bed in _ramp_beds(rng, n, 2):
             solver = ShallowWater(0.8 / n, sides=ENDS, order=order)
             state = sw_state(bed, 0.0, dtype=jnp.float64)

@@ -552,15 +552,15 @@ def _shallow_water_setup(name, n):
 def _shallow_water_heights(name, n, times):
     """Water heights at each of ``times`` (s, taken modulo the scene's cycle), float32 (len(times), n, n):
     the surface where wet, 2 cm below the ground where dry (so the renderer shows the ground there)."""
-    from wavephys.simulation.shallow_water import sw_frames
-    from wavephys.simulation.split import Split, split_frames
+    from wavephys.simulation.shallow_water import _sw_frames
+    from wavephys.simulation.split import Split, _split_frames
 
     model, bed, state = _shallow_water_setup(name, n)
     phases = np.mod(np.asarray(times, np.float64), SHALLOW_WATER_CYCLES[name])
     if name == "wakebeach":
         phases = phases + WAKE_WARMUP
     order = np.argsort(phases, kind="stable")
-    run = split_frames if isinstance(model, Split) else sw_frames
+    run = _split_frames if isinstance(model, Split) else _sw_frames
     out = run(model, bed, state, phases[order])
     h = np.asarray(out.h, np.float32)
     water = np.where(h > 1e-3, bed + h, bed - 0.02).astype(np.float32)

@@ -166,7 +166,7 @@ def _split_profile(h, dx, analytic, k, omega, until, depth0, depth1):
     """η after the split model carries the packet (discharge q̂ = (ω/k)·η̂ per mode: travelling along +x) to
     ``until`` on a periodic strip of two rows."""
     from wavephys.simulation.shallow_water import ShallowWater, sw_state
-    from wavephys.simulation.split import Split, split_run
+    from wavephys.simulation.split import Split, _split_run
 
     w = np.asarray(omega(k))
     c = np.where(k > 0, w / np.where(k > 0, k, 1.0), 0.0)
@@ -176,7 +176,7 @@ def _split_profile(h, dx, analytic, k, omega, until, depth0, depth1):
     bed = rows(-h)
     state = sw_state(bed, rows(eta), u=rows(q / (h + eta)))
     split = Split(ShallowWater(dx, sides="periodic"), levels=tuple(sorted({depth0, depth1})))
-    end, _ = split_run(split, bed, state, until=until)
+    end, _ = _split_run(split, bed, state, until=until)
     return np.asarray(end.h)[0] - h
 
 

@@ -73,7 +73,7 @@ def dam_break_errors(n: int, hl: float = 1.0, hr: float = 0.0, t: float = 1.0, o
         water has not reached the domain's open ends), ``min_depth`` (m).
     """
     from wavephys.physics.shallow_water import ritter, stoker, stoker_middle
-    from wavephys.simulation.shallow_water import ShallowWater, _past_limit, sw_run, sw_state
+    from wavephys.simulation.shallow_water import ShallowWater, _past_limit, _sw_run, sw_state
 
     n = check_int("n", n, lo=16)
     check_scalar("hl", hl, lo=0.0, lo_open=True)
@@ -85,7 +85,7 @@ def dam_break_errors(n: int, hl: float = 1.0, hr: float = 0.0, t: float = 1.0, o
     bed = np.zeros((1, n))
     solver = _past_limit(ShallowWater(dx, sides="open", order=order), cfl)  # cfl past 1 measures the failure
     state = sw_state(bed, depth=np.where(x < 0, hl, hr)[None], dtype=_dtype(dtype))
-    end, _ = sw_run(solver, bed, state, until=t)
+    end, _ = _sw_run(solver, bed, state, until=t)
     h = np.asarray(end.h[0], np.float64)
     if hr == 0:
         want, _ = ritter(x, t, hl)
@@ -125,7 +125,7 @@ def thacker_errors(n: int, h0: float = 0.1, a: float = 1.0, shift: float = 0.5, 
         ``l1``, ``max`` (depth errors, m), ``mass`` (relative change), ``min_depth`` (m), ``steps``.
     """
     from wavephys.physics.shallow_water import thacker, thacker_period
-    from wavephys.simulation.shallow_water import ShallowWater, _past_limit, sw_mass, sw_run, sw_state
+    from wavephys.simulation.shallow_water import ShallowWater, _past_limit, sw_mass, _sw_run, sw_state
 
     n = check_int("n", n, lo=8)
     side = 4.0 * a
@@ -136,7 +136,7 @@ def thacker_errors(n: int, h0: float = 0.1, a: float = 1.0, shift: float = 0.5, 
     solver = _past_limit(ShallowWater(dx, order=order), cfl)  # cfl past 1 measures the failure
     state = sw_state(bed, depth=h, u=u, v=v, dtype=_dtype(dtype))
     t = periods * thacker_period(h0, a)
-    end, steps = sw_run(solver, bed, state, until=t)
+    end, steps = _sw_run(solver, bed, state, until=t)
     _, want, _, _ = thacker(xx, yy, t, h0, a, shift)
     got = np.asarray(end.h, np.float64)
     m0, m1 = float(sw_mass(state, dx)), float(sw_mass(end, dx))
@@ -168,7 +168,7 @@ def lake_at_rest(n: int = 48, seed: int = 0, order: int = 2, dtype: str = "float
         ``eta`` (max |η − 0.5| over wet cells, m), ``momentum`` (max |h u|, |h v|, m²/s), ``dry_wetted``
         (cells dry at the start and wet at the end), ``islands`` (dry cells), ``steps``.
     """
-    from wavephys.simulation.shallow_water import ShallowWater, sw_run, sw_state
+    from wavephys.simulation.shallow_water import ShallowWater, _sw_run, sw_state
 
     rng = np.random.default_rng(seed)
     n = check_int("n", n, lo=4)
@@ -182,7 +182,7 @@ def lake_at_rest(n: int = 48, seed: int = 0, order: int = 2, dtype: str = "float
     bed += 0.05 * rng.standard_normal((n, n))  # rough
     solver = ShallowWater(dx, sides=sides, order=order)
     state = sw_state(bed, 0.5, dtype=_dtype(dtype))
-    end, steps = sw_run(solver, bed, state, until=until)
+    end, steps = _sw_run(solver, bed, state, until=until)
     h0, h1 = np.asarray(state.h), np.asarray(end.h)
     wet = h1 > 0
     eta = np.abs(h1 + np.asarray(bed, h1.dtype) - np.asarray(0.5, h1.dtype))
@@ -215,7 +215,7 @@ def carrier_greenspan_errors(n: int = 1100, periods: float = 1.0, amplitude: flo
         shoreline elevation seen, m), ``runup_exact`` (m), ``dx`` (m).
     """
     from wavephys.physics.shallow_water import carrier_greenspan, carrier_greenspan_runup
-    from wavephys.simulation.shallow_water import Inflow, ShallowWater, sw_frames, sw_state
+    from wavephys.simulation.shallow_water import Inflow, ShallowWater, _sw_frames, sw_state
 
     h0, length, period = 500.0, 5e4, 900.0
     n = check_int("n", n, lo=64)
@@ -229,7 +229,7 @@ def carrier_greenspan_errors(n: int = 1100, periods: float = 1.0, amplitude: flo
     eta0, u0, _ = carrier_greenspan(x, 0.0, h0, length, amplitude, period)
     state = sw_state(bed, eta0[None], u=u0[None], dtype=_dtype("float64"))
     times = np.linspace(period * periods / frames, period * periods, int(frames * periods))
-    out = sw_frames(solver, bed, state, times)
+    out = _sw_frames(solver, bed, state, times)
     depth = np.asarray(out.h)[:, 0]
     errs, l1s, shore = [], [], []
     for i, t in enumerate(times):
@@ -266,7 +266,7 @@ def solitary_runup_run(height: float, cot_beta: float, per_depth: int = 20, orde
         run-up), ``law`` (Synolakis' law), ``cells``, ``gamma_x0`` (γ·x₀: the law's asymptotic parameter).
     """
     from wavephys.physics.shallow_water import solitary_runup, solitary_runup_linear, solitary_wave
-    from wavephys.simulation.shallow_water import ShallowWater, sw_frames, sw_state
+    from wavephys.simulation.shallow_water import ShallowWater, _sw_frames, sw_state
 
     d = 1.0
     check_scalar("height", height, lo=0.0, lo_open=True)
@@ -286,7 +286,7 @@ def solitary_runup_run(height: float, cot_beta: float, per_depth: int = 20, orde
     solver = ShallowWater(dx, sides={"right": "open"}, order=order)
     c = math.sqrt(G * d)
     end = (crest - toe) / c + 2 * toe / c + 2 * wave / c
-    out = sw_frames(solver, bed, state, np.linspace(0.0, end, 1000))
+    out = _sw_frames(solver, bed, state, np.linspace(0.0, end, 1000))
     depth = np.asarray(out.h, np.float64)[:, 0]
     surface = depth + bed[0]
     shore = [surface[i][np.nonzero(depth[i] > 1e-4)[0].min()] for i in range(len(depth))]
@@ -387,7 +387,7 @@ def pipes_dam_break(n: int = 400, hl: float = 1.0, hr: float = 0.0, t: float = 1
     """
     import jax.numpy as jnp
 
-    from wavephys.models.pipes import Pipes, pipes_run, pipes_state
+    from wavephys.models.pipes import Pipes, _pipes_run, pipes_state
     from wavephys.physics.shallow_water import ritter, stoker, stoker_middle
 
     n = check_int("n", n, lo=16)
@@ -398,7 +398,7 @@ def pipes_dam_break(n: int = 400, hl: float = 1.0, hr: float = 0.0, t: float = 1
     bed = np.zeros((1, n))
     state = pipes_state(bed, depth=np.where(x < 0, hl, hr)[None], dtype=jnp.float64)
     steps = int(math.ceil(t / (courant * dx / c0)))
-    end = pipes_run(Pipes(dx), bed, state, steps, t / steps)
+    end = _pipes_run(Pipes(dx), bed, state, steps, t / steps)
     h = np.asarray(end.depth[0], np.float64)
     if hr == 0:
         want, _ = ritter(x, t, hl)

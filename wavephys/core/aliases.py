@@ -19,7 +19,7 @@ import types
 import warnings
 
 __internal__ = True  # tooling for the library's own modules: not fuzzed as public API
-__all__ = ["install", "renamed_options"]
+__all__ = ["install", "renamed_options", "deprecated_function"]
 
 
 class _AliasFinder(importlib.abc.MetaPathFinder, importlib.abc.Loader):
@@ -86,3 +86,22 @@ def renamed_options(function: str, options: dict, renames: dict, since: str = "0
                       f"removed in a later release", DeprecationWarning, stacklevel=3)
         out[new] = out.pop(old)
     return out
+
+
+def deprecated_function(function, name: str, replacement: str, since: str = "0.3", removal: str = "0.4"):
+    """``function`` under its public ``name``, warning (``DeprecationWarning``) at each call that it is
+    deprecated since ``since`` and goes in ``removal``, and what to use instead; its signature and
+    documentation are the function's, with the notice first."""
+    import functools
+
+    message = f"{name} is deprecated since {since} and will be removed in {removal}: use {replacement}"
+
+    @functools.wraps(function)
+    def wrapper(*args, **kwargs):
+        warnings.warn(message, DeprecationWarning, stacklevel=2)
+        return function(*args, **kwargs)
+
+    wrapper.__name__ = wrapper.__qualname__ = name
+    wrapper.__doc__ = f".. deprecated:: {since}\n    {message}.\n\n" + (function.__doc__ or "")
+    wrapper.__deprecated__ = message
+    return wrapper

@@ -28,10 +28,11 @@ import jax.numpy as jnp
 import numpy as np
 
 from wavephys.core.inputs import Array, Real, Spec, check_array, check_bool, check_int, check_scalar, validate
+from wavephys.core.stepper import TwoLevelState, _TwoLevel
 from wavephys.models.two_level import check_levels, run_two_level
 from wavephys.core.grid import Grid
 
-__all__ = [
+__all__ = ["FiniteDifferenceStepper", 
     "STABILITY_LIMIT",
     "courant_number",
     "laplacian",
@@ -353,3 +354,33 @@ def fd_moving_source(n: int = 512, length: float = 40.0, wave_speed: float = 0.5
     z = jnp.zeros((n, n))
     eta, _ = run(z, z)
     return eta, grid, x_start + source_speed * steps * dt
+
+
+class FiniteDifferenceStepper(_TwoLevel):
+    """The explicit wave equation (:mod:`wavephys.models.finite_difference`): Courant number C = cΔt/Δx ≤ 1/√2,
+    damping d, on a periodic grid.
+
+    Parameters
+    ----------
+    courant : float
+        C in (0, 1/√2].
+    dt : float
+        s, > 0 (the clock; the scheme itself sees only C).
+    damping : float
+        d in [0, 1).
+    """
+
+    def __init__(self, courant: float, dt: float, damping: float = 0.0):
+        check_scalar("courant", courant, lo=0.0, hi=STABILITY_LIMIT, lo_open=True)
+        check_scalar("damping", damping, lo=0.0, hi=1.0, hi_open=True)
+        self.courant, self.damping, self.dt = float(courant), float(damping), check_scalar("dt", dt, lo=0.0,
+                                                                                         lo_open=True)
+
+    def _parts(self):
+        return None, (self.courant, self.damping, self.dt)
+
+    @classmethod
+    def _advance(cls, static, dynamic, state, dt):
+        courant, damping, _ = dynamic
+        new = fd_step(state.eta, state.eta_prev, courant, damping)
+        return TwoLevelState(new, state.eta, state.time + dt)

@@ -37,12 +37,14 @@ import jax
 import jax.numpy as jnp
 import numpy as np
 
+from wavephys.core.aliases import deprecated_function
+from wavephys.core.stepper import Stepper, _bed, _fixed_dt
 from wavephys.core.inputs import (check_array, check_choice, check_instance, check_int, check_scalar, check_state_dtype,
                                   describe, is_traced)
 from wavephys.physics.shallow_water import water_depth
 from wavephys.core.pytree import register
 
-__all__ = ["Pipes", "PipesState", "pipes_state", "pipes_step", "pipes_run", "pipes_courant", "COURANT_LIMITS"]
+__all__ = ["Pipes", "PipesStepper", "PipesState", "pipes_state", "pipes_step", "pipes_run", "pipes_courant", "COURANT_LIMITS"]
 
 
 @dataclass(frozen=True)
@@ -204,20 +206,20 @@ def _advance(pipes, bed, depth, flows, dt):
     return depth, f
 
 
-@jax.jit
-def _step_program(pipes, bed, depth, flows, t, dt):
-    depth, flows = _advance(pipes, bed, depth, flows, dt)
-    return depth, flows, t + dt
-
-
 @functools.partial(jax.jit, static_argnums=6)
 def _run_program(pipes, bed, depth, flows, t, dt, steps):
+    """``steps`` steps with no checks (for measuring where the pipes fail: wavephys.checks)."""
     def body(c, _):
         d, f = c
         return _advance(pipes, bed, d, f, dt), None
 
     (depth, flows), _ = jax.lax.scan(body, (depth, flows), None, length=steps)
     return depth, flows, t + steps * dt
+
+
+def _stepper(pipes, bed, dt):
+    """The pipes behind the one stepper interface (wavephys.core.stepper): its loop is the runs' loop."""
+    return PipesStepper(pipes, bed, dt)
 
 
 def _checked(pipes, bed, state, dt):
@@ -264,11 +266,10 @@ def pipes_step(pipes: Pipes, bed, state: PipesState, dt: float) -> PipesState:
     PipesState
     """
     b = _checked(pipes, bed, state, dt)
-    d, f, t = _step_program(pipes, b, state.depth, state.flows, state.time, jnp.asarray(dt, state.depth.dtype))
-    return PipesState(d, f, t)
+    return _stepper(pipes, b, dt).advance(state, 1)
 
 
-def pipes_run(pipes: Pipes, bed, state: PipesState, steps: int, dt: float) -> PipesState:
+def _pipes_run(pipes: Pipes, bed, state: PipesState, steps: int, dt: float) -> PipesState:
     """``steps`` steps of ``dt`` (one compiled scan).
 
     Parameters
@@ -295,8 +296,7 @@ def pipes_run(pipes: Pipes, bed, state: PipesState, steps: int, dt: float) -> Pi
     """
     b = _checked(pipes, bed, state, dt)
     steps = check_int("steps", steps, lo=1)
-    d, f, t = _run_program(pipes, b, state.depth, state.flows, state.time, jnp.asarray(dt, state.depth.dtype), steps)
-    return PipesState(d, f, t)
+    return _stepper(pipes, b, dt).advance(state, steps)
 
 
 def pipes_courant(pipes: Pipes, depth_max: float, dt: float) -> float:
@@ -322,3 +322,59 @@ def pipes_courant(pipes: Pipes, depth_max: float, dt: float) -> float:
     check_scalar("dt", dt, lo=0.0, lo_open=True)
     area = pipes.dx * float(depth_max) if isinstance(pipes.area, str) else float(pipes.area)
     return float(np.sqrt(float(pipes.g) * area / float(pipes.dx)) * float(dt) / float(pipes.dx))
+
+
+pipes_run = deprecated_function(
+    _pipes_run, "pipes_run",
+    "wavephys.steppers.PipesStepper(pipes, bed, dt).run(state, steps=...) (the pure form: .advance)")
+
+
+class PipesStepper(Stepper):
+    """The virtual pipes (:mod:`wavephys.models.pipes`) at a fixed ``dt``, refused past the measured Courant
+    limit.
+
+    Parameters
+    ----------
+    pipes : Pipes
+    bed : array_like (ny, nx)
+        m.
+    dt : float
+        s, > 0.
+    """
+
+    def __init__(self, pipes, bed, dt: float):
+
+        check_instance("pipes", pipes, Pipes, "wavephys.models.pipes.Pipes")
+        check_array("bed", bed, ndim=2)
+        self.pipes, self.bed = pipes, _bed(bed)
+        self.dt = dt if is_traced(dt) else check_scalar("dt", dt, lo=0.0, lo_open=True)
+        self.state_type = PipesState
+
+    def init(self, state):
+        state = self._checked_state(state)
+        _checked(self.pipes, self.bed, state, self.dt)  # shapes, finite, the Courant limit at this Δt
+        return state
+
+    def _parts(self):
+        return None, (self.pipes, jnp.asarray(self.bed), self.dt)
+
+    def _check_dt(self, state, dt):
+        return _fixed_dt(self, self.dt, dt)
+
+    @classmethod
+    def _advance(cls, static, dynamic, state, dt):
+        pipes, bed, _ = dynamic
+        depth, flows = _advance(pipes, bed.astype(state.depth.dtype), state.depth, state.flows, dt)
+        return type(state)(depth, flows, state.time + dt)
+
+    @classmethod
+    def _dt(cls, static, dynamic, state):
+        return jnp.asarray(dynamic[2], state.depth.dtype)
+
+    @classmethod
+    def _height(cls, static, dynamic, state):
+        return dynamic[1].astype(state.depth.dtype) + state.depth
+
+    @property
+    def sides(self):
+        return (self.pipes.sides,) * 4

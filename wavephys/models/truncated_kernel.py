@@ -24,14 +24,15 @@ import jax
 import jax.numpy as jnp
 import numpy as np
 
-from wavephys.core.inputs import Array, Real, Spec, check_array, check_bool, check_int, validate
+from wavephys.core.inputs import Array, Real, Spec, check_array, check_bool, check_int, check_scalar, validate
 from wavephys.core.specs import GRID, WATER
+from wavephys.core.stepper import TwoLevelState, _TwoLevel
 from wavephys.models.two_level import check_levels, run_two_level
 from wavephys.physics.dispersion import angular_frequency
 from wavephys.core.grid import Grid
 from wavephys.core.water import Water
 
-__all__ = ["truncated_kernel", "stencil_symbol", "max_stable_dt", "convolve_periodic",
+__all__ = ["KernelStepper", "truncated_kernel", "stencil_symbol", "max_stable_dt", "convolve_periodic",
            "kernel_step", "kernel_run"]
 
 
@@ -237,3 +238,31 @@ def kernel_run(eta, eta_prev, stencil, dt, steps: int, check_stability: bool = T
             raise ValueError(f"dt must be <= {limit:.4g} s, the stability limit of this stencil (max_stable_dt), "
                              f"got {dt!r}; pass check_stability=False to watch it blow up")
     return run_two_level(kernel_step, eta, eta_prev, (jnp.asarray(stencil, eta.dtype), dt), steps, False)
+
+
+class KernelStepper(_TwoLevel):
+    """Truncated kernels stepped by leapfrog (:mod:`wavephys.models.truncated_kernel`).
+
+    Parameters
+    ----------
+    stencil : array_like (m, m)
+        The kernel, 1/s² (from :func:`~wavephys.models.truncated_kernel.kernel_stencil`).
+    dt : float
+        s, > 0 (stable below the stencil's limit: :func:`~wavephys.models.truncated_kernel.kernel_stable_dt`).
+    """
+
+    def __init__(self, stencil, dt: float):
+        check_array("stencil", stencil, ndim=2)
+        shape = np.shape(stencil)
+        if shape[0] != shape[1] or shape[0] % 2 == 0:
+            raise ValueError(f"stencil must be square with an odd side (its centre a sample), got shape {shape}")
+        self.stencil, self.dt = np.asarray(stencil), check_scalar("dt", dt, lo=0.0, lo_open=True)
+
+    def _parts(self):
+        return None, (jnp.asarray(self.stencil), self.dt)
+
+    @classmethod
+    def _advance(cls, static, dynamic, state, dt):
+        stencil, _ = dynamic
+        new = kernel_step(state.eta, state.eta_prev, stencil.astype(state.eta.dtype), dt)
+        return TwoLevelState(new, state.eta, state.time + dt)

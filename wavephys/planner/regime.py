@@ -298,8 +298,8 @@ def measure_speed_error(regime: str, kh: float, cells: int, *, seed: int = 1, x6
     from wavephys.core.water import Water
     from wavephys.harness.dispersion import measure_dispersion
     from wavephys.physics.dispersion import angular_frequency
-    from wavephys.simulation.shallow_water import ShallowWater, sw_frames, sw_state
-    from wavephys.simulation.split import Split, split_frames
+    from wavephys.simulation.shallow_water import ShallowWater, _sw_frames, sw_state
+    from wavephys.simulation.split import Split, _split_frames
 
     check_choice("regime", regime, ("nonlinear", "split"))
     check_scalar("kh", kh, lo=0.0, hi=1000.0, lo_open=True)
@@ -321,9 +321,9 @@ def measure_speed_error(regime: str, kh: float, cells: int, *, seed: int = 1, x6
         solver = ShallowWater(dx, sides="periodic")
         state = sw_state(bed, eta[None], dtype=jnp.float64 if x64 else jnp.float32)
         if regime == "split":
-            frames = split_frames(Split(solver, levels=(1.0,)), bed, state, times)
+            frames = _split_frames(Split(solver, levels=(1.0,)), bed, state, times)
         else:
-            frames = sw_frames(solver, bed, state, times)
+            frames = _sw_frames(solver, bed, state, times)
         record = np.asarray(frames.fields[:, 0] + bed, np.float64)
         samples = measure_dispersion(record, dx, dt)
         keep = (samples.k > 0.2 * k) & (samples.k < 1.03 * k)

@@ -44,13 +44,15 @@ import jax
 import jax.numpy as jnp
 import numpy as np
 
+from wavephys.core.aliases import deprecated_function
+from wavephys.core.stepper import Stepper, _bed
 from wavephys.core.inputs import (check_array, check_state_dtype, check_instance, check_int, check_scalar, describe,
                                   is_traced)
 from wavephys.core.pytree import register
 from wavephys.physics.shallow_water import water_depth
 from wavephys.physics.walls import SIDES
 
-__all__ = ["ShallowWater", "Inflow", "Open", "SWState", "sw_state", "stable_dt", "sw_step", "sw_run", "sw_frames",
+__all__ = ["ShallowWater", "ShallowWaterStepper", "Inflow", "Open", "SWState", "sw_state", "stable_dt", "sw_step", "sw_run", "sw_frames",
            "sw_mass", "sw_surface", "SIDE_KINDS", "advance_fields", "stable_dt_fields", "check_run"]
 
 SIDE_KINDS = ("wall", "open", "periodic", "inflow")
@@ -804,12 +806,6 @@ def _check_step(solver, bed, fields, t, dt, name="dt"):
                          f"s at cfl = {solver.cfl:g}); take shorter steps, or leave dt out for adaptive ones")
 
 
-@jax.jit
-def _step_program(solver, bed, fields, t, dt):
-    dt = jnp.where(jnp.isfinite(dt), dt, _stable_dt(solver, fields, bed, t))
-    return _advance(solver, bed, fields, t, dt), t + dt
-
-
 def sw_step(solver: ShallowWater, bed, state: SWState, dt: Optional[float] = None) -> SWState:
     """One step: Δt = ``dt`` when given (no check of stability: see :func:`stable_dt`), else the adaptive one.
 
@@ -830,46 +826,29 @@ def sw_step(solver: ShallowWater, bed, state: SWState, dt: Optional[float] = Non
     b = _checked(solver, bed, state)
     _check_settled(solver)
     if dt is None:
-        dt = jnp.inf
         _check_step(solver, b, state.fields, state.time, 0.0)
     else:
         check_scalar("dt", dt, lo=0.0, lo_open=True)
         _check_step(solver, b, state.fields, state.time, dt)
-    fields, t = _step_program(solver, b, state.fields, state.time, jnp.asarray(dt, state.fields.dtype))
+    out = _stepper(solver, b).advance(state, 1, None if dt is None else jnp.asarray(dt, state.fields.dtype))
+    fields, t = out.fields, out.time
     if not isinstance(fields, jax.core.Tracer):
         _check_result(solver, fields, t, dt)
     return SWState(fields, t)
 
 
+def _stepper(solver, bed):
+    """The solver behind the one stepper interface (wavephys.core.stepper): its loop is the runs' loop."""
+    return ShallowWaterStepper(solver, bed)
+
+
 def _run_to(solver, bed, fields, t, until, max_steps):
-    def cond(c):
-        f, t, n = c
-        return (t < until) & (n < max_steps) & jnp.all(jnp.isfinite(f[0]))
-
-    def body(c):
-        f, t, n = c
-        dt = jnp.minimum(_stable_dt(solver, f, bed, t), until - t)
-        return _advance(solver, bed, f, t, dt), jnp.where(until - t <= dt, until, t + dt), n + 1
-
-    return jax.lax.while_loop(cond, body, (fields, t, jnp.asarray(0, jnp.int32)))
+    """(fields, time, steps) after stable steps up to ``until`` (pure; the one loop of the steppers)."""
+    end, n = _stepper(solver, bed).advance_to(SWState(fields, t), until, max_steps)
+    return end.fields, end.time, n
 
 
-@jax.jit
-def _run_program(solver, bed, fields, t, until, max_steps):
-    return _run_to(solver, bed, fields, t, until, max_steps)
-
-
-@functools.partial(jax.jit, static_argnums=5)
-def _fixed_program(solver, bed, fields, t, dt, steps):
-    def body(c, _):
-        f, t = c
-        return (_advance(solver, bed, f, t, dt), t + dt), None
-
-    return jax.lax.scan(body, (fields, t), None, length=steps)[0]
-
-
-
-def sw_run(solver: ShallowWater, bed, state: SWState, until: Optional[float] = None, *, steps: Optional[int] = None,
+def _sw_run(solver: ShallowWater, bed, state: SWState, until: Optional[float] = None, *, steps: Optional[int] = None,
            dt: Optional[float] = None, max_steps: int = 1_000_000):
     """Advance to time ``until`` with adaptive steps (the last one cut to land on it), or ``steps`` steps of ``dt``.
 
@@ -918,7 +897,8 @@ def sw_run(solver: ShallowWater, bed, state: SWState, until: Optional[float] = N
             raise ValueError("steps needs dt (s)")
         check_scalar("dt", dt, lo=0.0, lo_open=True)
         _check_step(solver, b, state.fields, state.time, dt)
-        fields, t = _fixed_program(solver, b, state.fields, state.time, jnp.asarray(dt, state.fields.dtype), steps)
+        end = _stepper(solver, b).advance(state, steps, jnp.asarray(dt, state.fields.dtype))
+        fields, t = end.fields, end.time
         if not isinstance(fields, jax.core.Tracer):
             _check_result(solver, fields, t, dt)
         return SWState(fields, t), steps
@@ -928,8 +908,7 @@ def sw_run(solver: ShallowWater, bed, state: SWState, until: Optional[float] = N
     max_steps = check_int("max_steps", max_steps, lo=1)
     if not (is_traced(state.time) or is_traced(until)) and float(until) < float(state.time):
         raise ValueError(f"until must not be before the state's time {float(state.time)}, got {until}")
-    fields, t, n = _run_program(solver, b, state.fields, state.time, jnp.asarray(until, state.fields.dtype),
-                                jnp.asarray(max_steps, jnp.int32))
+    fields, t, n = _run_to(solver, b, state.fields, state.time, jnp.asarray(until, state.fields.dtype), max_steps)
     if not isinstance(fields, jax.core.Tracer):
         _check_result(solver, fields, t)
         if float(t) < float(np.asarray(until, np.asarray(t).dtype)):  # in the state's precision
@@ -938,7 +917,7 @@ def sw_run(solver: ShallowWater, bed, state: SWState, until: Optional[float] = N
     return SWState(fields, t), n
 
 
-def sw_frames(solver: ShallowWater, bed, state: SWState, times, max_steps: int = 1_000_000) -> SWState:
+def _sw_frames(solver: ShallowWater, bed, state: SWState, times, max_steps: int = 1_000_000) -> SWState:
     """The states at each of ``times`` (s, non-decreasing, ≥ state.time), stacked: fields (T, 3, ny, nx).
 
     Parameters
@@ -962,8 +941,8 @@ def sw_frames(solver: ShallowWater, bed, state: SWState, times, max_steps: int =
     if np.any(np.diff(ts) < 0) or ts[0] < float(state.time) - 1e-12:
         raise ValueError("times must be non-decreasing and not before the state's time")
     max_steps = check_int("max_steps", max_steps, lo=1)
-    fields, t = _frames_program(solver, b, state.fields, state.time, jnp.asarray(ts, state.fields.dtype),
-                                jnp.asarray(max_steps, jnp.int32))
+    out = _stepper(solver, b).frames(state, ts, max_steps)
+    fields, t = out.fields, out.time
     _check_result(solver, fields, t)
     if bool(jnp.any(t < jnp.asarray(ts, t.dtype))):
         raise ValueError(f"max_steps = {max_steps} steps were not enough between two frames")
@@ -1018,12 +997,77 @@ def _check_result(solver, fields, t, dt=None):
                          f"(cfl = {float(solver.cfl):g}: h >= 0 is guaranteed for cfl <= 0.5, try a smaller one)")
 
 
-@jax.jit
-def _frames_program(solver, bed, fields, t, times, max_steps):
-    def body(c, until):
-        f, t = c
-        f, t, _ = _run_to(solver, bed, f, t, until, max_steps)
-        return (f, t), (f, t)
+sw_run = deprecated_function(
+    _sw_run, "sw_run",
+    "wavephys.steppers.ShallowWaterStepper(solver, bed).run(state, until=...) (the pure forms: .advance, .advance_to)")
 
-    return jax.lax.scan(body, (fields, t), times)[1]
 
+sw_frames = deprecated_function(
+    _sw_frames, "sw_frames",
+    "wavephys.steppers.ShallowWaterStepper(solver, bed).run(state, until=..., every=...) (the pure form: .frames)")
+
+
+class ShallowWaterStepper(Stepper):
+    """Nonlinear shallow water with wetting and drying (:mod:`wavephys.simulation.shallow_water`), adaptive
+    steps at the solver's ``cfl``.
+
+    Parameters
+    ----------
+    solver : wavephys.simulation.shallow_water.ShallowWater
+    bed : array_like (ny, nx)
+        Bed elevation, m (any ny, nx: rectangles are native).
+    """
+
+    adaptive = True
+
+    def __init__(self, solver, bed):
+        
+        check_instance("solver", solver, ShallowWater, "wavephys.simulation.shallow_water.ShallowWater")
+        check_array("bed", bed, ndim=2)
+        self.solver, self.bed, self.state_type = solver, _bed(bed), SWState
+
+    def init(self, state):
+        state = self._checked_state(state)
+        if np.shape(state.fields)[1:] != self.bed.shape or np.ndim(state.fields) != 3:
+            raise ValueError(f"state.fields must have shape (3,) + the bed's {self.bed.shape}, got "
+                             f"{np.shape(state.fields)}")
+        # an open side's sea: from the first state this stepper starts from (then fixed)
+        self.solver = self.solver.settle(self.bed, state)
+        return state
+
+    def _parts(self):
+        return None, (self.solver, jnp.asarray(self.bed))
+
+    def _limit(self, state):
+        return float(_limit_program(self.solver, state.fields, jnp.asarray(self.bed, state.fields.dtype), state.time))
+
+    def step(self, state, dt=None):
+        self.init(state)
+        return super().step(state, dt)
+
+    @classmethod
+    def _advance(cls, static, dynamic, state, dt):
+        solver, bed = dynamic
+        fields = _advance(solver, bed.astype(state.fields.dtype), state.fields, state.time, dt)
+        return type(state)(fields, state.time + dt)
+
+    @classmethod
+    def _dt(cls, static, dynamic, state):
+        solver, bed = dynamic
+        return _stable_dt(solver, state.fields, bed.astype(state.fields.dtype), state.time)
+
+    @staticmethod
+    def _with_time(state, t):
+        return type(state)(state.fields, t)
+
+    @classmethod
+    def _height(cls, static, dynamic, state):
+        return dynamic[1].astype(state.fields.dtype) + state.fields[0]
+
+    def _result(self, state):
+        _check_result(self.solver, state.fields, state.time)
+        return state
+
+    @property
+    def sides(self):
+        return tuple(self.solver.sides)

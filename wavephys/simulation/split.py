@@ -53,11 +53,14 @@ import jax
 import jax.numpy as jnp
 import numpy as np
 
+from wavephys.core.aliases import deprecated_function
 from wavephys.core.inputs import check_array, check_instance, check_int, check_scalar, is_traced
 from wavephys.core.water import Water
 from wavephys.physics.depth import depth_weights
 from wavephys.physics.dispersion import angular_frequency
-from wavephys.simulation.shallow_water import (ShallowWater, SWState, advance_fields, check_run, stable_dt_fields)
+from wavephys.core.stepper import Stepper, _bed
+from wavephys.simulation.shallow_water import (ShallowWater, ShallowWaterStepper, SWState, advance_fields, check_run,
+                                               stable_dt_fields)
 
 __all__ = ["Split", "MovingPressure", "split_step", "split_run", "split_frames", "split_parts"]
 
@@ -434,12 +437,6 @@ def _check_step(split, fields, dt):
                          f"steps, or leave dt out for the bulk's adaptive ones")
 
 
-@functools.partial(jax.jit, static_argnums=0)
-def _step_program(split, bed, fields, t, dt):
-    dt = jnp.where(jnp.isfinite(dt), dt, _split_dt(split, fields))
-    return _split_advance(split, bed, fields, t, dt), t + dt
-
-
 def split_step(split: Split, bed, state: SWState, dt: Optional[float] = None) -> SWState:
     """One step of the split model: Δt = ``dt`` when given, else the bulk solver's adaptive step.
 
@@ -460,45 +457,24 @@ def split_step(split: Split, bed, state: SWState, dt: Optional[float] = None) ->
     """
     b = _checked(split, bed, state)
     if dt is None:
-        dt = jnp.inf
         _check_step(split, state.fields, 0.0)
     else:
         check_scalar("dt", dt, lo=0.0, lo_open=True)
         _check_step(split, state.fields, dt)
-    fields, t = _step_program(split, b, state.fields, state.time, jnp.asarray(dt, state.fields.dtype))
+    out = _stepper(split, b).advance(state, 1, None if dt is None else jnp.asarray(dt, state.fields.dtype))
+    fields, t = out.fields, out.time
+    dt = jnp.inf if dt is None else dt
     if not is_traced(fields):
         _check_split_run(split, fields, t, dt if np.isfinite(float(dt)) else None)
     return SWState(fields, t)
 
 
-def _run_to(split, bed, fields, t, until, max_steps):
-    def cond(c):
-        f, t, n = c
-        return (t < until) & (n < max_steps) & jnp.all(jnp.isfinite(f[0]))
-
-    def body(c):
-        f, t, n = c
-        dt = jnp.minimum(_split_dt(split, f), until - t)
-        return _split_advance(split, bed, f, t, dt), jnp.where(until - t <= dt, until, t + dt), n + 1
-
-    return jax.lax.while_loop(cond, body, (fields, t, jnp.asarray(0, jnp.int32)))
+def _stepper(split, bed):
+    """The split behind the one stepper interface (wavephys.core.stepper): its loop is the runs' loop."""
+    return SplitStepper(split, bed)
 
 
-@functools.partial(jax.jit, static_argnums=0)
-def _run_program(split, bed, fields, t, until, max_steps):
-    return _run_to(split, bed, fields, t, until, max_steps)
-
-
-@functools.partial(jax.jit, static_argnums=(0, 5))
-def _fixed_program(split, bed, fields, t, dt, steps):
-    def body(c, _):
-        f, t = c
-        return (_split_advance(split, bed, f, t, dt), t + dt), None
-
-    return jax.lax.scan(body, (fields, t), None, length=steps)[0]
-
-
-def split_run(split: Split, bed, state: SWState, until: Optional[float] = None, *, steps: Optional[int] = None,
+def _split_run(split: Split, bed, state: SWState, until: Optional[float] = None, *, steps: Optional[int] = None,
               dt: Optional[float] = None, max_steps: int = 1_000_000):
     """Advance to ``until`` with the bulk's adaptive steps, or ``steps`` steps of ``dt``.
 
@@ -537,7 +513,8 @@ def split_run(split: Split, bed, state: SWState, until: Optional[float] = None, 
             raise ValueError("steps needs dt (s)")
         check_scalar("dt", dt, lo=0.0, lo_open=True)
         _check_step(split, state.fields, dt)
-        fields, t = _fixed_program(split, b, state.fields, state.time, jnp.asarray(dt, state.fields.dtype), steps)
+        end = _stepper(split, b).advance(state, steps, jnp.asarray(dt, state.fields.dtype))
+        fields, t = end.fields, end.time
         if not is_traced(fields):
             _check_split_run(split, fields, t, dt)
         return SWState(fields, t), steps
@@ -547,8 +524,8 @@ def split_run(split: Split, bed, state: SWState, until: Optional[float] = None, 
     max_steps = check_int("max_steps", max_steps, lo=1)
     if not (is_traced(state.time) or is_traced(until)) and float(until) < float(state.time):
         raise ValueError(f"until must not be before the state's time {float(state.time)}, got {until}")
-    fields, t, n = _run_program(split, b, state.fields, state.time, jnp.asarray(until, state.fields.dtype),
-                                jnp.asarray(max_steps, jnp.int32))
+    end, n = _stepper(split, b).advance_to(state, jnp.asarray(until, state.fields.dtype), max_steps)
+    fields, t = end.fields, end.time
     if not is_traced(fields):
         _check_split_run(split, fields, t)
         if float(t) < float(np.asarray(until, np.asarray(t).dtype)):  # in the state's precision
@@ -557,17 +534,7 @@ def split_run(split: Split, bed, state: SWState, until: Optional[float] = None, 
     return SWState(fields, t), n
 
 
-@functools.partial(jax.jit, static_argnums=0)
-def _frames_program(split, bed, fields, t, times, max_steps):
-    def body(c, until):
-        f, t = c
-        f, t, _ = _run_to(split, bed, f, t, until, max_steps)
-        return (f, t), (f, t)
-
-    return jax.lax.scan(body, (fields, t), times)[1]
-
-
-def split_frames(split: Split, bed, state: SWState, times, max_steps: int = 1_000_000) -> SWState:
+def _split_frames(split: Split, bed, state: SWState, times, max_steps: int = 1_000_000) -> SWState:
     """The states at each of ``times`` (s, non-decreasing, ≥ state.time), stacked: fields (T, 3, ny, nx).
 
     Parameters
@@ -589,9 +556,65 @@ def split_frames(split: Split, bed, state: SWState, times, max_steps: int = 1_00
     if np.any(np.diff(ts) < 0) or ts[0] < float(state.time) - 1e-12:
         raise ValueError("times must be non-decreasing and not before the state's time")
     max_steps = check_int("max_steps", max_steps, lo=1)
-    fields, t = _frames_program(split, b, state.fields, state.time, jnp.asarray(ts, state.fields.dtype),
-                                jnp.asarray(max_steps, jnp.int32))
+    out = _stepper(split, b).frames(state, ts, max_steps)
+    fields, t = out.fields, out.time
     _check_split_run(split, fields, t)
     if bool(jnp.any(t < jnp.asarray(ts, t.dtype))):
         raise ValueError(f"max_steps = {max_steps} steps were not enough between two frames")
     return SWState(fields, t)
+
+
+split_run = deprecated_function(
+    _split_run, "split_run",
+    "wavephys.steppers.SplitStepper(split, bed).run(state, until=...) (the pure forms: .advance, .advance_to)")
+
+
+split_frames = deprecated_function(
+    _split_frames, "split_frames",
+    "wavephys.steppers.SplitStepper(split, bed).run(state, until=..., every=...) (the pure form: .frames)")
+
+
+class SplitStepper(ShallowWaterStepper):
+    """Shallow water with dispersive surface waves (:mod:`wavephys.simulation.split`), adaptive steps.
+
+    Parameters
+    ----------
+    split : Split
+    bed : array_like (ny, nx)
+        m.
+    """
+
+    def __init__(self, split, bed):
+
+        check_instance("split", split, Split, "wavephys.simulation.split.Split")
+        check_array("bed", bed, ndim=2)
+        self.split, self.solver, self.bed, self.state_type = split, split.solver, _bed(bed), SWState
+
+    def init(self, state):
+        state = self._checked_state(state)
+        if np.shape(state.fields)[1:] != self.bed.shape or np.ndim(state.fields) != 3:
+            raise ValueError(f"state.fields must have shape (3,) + the bed's {self.bed.shape}, got "
+                             f"{np.shape(state.fields)}")
+        return state
+
+    def _parts(self):
+        return self.split, jnp.asarray(self.bed)
+
+    def _limit(self, state):
+        return float(_limit_program(self.split, state.fields))
+
+    def step(self, state, dt=None):
+        return Stepper.step(self, state, dt)
+
+    @classmethod
+    def _advance(cls, static, dynamic, state, dt):
+        fields = _split_advance(static, dynamic.astype(state.fields.dtype), state.fields, state.time, dt)
+        return type(state)(fields, state.time + dt)
+
+    @classmethod
+    def _dt(cls, static, dynamic, state):
+        return _split_dt(static, state.fields)
+
+    @classmethod
+    def _height(cls, static, dynamic, state):
+        return dynamic.astype(state.fields.dtype) + state.fields[0]
