@@ -71,7 +71,7 @@ def run_walls(args) -> None:
 
 
 def run_shallow(args) -> None:
-    from bench.shallow import dam_break_rows, figures, split_dispersion_rows, step_rows
+    from bench.shallow import dam_break_rows, figures, memory_rows, split_dispersion_rows, step_rows
 
     rows = dam_break_rows((100, 200, 400) if args.quick else (100, 200, 400, 800, 1600), progress=_say)
     print(f"{'case':<22}{'method':<26}{'n':>6}{'seconds':>10}{'L1 m':>11}{'max m':>9}")
@@ -86,7 +86,11 @@ def run_shallow(args) -> None:
     print(f"{'model':<26}{'kh band':>14}{'max |w/w_exact - 1|':>22}")
     for r in split:
         print(f"{r['model']:<26}{r['kh'][0]:>7.2g}..{r['kh'][1]:<5.3g}{r['error']:>22.2e}")
-    _write(rows + steps + split, figures(rows), Path(args.json or "bench/results/shallow.json"))
+    memory = memory_rows((60, 240) if args.quick else (60, 240, 960), progress=_say)
+    print(f"{'run':<58}{'steps':>7}{'MB held':>10}{'peak RSS MB':>13}")
+    for r in memory:
+        print(f"{r['method']:<58}{r['steps']:>7}{r['bytes_held'] / 2**20:>10.2f}{r['peak_rss_mb']:>13.0f}")
+    _write(rows + steps + split + memory, figures(rows), Path(args.json or "bench/results/shallow.json"))
 
 
 def run_boundaries(args) -> None:

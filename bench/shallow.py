@@ -146,6 +146,42 @@ def split_dispersion_rows(bands=(0.1, 0.4, 1.6, 6.4), progress=print) -> list[di
     return rows
 
 
+def memory_rows(steps=(60, 240, 960), n=256, progress=print) -> list[dict]:
+    """Memory a long run holds when it ends: the depth stepper run by ``run_depth`` (which returns the surface
+    of every step) against the same stepper behind the one interface streaming a frame every 60 steps to a
+    callback (``DepthStepper.run``): bytes of the arrays each call leaves the caller, and the process's
+    peak resident size after each (it only grows). Linear floor ``"shallow"`` over a 1.5 m slope, n × n."""
+    import resource
+
+    from wavephys import Grid, Water
+    from wavephys.simulation import Model
+    from wavephys.simulation.depth import Floor, depth_state, run_depth
+    from wavephys.steppers import DepthStepper
+
+    def held(tree):
+        return int(sum(np.asarray(x).nbytes for x in jax.tree_util.tree_leaves(tree)))
+
+    grid = Grid(n, 16.0)
+    model = Model(grid, Water(sigma=0.0), dt=1 / 30, walls="all")
+    x = np.asarray(grid.mesh()[0])
+    floor = Floor(np.clip(0.2 + 0.1 * (x + 8.0), 0.05, 1.5))
+    start = depth_state(model, 0.01 * np.exp(-(x ** 2) / 2.0))
+    rows = []
+    for k in steps:
+        progress(f"memory: {k} steps at {n}^2")
+        kept = []
+        end = DepthStepper(model, floor, "shallow").run(start, steps=k, every=60,
+                                                          callback=lambda i, t, eta: kept.append(float(eta.max())))
+        rows.append(dict(method="DepthStepper.run, a frame every 60 steps to a callback", steps=k, n=n,
+                         bytes_held=held(end.state), peak_rss_mb=resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024))
+        state, surfaces = run_depth(model, floor, start, k, "shallow")
+        rows.append(dict(method="run_depth (the surface of every step)", steps=k, n=n,
+                         bytes_held=held((state, surfaces)),
+                         peak_rss_mb=resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024))
+        del state, surfaces
+    return rows
+
+
 def figures(rows) -> dict:
     from wavephys.plot import plot_error_vs_time
 
