@@ -340,3 +340,22 @@ def test_bad_settings_of_the_steppers_are_refused_by_name():
         DepthStepper(Model(Grid(8, 1.0), Water(), dt=0.05), Floor(np.full((8, 8), 0.5)), "magic")
     with pytest.raises(TypeError, match="model"):
         SpectralStepper("model")
+
+
+def test_the_pure_forms_settle_an_open_side_from_the_state_they_start_from():
+    """advance, advance_to and frames of a stepper with a plain "open" side fix its sea from their state, as run
+    does (a lake at rest stays at rest, and the three agree)."""
+    bed = -np.linspace(0.3, 0.8, 24)[None]
+    state = sw.sw_state(bed, 0.0, dtype=jnp.float64)
+    ends = []
+    for method in ("advance_to", "frames", "advance"):
+        stepper = ShallowWaterStepper(sw.ShallowWater(0.05, sides="open"), bed)
+        if method == "advance_to":
+            end = stepper.advance_to(state, 1.0)[0]
+        elif method == "frames":
+            end = jax.tree_util.tree_map(lambda a: a[-1], stepper.frames(state, [0.5, 1.0]))
+        else:
+            end = stepper.advance(state, 50)
+        assert np.abs(np.asarray(end.h[0]) + bed[0]).max() <= 1e-15, method
+        ends.append(end)
+    assert float(ends[0].time) == float(ends[1].time) == 1.0

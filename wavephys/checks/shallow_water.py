@@ -262,10 +262,14 @@ def solitary_runup_run(height: float, cot_beta: float, per_depth: int = 20, orde
     Returns
     -------
     dict
-        ``runup`` (the highest shoreline elevation, from 1000 frames, m), ``linear`` (the exact linear
-        run-up), ``law`` (Synolakis' law), ``cells``, ``gamma_x0`` (γ·x₀: the law's asymptotic parameter).
+        ``runup`` (the highest shoreline elevation, from 1000 frames, m; the shoreline read from the sea in:
+        :func:`~wavephys.harness.shallow_water.shoreline_elevation`), ``linear`` (the exact linear run-up),
+        ``law`` (Synolakis' law), ``cells``, ``gamma_x0`` (γ·x₀: the law's asymptotic parameter), ``rundown``
+        and ``rundown_linear`` (the lowest shoreline elevation, and the exact linear one, m).
     """
-    from wavephys.physics.shallow_water import solitary_runup, solitary_runup_linear, solitary_wave
+    from wavephys.harness.shallow_water import shoreline_elevation
+    from wavephys.physics.shallow_water import (solitary_rundown_linear, solitary_runup, solitary_runup_linear,
+                                                solitary_wave)
     from wavephys.simulation.shallow_water import ShallowWater, _sw_frames, sw_state
 
     d = 1.0
@@ -288,10 +292,10 @@ def solitary_runup_run(height: float, cot_beta: float, per_depth: int = 20, orde
     end = (crest - toe) / c + 2 * toe / c + 2 * wave / c
     out = _sw_frames(solver, bed, state, np.linspace(0.0, end, 1000))
     depth = np.asarray(out.h, np.float64)[:, 0]
-    surface = depth + bed[0]
-    shore = [surface[i][np.nonzero(depth[i] > 1e-4)[0].min()] for i in range(len(depth))]
-    return dict(runup=float(max(shore)), linear=solitary_runup_linear(height, d, cot_beta), law=law, cells=n,
-                gamma_x0=gamma * toe)
+    shore = shoreline_elevation(depth, bed[0])
+    return dict(runup=float(np.nanmax(shore)), linear=solitary_runup_linear(height, d, cot_beta), law=law, cells=n,
+                gamma_x0=gamma * toe, rundown=float(np.nanmin(shore)),
+                rundown_linear=solitary_rundown_linear(height, d, cot_beta))
 
 
 def pipes_seiche(depth: float = 0.05, n: int = 64, area="depth", courant: float = 0.5, periods: int = 10,

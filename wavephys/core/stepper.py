@@ -312,8 +312,8 @@ class Stepper:
         if not is_traced(until):
             check_scalar("until", until)
         max_steps = check_int("max_steps", max_steps, lo=1)
+        state = self.init(state)  # first: it may fix settings from the state (an open side's sea)
         static, dynamic = self._parts()
-        state = self.init(state)
         if not (is_traced(until) or is_traced(self._time(state))) and float(until) < float(self._time(state)):
             raise ValueError(f"until must not be before the state's time {float(self._time(state))}, got {until}")
         if not self.adaptive:
@@ -343,8 +343,8 @@ class Stepper:
             if np.size(times) == 0 or np.any(np.diff(np.asarray(times, np.float64)) < 0):
                 raise ValueError("times must hold at least one time, non-decreasing")
         max_steps = check_int("max_steps", max_steps, lo=1)
+        state = self.init(state)  # first: it may fix settings from the state (an open side's sea)
         static, dynamic = self._parts()
-        state = self.init(state)
         if not self.adaptive:
             out = []
             for t in np.asarray(times, np.float64):

@@ -21,7 +21,7 @@ import numpy as np
 
 from wavephys.core.inputs import check_array, check_scalar
 
-__all__ = ["mass_check", "lake_at_rest_check", "dam_break_check"]
+__all__ = ["mass_check", "lake_at_rest_check", "dam_break_check", "shoreline_elevation"]
 
 
 def _frames(name, depth):
@@ -257,3 +257,55 @@ def dam_break_check(depth, dx: float, dt: float, h0: float, *, dam: float, hr: f
                      f"frames (dt = {dt} s here); the speed goes as sqrt(g)")
         note = f"{note}; {cause}"
     return compare(f"speed of {what}", fitted, speed, rtol=rtol, unit="m/s", note=note)
+
+
+def shoreline_elevation(depth, bed, *, threshold: float = 1e-4, sea: str = "right"):
+    """The shoreline's elevation in each frame of a 1-D run-up: the surface at the landward end of the water
+    that is connected to the sea, m.
+
+    Read from the sea inwards, the shoreline is the last cell deeper than ``threshold`` before the first one that
+    is not: a film or puddle left up the beach by the run-down (a few 1e-4 m, draining slowly) is not the
+    shoreline. (Taking the most landward wet cell instead follows such a film and then drops all at once when
+    it dries: 0.039 d to −0.0006 d at t = 23.2 s for a 0.01 d wave on a 1:19.85 beach.)
+
+    Parameters
+    ----------
+    depth : array_like (T, n)
+        Water depth along the profile in each frame, m, ≥ 0.
+    bed : array_like (n,)
+        Bed elevation, m.
+    threshold : float
+        Depth above which a cell is water, m, > 0.
+    sea : {"right", "left"}
+        Which end of the profile is the sea.
+
+    Returns
+    -------
+    numpy.ndarray (T,)
+        m (the sea's edge cell's surface when the whole profile is water; NaN when its edge cell is dry).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> bed = np.linspace(0.5, -1.0, 7)           # land on the left, the sea on the right
+    >>> depth = np.maximum(-bed, 0.0)[None]
+    >>> depth[0, 1] = 0.01                          # a puddle up the beach
+    >>> float(shoreline_elevation(depth, bed)[0])
+    0.0
+    """
+    depth = np.asarray(check_array("depth", depth, ndim=2, lo=0.0), np.float64)
+    bed = np.asarray(check_array("bed", bed, ndim=1, shape_tail=depth.shape[1:]), np.float64)
+    check_scalar("threshold", threshold, lo=0.0, lo_open=True)
+    if sea not in ("right", "left"):
+        raise ValueError(f"sea must be 'right' or 'left', got {sea!r}")
+    if sea == "left":
+        depth, bed = depth[:, ::-1], bed[::-1]
+    wet = depth > threshold
+    out = np.full(depth.shape[0], np.nan)
+    for i, row in enumerate(wet):
+        if not row[-1]:
+            continue
+        dry = np.nonzero(~row)[0]
+        last = dry.max() + 1 if dry.size else 0  # the landward end of the water joined to the sea
+        out[i] = depth[i, last] + bed[last]
+    return out

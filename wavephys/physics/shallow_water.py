@@ -40,7 +40,7 @@ from scipy.special import j0, j1
 from wavephys.core.inputs import check_array, check_int, check_scalar
 
 __all__ = ["water_depth", "ritter", "stoker", "stoker_middle", "thacker", "thacker_period", "carrier_greenspan",
-           "carrier_greenspan_runup", "solitary_wave", "solitary_runup", "solitary_runup_linear", "solitary_breaking_limit"]
+           "carrier_greenspan_runup", "solitary_wave", "solitary_runup", "solitary_runup_linear", "solitary_rundown_linear", "solitary_breaking_limit"]
 
 
 def water_depth(bed, eta=None, depth=None):
@@ -467,6 +467,38 @@ def solitary_runup_linear(h: float, d: float, cot_beta: float, samples: int = 65
     >>> round(solitary_runup_linear(0.0185, 1.0, 19.85), 4)
     0.0883
     """
+    return float(_linear_shoreline(h, d, cot_beta, samples).max())
+
+
+def solitary_rundown_linear(h: float, d: float, cot_beta: float, samples: int = 65536) -> float:
+    """Maximum run-down (the shoreline's lowest elevation, ≤ 0) of a solitary wave on a plane beach joined to a
+    flat floor, by the exact linear theory, m: the minimum over time of the shoreline series whose maximum is
+    :func:`solitary_runup_linear` (Synolakis 1987). By Carrier & Greenspan's transform the shoreline's extreme
+    excursions of the nonlinear solution are the linear ones (where the shoreline stops, u = 0, the transform's
+    shift u²/2 vanishes), so a non-breaking wave's nonlinear run-down is this value too.
+
+    Parameters
+    ----------
+    h, d, cot_beta : float
+        Wave height and depth (m, > 0), beach slope as cot β (> 0).
+    samples : int
+        FFT length in time (≥ 1024).
+
+    Returns
+    -------
+    float
+        m, ≤ 0.
+
+    Examples
+    --------
+    >>> round(solitary_rundown_linear(0.01, 1.0, 19.85), 4) < 0
+    True
+    """
+    return float(_linear_shoreline(h, d, cot_beta, samples).min())
+
+
+def _linear_shoreline(h, d, cot_beta, samples):
+    """The shoreline's elevation over time by the exact linear theory (module doc of the run-up), m."""
     check_scalar("h", h, lo=0.0, lo_open=True)
     check_scalar("d", d, lo=0.0, lo_open=True)
     check_scalar("cot_beta", cot_beta, lo=0.0, lo_open=True)
@@ -481,4 +513,4 @@ def solitary_runup_linear(h: float, d: float, cot_beta: float, samples: int = 65
     w = 2 * np.pi * np.fft.fftfreq(n, span / n)
     z = 2 * np.abs(w) / c * x0
     transfer = 2.0 / (j0(z) + 1j * np.sign(w) * j1(z))
-    return float(np.fft.ifft(np.fft.fft(eta) * transfer).real.max())
+    return np.fft.ifft(np.fft.fft(eta) * transfer).real
