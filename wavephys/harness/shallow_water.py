@@ -282,7 +282,12 @@ def shoreline_elevation(depth, bed, *, threshold: float = 1e-4, sea: str = "righ
     Returns
     -------
     numpy.ndarray (T,)
-        m (the sea's edge cell's surface when the whole profile is water; NaN when its edge cell is dry).
+        m (the sea's edge cell's surface when the whole profile is water).
+
+    Raises
+    ------
+    ValueError
+        When the sea's edge cell holds no more than ``threshold`` in a frame.
 
     Examples
     --------
@@ -301,10 +306,12 @@ def shoreline_elevation(depth, bed, *, threshold: float = 1e-4, sea: str = "righ
     if sea == "left":
         depth, bed = depth[:, ::-1], bed[::-1]
     wet = depth > threshold
-    out = np.full(depth.shape[0], np.nan)
+    if not np.all(wet[:, -1]):
+        frame = int(np.nonzero(~wet[:, -1])[0][0])
+        raise ValueError(f"depth: the sea's edge cell ({sea} end) holds no more than threshold = {threshold:g} m in "
+                         f"frame {frame}: there is no water joined to the sea to read a shoreline from")
+    out = np.empty(depth.shape[0])
     for i, row in enumerate(wet):
-        if not row[-1]:
-            continue
         dry = np.nonzero(~row)[0]
         last = dry.max() + 1 if dry.size else 0  # the landward end of the water joined to the sea
         out[i] = depth[i, last] + bed[last]
