@@ -76,12 +76,12 @@ def test_the_linearized_scheme_with_open_ends_has_no_growing_mode(order):
                                          pytest.param("float32", 1, marks=pytest.mark.slow),
                                          pytest.param("float64", 2, marks=pytest.mark.slow)])
 def test_a_lake_at_rest_with_islands_stays_at_rest_with_open_sides_for_the_whole_run(dtype, order):
-    """2-D beds with islands breaking the surface, open on all four sides, 20 s (about 7,000 steps): with
+    """2-D beds with islands breaking the surface, open on all four sides, 12 s (about 3,000 steps): with
     zero-gradient sides these reached 1.23 m (order 1) and 0.73 m (order 2)."""
     eps = {"float64": 2.3e-16, "float32": 1.2e-7}[dtype]
     for seed in range(2):
-        r = lake_at_rest(24, seed=seed, order=order, dtype=dtype, sides="open", until=20.0)
-        assert r["islands"] > 0 and r["steps"] > 4000
+        r = lake_at_rest(24, seed=seed, order=order, dtype=dtype, sides="open", until=12.0)
+        assert r["islands"] > 0 and r["steps"] > 2500  # the zero-gradient growth (e^(3t)) shows within 10 s
         assert r["eta"] <= 8 * eps, r
         assert r["momentum"] <= 200 * eps * math.sqrt(G), r
         assert r["dry_wetted"] == 0
