@@ -145,6 +145,23 @@ def test_the_mild_slope_reference_conserves_energy_flux_and_is_the_shoaling_law_
         assert t == pytest.approx(shoaling_coefficient(omega, 1.0, 0.25), rel=1e-3)  # 20 wavelengths: WKB
 
 
+@pytest.mark.parametrize("method", ["levels", "shallow", "symmetric"])
+def test_the_one_step_functions_are_run_depth_one_step_at_a_time(method):
+    """step_levels/step_shallow/step_symmetric called by hand agree with run_depth (the same program)."""
+    model = Model(Grid(16, 2.0), Water(sigma=0.0), dt=0.02, dtype="float64")
+    x = (np.arange(16) + 0.5) / 16
+    depth = np.tile(0.1 + 0.4 * x, (16, 1))  # a slope, wet everywhere (the levels method needs it)
+    floor = Floor(depth)
+    eta = 1e-3 * np.exp(-((x - 0.5) ** 2)[None, :] / 0.02 - ((x - 0.5) ** 2)[:, None] / 0.02)
+    step = {"levels": step_levels, "shallow": step_shallow, "symmetric": step_symmetric}[method]
+    by_hand = depth_state(model, eta)
+    for _ in range(3):
+        by_hand, _ = step(model, floor, by_hand)
+    together, _ = run_depth(model, floor, depth_state(model, eta), 3, method)
+    assert float(np.abs(np.asarray(by_hand.fields) - np.asarray(together.fields)).max()) < 1e-15
+    assert float(np.abs(np.asarray(together.fields)[0] - eta).max()) > 1e-6  # it moved
+
+
 def test_depth_steppers_refuse_bad_input_by_name():
     model = Model(Grid(16, 1.0), Water(), dt=0.05)
     state = depth_state(model, np.zeros((16, 16)))

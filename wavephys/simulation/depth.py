@@ -359,7 +359,7 @@ def _shallow_program(model: Model, hx, hy, inv_area, mask, fields, substeps):
     return _shallow_steps(model.grid.dx, model.water.g, model.dt, hx, hy, mask, fields, substeps, inv_area)
 
 
-_shallow_jit = jax.jit(_shallow_program, static_argnums=(0, 5))
+_shallow_jit = jax.jit(_shallow_program, static_argnums=(0, 6))
 
 
 def step_shallow(model: Model, floor: Floor, state: DepthState):
