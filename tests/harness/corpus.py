@@ -32,6 +32,30 @@ def minus_k(a):
     return np.roll(np.flip(a, (0, 1)), 1, (0, 1))
 
 
+def strip_h0(ny, nx, dx, rng, heading):
+    """A one-way wind sea on an (n_y, n_x) grid (a strip when n_y != n_x): Phillips' spectrum for a 2 m/s wind
+    along ``heading`` (radians), rms height about 1 cm; h0 per mode, numpy's FFT order."""
+    kx = 2 * np.pi * np.fft.fftfreq(nx, dx)[None, :]
+    ky = 2 * np.pi * np.fft.fftfreq(ny, dx)[:, None]
+    ks = np.maximum(np.hypot(kx, ky), 1e-9)
+    along = (kx * math.cos(heading) + ky * math.sin(heading)) / ks
+    p = np.exp(-1 / (ks * 4 / G) ** 2) / ks ** 4 * np.maximum(along, 0) ** 2 * np.exp(-(ks * dx) ** 2)
+    p[0, 0] = 0.0
+    h = (rng.standard_normal((ny, nx)) + 1j * rng.standard_normal((ny, nx))) * np.sqrt(p / 2)
+    return h * 0.01 / np.sqrt(np.sum(np.abs(h) ** 2))
+
+
+def strip_frames(h0, dx, dt, omega_of_k, nt=128, standing=False):
+    """η(t) = Re ifft(h0 e^{−iωt} + conj(h0(−k)) e^{iωt}) on h0's (n_y, n_x) grid, ω = ``omega_of_k(|k|)``
+    (``standing``: both halves turning alike, the classic bug)."""
+    ny, nx = h0.shape
+    k = np.hypot(2 * np.pi * np.fft.fftfreq(nx, dx)[None, :], 2 * np.pi * np.fft.fftfreq(ny, dx)[:, None])
+    w, h0m = omega_of_k(k), np.conj(minus_k(h0))
+    t = np.arange(nt)[:, None, None] * dt
+    spec = (h0 + h0m) * np.cos(w * t) if standing else h0 * np.exp(-1j * w * t) + h0m * np.exp(1j * w * t)
+    return np.real(np.fft.ifft2(spec, axes=(1, 2))) * nx * ny
+
+
 def phillips_h0(n, dx, wind=(1.0, 0.0), speed=2.0, seed=0, one_way=True, normalize=True, cutoff=None):
     """Tessendorf's h0(k) = (xi_r + i xi_i) sqrt(P(k)/2), Phillips spectrum, small-wave cutoff.
 

@@ -161,9 +161,31 @@ def test_saved_cube_record_reads_back(tmp_path):
     np.testing.assert_array_equal(back.eta, cube)
 
 
-def test_rectangular_frames_are_refused(sea):
-    with pytest.raises(ValueError, match="square"):
-        Record(sea[:, :, :16], DX, DT)
+def test_a_strip_of_exr_frames_is_checked_by_the_command(tmp_path, capsys):
+    """An engine's 64 x 32 strip (another writer's EXR frames, no metadata): the command reads it with --dx and
+    --dt and gets a square's verdicts; cropped from a wider sea it has a seam, and says so."""
+    import math
+
+    import OpenEXR
+
+    from corpus import strip_frames, strip_h0
+
+    sea = strip_frames(strip_h0(32, 64, DX, np.random.default_rng(2), 0.4), DX, DT, lambda k: np.sqrt(9.81 * k), 64)
+    wide = strip_frames(strip_h0(32, 96, DX, np.random.default_rng(2), 0.4), DX, DT, lambda k: np.sqrt(9.81 * k), 64)
+    for name, frames in (("strip", sea), ("cropped", wide[:, :, :64])):
+        (tmp_path / name).mkdir()
+        for i, f in enumerate(frames):
+            with OpenEXR.File({"compression": OpenEXR.ZIP_COMPRESSION},
+                              {"Y": np.ascontiguousarray(np.flipud(f).astype(np.float32))}) as out:
+                out.write(str(tmp_path / name / f"h{i}.exr"))
+    direction = f"{math.degrees(0.4):.1f}"
+    assert main(["check", str(tmp_path / "strip"), "--dx", "0.25", "--dt", "1/15", "--sigma", "0", "--sea",
+                 "--direction", direction]) == 0
+    out = capsys.readouterr().out
+    assert "64 frames of 64 x 32, dx = 0.25 m" in out and "FAILED" not in out and "ok     dispersion" in out
+    assert main(["check", str(tmp_path / "cropped"), "--dx", "0.25", "--dt", "1/15", "--sigma", "0",
+                 "--only", "tiling"]) == 1
+    assert "seam" in capsys.readouterr().out
 
 
 def test_options_are_checked_before_the_frames_are_read(tmp_path, capsys):

@@ -3,7 +3,7 @@
 Installed with wavephys; any test suite can then ask for these fixtures::
 
     def test_my_waves(wavephys_check):
-        eta = run_my_simulator(...)              # (n_t, n, n) heights, m
+        eta = run_my_simulator(...)              # (n_t, n_y, n_x) heights, m
         wavephys_check.dispersion(eta, dx, dt, Water(sigma=0.0), rtol=0.01,
                                   k_range=(1.0, 20.0))
 
@@ -108,7 +108,7 @@ class Checker:
         return assert_check(bound(quantity, measured, limit, unit=unit))
 
     def dispersion(self, eta, dx, dt, water, *, rtol=0.005, k_range=(0.0, float("inf")), min_samples=3):
-        """Assert the measured ω(k) of ``eta`` (n_t, n, n) matches ``water``'s theory.
+        """Assert the measured ω(k) of ``eta`` (n_t, n_y, n_x) matches ``water``'s theory.
 
         The largest relative error over the shells with k in ``k_range`` (rad/m) must be
         <= ``rtol``, and at least ``min_samples`` shells must be measured there.
@@ -116,7 +116,7 @@ class Checker:
         Parameters
         ----------
         eta : array_like
-            Heights, m, shape (n_t, n, n): a time series of frames ``dt`` apart on a square grid.
+            Heights, m, shape (n_t, n_y, n_x): frames ``dt`` apart on square cells (n_y ≠ n_x: a strip).
         dx : float
             Grid spacing, m, > 0.
         dt : float
@@ -156,7 +156,7 @@ class Checker:
                                              min_samples=min_samples))
 
     def energy_conserved(self, eta, eta_dot, dx, water, *, rtol=1e-3):
-        """Assert the total energy of a time series (n_t, n, n) stays within ``rtol``.
+        """Assert the total energy of a time series (n_t, n_y, n_x) stays within ``rtol``.
 
         The drift is max |E(t)/E(0) − 1| of the total energy per unit area measured by
         :func:`wavephys.harness.measure_energy` at each frame.
@@ -164,7 +164,7 @@ class Checker:
         Parameters
         ----------
         eta : array_like
-            Heights, m, shape (n_t, n, n).
+            Heights, m, shape (n_t, n_y, n_x).
         eta_dot : array_like
             Vertical velocities ∂η/∂t, m/s, the shape of ``eta``.
         dx : float

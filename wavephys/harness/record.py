@@ -189,9 +189,6 @@ class Record:
             raise ValueError(f"eta must have at least 8 frames on its time axis, got shape {eta.shape}")
         if min(eta.shape[1:]) < 4:
             raise ValueError(f"eta must be at least 4 x 4 per frame, got shape {eta.shape}")
-        if eta.shape[1] != eta.shape[2]:
-            raise ValueError(f"eta: the frames must be square (n_y = n_x, one dx), got {eta.shape[1]} x "
-                             f"{eta.shape[2]} (shape {eta.shape}); crop or pad them to a square")
         object.__setattr__(self, "eta", eta)
         object.__setattr__(self, "dx", check_scalar("dx", self.dx, lo=0.0, lo_open=True))
         object.__setattr__(self, "dt", check_scalar("dt", self.dt, lo=0.0, lo_open=True))

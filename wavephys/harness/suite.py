@@ -53,6 +53,8 @@ class RecordCheck:
         A check of linear waves on a periodic sea: not run on shallow water over a bed.
     also : callable, optional
         ``also(claims)`` → "" when it can run, else the further claim it needs, in words.
+    square : bool
+        It measures on square frames only (n_y = n_x): not run on a strip, with why.
     """
 
     name: str
@@ -65,6 +67,7 @@ class RecordCheck:
     instead: str = ""
     linear: bool = False
     also: Optional[Callable] = None
+    square: bool = False
 
 
 def _dispersion(record, water, c):
@@ -213,9 +216,9 @@ RECORD_CHECKS = {c.name: c for c in (
     RecordCheck("ring_arrival", "share of eta^2 inside the calm disc r < c_g,min (t - t0) behind the first ring",
                 ("source",), _ring),
     RecordCheck("wake_edge", "outer edge of a moving source's wake in the first frame against the cusp line, degrees",
-                ("wake",), _wake("edge"), min_frames=1),
+                ("wake",), _wake("edge"), min_frames=1, square=True),
     RecordCheck("wake_max", "angle of maximum amplitude on arcs behind the source (Darmon et al.; its size given), degrees",
-                ("wake",), _wake("max"), min_frames=1, also=_wake_size),
+                ("wake",), _wake("max"), min_frames=1, also=_wake_size, square=True),
     RecordCheck("normals", "the normal map against the slopes of the first frame's heights (largest angle, degrees)",
                 ("normals",), _normals, min_frames=1),
     RecordCheck("caustics_flux", "mean of a caustics map against flat water's irradiance (light conserved)",
@@ -369,6 +372,9 @@ def _why_not(row, claims, record) -> str:
                                                            else "")
     if row.linear and claims.given("bed"):
         return "the record is shallow water over a bed: a check of linear waves on a periodic sea"
+    if row.square and record is not None and record.shape[1] != record.shape[2]:
+        return (f"measures on square frames (n_y = n_x), the record's are {record.shape[1]} x {record.shape[2]}: "
+                f"export a square around the source")
     if record is not None and record.shape[0] < row.min_frames:
         return (f"needs at least {row.min_frames} frames (the record has {record.shape[0]}): record "
                 f"{row.min_frames - record.shape[0]} more")
