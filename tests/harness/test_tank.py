@@ -159,3 +159,36 @@ def test_tank_checks_refuse_bad_input_by_name():
         check_record(rec, water, tank=True, only=["dispersion"])
     with pytest.raises(TypeError, match="tank"):
         check_record(rec, water, tank="yes")
+
+
+def test_a_shallow_water_tank_takes_its_depth_from_a_flat_bed_and_leaves_an_uneven_one_out():
+    """Frames of the surface's elevation over a claimed bed (how shallow-water tanks export): over a flat bed the
+    seiche theory's depth is the water's over it (here 5 cm, no depth claimed); over an uneven bed the flat
+    floor's modes are not the tank's, and the seiche and wall rows say so instead of failing a correct simulator;
+    a still lake gets no wave rows at all, and its quantization row (nothing varies) is ok. The simulator: the
+    linear shallow-water depth stepper (energy-conserving) in a 2 x 1.25 m tank, its first mode (kh 0.08)."""
+    import jax
+
+    from wavephys import Grid
+    from wavephys.core.spectral import _tank_block
+    from wavephys.simulation import Model
+    from wavephys.simulation.depth import Floor, depth_state
+    from wavephys.steppers import DepthStepper
+
+    dx, lx, ly, h = 0.0625, 2.0, 1.25, 0.05
+    with jax.enable_x64(True):
+        model = Model(Grid(32, lx), Water(sigma=0.0, depth=h), dt=0.08, walls="all", tank=(lx, ly), dtype="float64")
+        x = np.asarray(model.grid.mesh()[0])
+        run = DepthStepper(model, Floor(np.full((32, 32), h)), "shallow").run(
+            depth_state(model, 2e-3 * np.cos(math.pi * (x + lx / 2) / lx)), until=20.0, every=0.08)
+    rows, cols = _tank_block(32, model.tank_cells)
+    frames, bed = run.frames[:, rows, cols], -h * np.ones((rows.stop - rows.start, cols.stop - cols.start))
+    report = check_record(Record(frames, dx, 0.08), Water(sigma=0.0), tank=True, bed=bed)
+    assert report.ok and {"seiche", "wall_reflection", "mass"} <= set(report.rows), report.report()
+    tilted = bed + 0.01 * (np.arange(bed.shape[1]) / bed.shape[1] - 0.5)[None, :]
+    report = check_record(Record(frames, dx, 0.08), Water(sigma=0.0), tank=True, bed=tilted)
+    assert "flat floor's" in report.skipped["seiche"] and "flat floor's" in report.skipped["wall_reflection"]
+    still = check_record(Record(np.zeros((16,) + bed.shape), dx, 0.08), Water(sigma=0.0), tank=True, bed=bed,
+                         at_rest=True)
+    assert still.ok and set(still.rows) == {"mass", "lake_at_rest"}, still.report()
+    assert check_record(Record(np.zeros((16, 8, 8)), dx, 0.08), only=["quantization"]).ok

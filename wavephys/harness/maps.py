@@ -410,6 +410,9 @@ def quantization_check(eta, *, max_noise: float = 0.01):
     sample = f.ravel()[:: max(1, f.size // 1_000_000)]
     values = np.unique(sample)
     lattice, step, storage = "no coarse lattice", 0.0, "storage"
+    if values.size == 1:  # a still surface: no lattice can be seen, and nothing is lost to one
+        return bound("quantization noise / rms height", 0.0, max_noise,
+                     note=f"the heights do not vary (all {float(values[0]):.6g} m): nothing to quantize")
     if np.array_equal(sample.astype(np.float16).astype(np.float64), sample):
         storage = "float16 storage"
         typical = np.float16(min(np.median(np.abs(sample)) + 1e-300, 65504.0))

@@ -55,6 +55,12 @@ class RecordCheck:
         ``also(claims)`` → "" when it can run, else the further claim it needs, in words.
     square : bool
         It measures on square frames only (n_y = n_x): not run on a strip, with why.
+    flat : bool
+        Its theory is a flat floor's (a tank's cosine modes): not run over an uneven ``bed``; over a flat one
+        the water's depth is the bed's.
+    still : bool
+        It measures a lake at rest: the only kind of row run when the record claims ``at_rest`` (the others
+        measure waves, and a lake at rest has none).
     """
 
     name: str
@@ -68,6 +74,8 @@ class RecordCheck:
     linear: bool = False
     also: Optional[Callable] = None
     square: bool = False
+    flat: bool = False
+    still: bool = False
 
 
 def _dispersion(record, water, c):
@@ -141,16 +149,39 @@ def _caustics(record, water, c):
     return caustics_flux_check(c.caustics)
 
 
+def _flat_water(record, water, c):
+    """``water``, over a flat ``bed`` claim (frames: the surface's elevation) as deep as the mean surface is
+    above that bed."""
+    from dataclasses import replace
+
+    import numpy as np
+
+    if not c.given("bed"):
+        return water
+    return replace(water, depth=float(np.mean(record.eta[0]) - np.mean(np.asarray(c.bed, np.float64))))
+
+
+def _uneven(c) -> str:
+    """How uneven the claimed bed is, in words ("" when there is no bed or it is flat)."""
+    import numpy as np
+
+    if not c.given("bed"):
+        return ""
+    bed = np.asarray(c.bed, np.float64)
+    lo, hi = float(bed.min()), float(bed.max())
+    return "" if hi - lo <= 1e-9 * max(abs(lo), abs(hi), 1e-300) else f"{lo:.4g} .. {hi:.4g} m"
+
+
 def _seiche(record, water, c):
     from wavephys.harness.tank import seiche_check
 
-    return seiche_check(record, water, rtol=c.rtol / 2)
+    return seiche_check(record, _flat_water(record, water, c), rtol=c.rtol / 2)
 
 
 def _reflection(record, water, c):
     from wavephys.harness.tank import wall_reflection_check
 
-    return wall_reflection_check(record, water, tolerance=c.energy_rtol)
+    return wall_reflection_check(record, _flat_water(record, water, c), tolerance=c.energy_rtol)
 
 
 def _shoaling(record, water, c):
@@ -226,15 +257,15 @@ RECORD_CHECKS = {c.name: c for c in (
     RecordCheck("resolution", "variance per octave of |k| against the same sea exported at another resolution",
                 ("other",), _resolution, min_frames=1),
     RecordCheck("seiche", "frequencies of a tank's strongest cosine modes against omega(k_mn) (walls at the edges)",
-                ("tank",), _seiche, min_frames=16),
+                ("tank",), _seiche, min_frames=16, flat=True),
     RecordCheck("shoaling", "a wave train's amplitude across a floor against sqrt(c_g,ref/c_g(h)) (Green's law)",
                 ("floor",), _shoaling),
     RecordCheck("wall_reflection", "amplitude kept per reflection at a tank's walls, from its modes' decay",
-                ("tank",), _reflection, min_frames=16),
+                ("tank",), _reflection, min_frames=16, flat=True),
     RecordCheck("mass", "the water's volume over a shallow-water record's frames (heights over a bed, closed domain)",
-                ("bed",), _mass, min_frames=2),
+                ("bed",), _mass, min_frames=2, still=True),
     RecordCheck("lake_at_rest", "largest movement of a lake at rest's surface over an uneven bed, m",
-                ("bed", "at_rest"), _lake, min_frames=2),
+                ("bed", "at_rest"), _lake, min_frames=2, still=True),
     RecordCheck("dam_break", "speed of a dam break's front (Ritter) or bore (Stoker) against the exact one, m/s",
                 ("bed", "dam"), _dam, min_frames=3),
 )}
@@ -375,6 +406,11 @@ def _why_not(row, claims, record) -> str:
     if row.square and record is not None and record.shape[1] != record.shape[2]:
         return (f"measures on square frames (n_y = n_x), the record's are {record.shape[1]} x {record.shape[2]}: "
                 f"export a square around the source")
+    if claims.at_rest and not row.still:
+        return "the record is a lake at rest (at_rest): it has no waves to measure"
+    if row.flat and _uneven(claims):
+        return (f"its theory is a flat floor's (a tank's cosine modes), and the bed is uneven ({_uneven(claims)}): "
+                f"check the mass, or a lake at rest")
     if record is not None and record.shape[0] < row.min_frames:
         return (f"needs at least {row.min_frames} frames (the record has {record.shape[0]}): record "
                 f"{row.min_frames - record.shape[0]} more")

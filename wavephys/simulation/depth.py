@@ -132,9 +132,10 @@ def depth_state(model: Model, eta, phi=None, time: float = 0.0) -> DepthState:
     ----------
     model : Model
     eta : array_like (n, n)
-        Height, m.
+        Height, m. In a tank smaller than the grid (``Model(tank=...)``) only its centred block is water: the
+        land around it is set to 0, as the spectral model's :func:`~wavephys.simulation.add_height` does.
     phi : array_like (n, n), optional
-        Surface potential, m²/s (default 0).
+        Surface potential, m²/s (default 0); on land, 0 likewise.
     time : float
         s.
 
@@ -148,8 +149,14 @@ def depth_state(model: Model, eta, phi=None, time: float = 0.0) -> DepthState:
     phi = np.zeros((n, n)) if phi is None else phi
     check_array("phi", phi, ndim=2, shape_tail=(n, n))
     check_scalar("time", time)
-    return DepthState(jnp.stack([jnp.asarray(eta, model.dtype), jnp.asarray(phi, model.dtype)]),
-                      jnp.asarray(time, model.dtype))
+    fields = jnp.stack([jnp.asarray(eta, model.dtype), jnp.asarray(phi, model.dtype)])
+    if model.tank_cells is not None:
+        from wavephys.core.spectral import _tank_block
+
+        water = np.zeros((n, n), bool)
+        water[_tank_block(n, model.tank_cells)] = True
+        fields = jnp.where(jnp.asarray(water), fields, 0)
+    return DepthState(fields, jnp.asarray(time, model.dtype))
 
 
 # -- levels: the spectral step at a few depths, blended -----------------------------------------
@@ -230,7 +237,7 @@ def step_levels(model: Model, floor: Floor, state: DepthState):
     S. Jeschke & C. Wojtan (2023). Generalizing shallow water simulations with dispersive surface
     waves. *ACM TOG* 42(4), 83 (depth levels blended per place).
     """
-    _check(model, floor, state)
+    floor = _check(model, floor, state)
     if not float(floor.depth.min()) > 0:
         raise ValueError("floor: the levels method needs depth > 0 everywhere (dry land: method='shallow' "
                          "or 'symmetric')")
@@ -386,8 +393,8 @@ def step_shallow(model: Model, floor: Floor, state: DepthState):
     ----------
     H. Lamb (1932). *Hydrodynamics*, §§169, 186 (long waves over a varying depth).
     """
-    _check(model, floor, state)
-    hx, hy, inv = (a.astype(model.dtype) for a in _shore_geometry(floor.depth, model.wall_axes))
+    floor = _check(model, floor, state)
+    hx, hy, inv = _geometry(model, floor)
     new, surf = _shallow_jit(model, hx, hy, inv, operators(model).mask, state.fields, shallow_substeps(model, floor))
     return DepthState(new.astype(model.dtype), state.time + model.dt), surf
 
@@ -559,7 +566,7 @@ def step_symmetric(model: Model, floor: Floor, state: DepthState):
     waves of finite amplitude on the surface of a deep fluid. *J. Appl. Mech. Tech. Phys.* 9, 190–194
     (water waves as a Hamiltonian system in η and the surface potential).
     """
-    _check(model, floor, state)
+    floor = _check(model, floor, state)
     if _is_one_level(floor):
         return step_levels(model, floor, state)
     big_k, restoring, roots, substeps = _symmetric_tables(model, floor)
@@ -567,20 +574,49 @@ def step_symmetric(model: Model, floor: Floor, state: DepthState):
     return DepthState(new.astype(model.dtype), state.time + model.dt), surf
 
 
-def _check(model, floor, state):
+def _check(model, floor, state) -> "Floor":
+    """Refuse bad input by name; the floor the steppers use (:func:`_tank_floor`)."""
     check_instance("model", model, Model, "wavephys.simulation.Model")
     check_instance("floor", floor, Floor, "wavephys.simulation.depth.Floor")
     check_instance("state", state, DepthState, "wavephys.simulation.depth.DepthState")
     floor.check(model)
     if model.mesh is not None:
         raise ValueError("a varying floor with a mesh (sharded model) is not supported yet")
-    if model.tank is not None:
-        raise ValueError(f"a varying floor in a tank smaller than the grid (tank={model.tank}) is not supported: "
-                         f"give the land as depth 0 in the floor of a square model (method 'shallow' or "
-                         f"'symmetric' take dry land)")
     n = model.grid.n
     if tuple(np.shape(state.fields)) != (2, n, n):
         raise ValueError(f"state.fields must have shape (2, {n}, {n}), got {np.shape(state.fields)}")
+    return _tank_floor(model, floor)
+
+
+def _tank_floor(model: Model, floor: Floor) -> Floor:
+    """The floor as the steppers read it. In a tank smaller than the grid (``Model(tank=...)``) only the tank's
+    centred block of cells is water; the land around it is given the depths of the tank's edge (any depth
+    would do: the walls hold the waves in, and the land's fields stay 0), so that the depth levels, the
+    wet test and the sub-steps are the tank's own."""
+    if model.tank_cells is None:
+        return floor
+    from wavephys.core.spectral import _tank_block
+
+    n = model.grid.n
+    rows, cols = _tank_block(n, model.tank_cells)
+    pad = ((rows.start, n - rows.stop), (cols.start, n - cols.stop))
+    return Floor(np.pad(floor.depth[rows, cols], pad, mode="edge"), floor.levels)
+
+
+def _geometry(model: Model, floor: Floor):
+    """The ``shallow`` method's face depths along x and y and inverse wet areas, in the model's dtype: walls at
+    the grid's walled edges, or around a tank smaller than the grid (faces of depth 0 on its edges and
+    outside it)."""
+    if model.tank_cells is None:
+        hx, hy, inv = _shore_geometry(floor.depth, model.wall_axes)
+    else:
+        from wavephys.core.spectral import _tank_block
+
+        block = _tank_block(model.grid.n, model.tank_cells)
+        hx, hy, inv = (np.zeros(floor.depth.shape) for _ in range(3))
+        for whole, part in zip((hx, hy, inv), _shore_geometry(floor.depth[block], (True, True))):
+            whole[block] = part
+    return tuple(jnp.asarray(a, model.dtype) for a in (hx, hy, inv))
 
 
 DEPTH_METHODS = Methods("varying depth", levels=step_levels, shallow=step_shallow, symmetric=step_symmetric)
@@ -606,7 +642,7 @@ def run_depth(model: Model, floor: Floor, state: DepthState, steps: int, method:
     """
     steps = check_int("steps", steps, lo=1)
     DEPTH_METHODS.check(method, "method")
-    _check(model, floor, state)
+    floor = _check(model, floor, state)
     mask = operators(model).mask
     if method == "symmetric" and _is_one_level(floor):
         method = "levels"  # one depth, no dry land: the exact spectral step
@@ -620,7 +656,7 @@ def run_depth(model: Model, floor: Floor, state: DepthState, steps: int, method:
         big_k, restoring, roots, substeps = _symmetric_tables(model, floor)
         fields, surfaces = _scan(model, "symmetric", (big_k, restoring, roots, mask), state.fields, steps, substeps)
     else:
-        hx, hy, inv = (a.astype(model.dtype) for a in _shore_geometry(floor.depth, model.wall_axes))
+        hx, hy, inv = _geometry(model, floor)
         fields, surfaces = _scan(model, "shallow", (hx, hy, inv, mask), state.fields, steps,
                                  shallow_substeps(model, floor))
     return DepthState(fields.astype(model.dtype), state.time + steps * model.dt), surfaces

@@ -102,7 +102,8 @@ class DepthStepper(Stepper):
         from wavephys.simulation import depth as d
         from wavephys.simulation.model import operators
 
-        model, floor, method = self.model, self.floor, self.method
+        model, method = self.model, self.method
+        floor = d._tank_floor(model, self.floor)
         mask = operators(model).mask
         if method == "symmetric" and d._is_one_level(floor):
             method = "levels"
@@ -115,7 +116,7 @@ class DepthStepper(Stepper):
         if method == "symmetric":
             big_k, restoring, roots, substeps = d._symmetric_tables(model, floor)
             return ("symmetric", substeps), (model, (big_k, restoring, roots, mask))
-        hx, hy, inv = (a.astype(model.dtype) for a in d._shore_geometry(floor.depth, model.wall_axes))
+        hx, hy, inv = d._geometry(model, floor)
         return ("shallow", d.shallow_substeps(model, floor)), (model, (hx, hy, inv, mask))
 
     def _checked_state(self, state):
