@@ -286,3 +286,42 @@ def test_symmetric_leapfrog_has_no_phase_error_at_a_level():
         want = np.asarray(surface(model, today).eta)
         inner = (slice(16, 48), slice(16, 48))
         assert np.abs(np.asarray(state.eta)[inner] - want[inner]).max() <= 1e-3 * np.abs(want).max()
+
+
+def test_a_profile_between_walls_rings_at_its_modes_and_sloshes_over_a_slope_at_second_order():
+    """run_profile(ends="walls"): a wall half a sample past each end. Flat floors (0.1 and 1 m, modes 1, 3, 8 of
+    a 4 m tank): the levels and symmetric methods return each cosine mode after one period to 1e-13. Over a
+    floor sloping 3 → 7 cm in 2 m, against the exact long-wave sloshing mode (tests/simulation/test_steppers.py):
+    shallow after one period within 6.4e-5 / 1.0e-5 / 1.8e-6 of the amplitude at 32 / 64 / 128 cells (second
+    order), levels 2.5e-3 (its blend), and the symmetric blend 0.57 / 0.64 / 0.71, worse as the grid refines
+    (its √w gradient, docs/physics.md §1.12), its measured failure. Water is kept to rounding between walls."""
+    from test_steppers import LX as length, _sloshing_reference, _slope
+
+    water = Water(sigma=0.0)
+    n, side = 64, 4.0
+    x = (np.arange(n) + 0.5) * side / n
+    for depth in (0.1, 1.0):
+        for m in (1, 3, 8):
+            k = m * math.pi / side
+            period = 2 * math.pi / math.sqrt(G * k * math.tanh(k * depth))
+            eta = 1e-3 * np.cos(k * x)
+            for method in ("levels", "symmetric"):
+                end, _ = run_profile(np.full(n, depth), side / n, water, period / 40, eta, np.zeros(n), 40, method,
+                                     ends="walls")
+                assert np.abs(np.asarray(end) - eta).max() < 1e-13, (depth, m, method)
+    w_ref, xs, shape = _sloshing_reference()
+    errors = {}
+    for cells in (32, 64, 128):
+        dx = length / cells
+        x = (np.arange(cells) + 0.5) * dx
+        eta = 1e-3 * np.interp(x, xs, shape)
+        for method in ("shallow", "levels", "symmetric") if cells == 64 else ("shallow",):
+            end, _ = run_profile(_slope(x), dx, water, 2 * math.pi / w_ref / 40, eta, np.zeros(cells), 40, method,
+                                 ends="walls")
+            errors[cells, method] = np.abs(np.asarray(end) - eta).max() / 1e-3
+            if method == "shallow":
+                assert abs(float(np.sum(end) - eta.sum()) * dx) < 1e-15
+    assert errors[32, "shallow"] < 1e-4 and errors[128, "shallow"] < errors[32, "shallow"] / 16, errors
+    assert errors[64, "levels"] < 4e-3 and errors[64, "symmetric"] > 0.3, errors
+    with pytest.raises(ValueError, match="ends"):
+        run_profile(np.ones(8), 0.1, water, 0.01, np.zeros(8), np.zeros(8), 1, ends="open")

@@ -28,7 +28,7 @@ import jax
 import jax.numpy as jnp
 import numpy as np
 
-from wavephys.core.inputs import check_array, check_instance, check_int, check_scalar
+from wavephys.core.inputs import check_array, check_choice, check_instance, check_int, check_scalar
 from wavephys.core.water import Water
 from wavephys.core.methods import Methods
 from wavephys.core.pytree import register
@@ -677,10 +677,15 @@ def _scan(model, kind, args, fields, steps, substeps):
     return jax.lax.scan(body, fields, None, length=steps)
 
 
+PROFILE_ENDS = ("periodic", "walls")
+""":func:`run_profile`'s ends: the profile wraps, or reflecting walls half a sample past its first and last
+samples (the texel convention of a walled tank)."""
+
+
 def run_profile(depth, dx: float, water: Water, dt: float, eta, phi, steps: int, method: str = "symmetric",
-                levels: int = 4):
-    """Plane waves along x over a depth profile h(x), periodic: the steppers of :data:`DEPTH_METHODS` on one
-    row (what a square grid gives for waves uniform in y, at 1/n of the cost).
+                levels: int = 4, ends: str = "periodic"):
+    """Plane waves along x over a depth profile h(x): the steppers of :data:`DEPTH_METHODS` on one row (what a
+    square grid gives for waves uniform in y, at 1/n of the cost), periodic or between walls.
 
     Parameters
     ----------
@@ -699,6 +704,10 @@ def run_profile(depth, dx: float, water: Water, dt: float, eta, phi, steps: int,
     method : {"levels", "shallow", "symmetric"}
     levels : int
         Depth levels, 1 … 16 (as :class:`Floor`).
+    ends : {"periodic", "walls"}
+        ``"periodic"`` (default): the profile wraps (a ramp up must come back down); ``"walls"``: a reflecting
+        wall half a sample past each end (cosine modes cos(mπx/L), L = n·dx), so a beach or a ramp can end
+        where it ends.
 
     Returns
     -------
@@ -715,12 +724,22 @@ def run_profile(depth, dx: float, water: Water, dt: float, eta, phi, steps: int,
     steps = check_int("steps", steps, lo=1)
     DEPTH_METHODS.check(method, "method")
     levels = check_int("levels", levels, lo=1, hi=16)
+    check_choice("ends", ends, PROFILE_ENDS)
+    walled = ends == "walls"
     h = np.broadcast_to(np.asarray(depth, np.float64), (2, n))
     dtype = jnp.float64 if jax.config.jax_enable_x64 else jnp.float32
-    forward = jnp.fft.rfft2
-    inverse = lambda spec: jnp.fft.irfft2(spec, s=(2, n))
-    ky = 2 * np.pi * np.fft.fftfreq(2, dx)[:, None]
-    kx = 2 * np.pi * np.fft.rfftfreq(n, dx)[None, :]
+    if walled:  # cosine modes along x, the two rows (uniform in y) by rfft
+        from wavephys.core.spectral import cosine_transform, inverse_cosine_transform
+
+        forward = lambda f: jnp.fft.rfft(cosine_transform(f, -1), axis=-2)
+        inverse = lambda spec: inverse_cosine_transform(jnp.fft.irfft(spec, n=2, axis=-2), -1)
+        kx = np.pi * np.arange(n)[None, :] / (n * dx)
+        ky = 2 * np.pi * np.fft.rfftfreq(2, dx)[:, None]
+    else:
+        forward = jnp.fft.rfft2
+        inverse = lambda spec: jnp.fft.irfft2(spec, s=(2, n))
+        ky = 2 * np.pi * np.fft.fftfreq(2, dx)[:, None]
+        kx = 2 * np.pi * np.fft.rfftfreq(n, dx)[None, :]
     k = np.sqrt(kx * kx + ky * ky)
     fields = jnp.stack([jnp.broadcast_to(jnp.asarray(eta, dtype), (2, n)),
                         jnp.broadcast_to(jnp.asarray(phi, dtype), (2, n))])
@@ -740,7 +759,7 @@ def run_profile(depth, dx: float, water: Water, dt: float, eta, phi, steps: int,
                                              None if args[1] is None else jnp.asarray(args[1], dtype), water.g, dt,
                                              None, f, sub)[0]
         else:
-            hx, _, inv = _shore_geometry(h, (False, False))
+            hx, _, inv = _shore_geometry(h, (walled, False))
             hy = np.zeros((2, n))
             c = math.sqrt(float(water.g) * float(h.max()))
             sub = _substeps(c * dt / (0.5 * dx), dt, "shallow")
