@@ -355,6 +355,8 @@ OVERRIDES = {
     "wavephys.physics.shallow_water.carrier_greenspan_runup": {k: v for k, v in _CG.items() if k not in ("x", "t")},
     "wavephys.physics.shallow_water.solitary_wave": {"x": lambda: np.linspace(0.0, 20.0, 5), "h": lambda: 0.01,
                                                      "d": lambda: 1.0, "x0": lambda: 10.0},
+    "wavephys.physics.shallow_water.solitary_potential": {"x": lambda: np.linspace(0.0, 20.0, 5),
+                                                          "h": lambda: 0.01, "d": lambda: 1.0, "x0": lambda: 10.0},
     "wavephys.physics.shallow_water.solitary_breaking_limit": {"cot_beta": lambda: 19.85},
     "wavephys.physics.shallow_water.solitary_runup": _SOLITARY,
     "wavephys.physics.shallow_water.solitary_runup_linear": {**_SOLITARY, "samples": lambda: 2048},

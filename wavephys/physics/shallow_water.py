@@ -40,7 +40,7 @@ from scipy.special import j0, j1
 from wavephys.core.inputs import check_array, check_int, check_scalar
 
 __all__ = ["water_depth", "ritter", "stoker", "stoker_middle", "thacker", "thacker_period", "carrier_greenspan",
-           "carrier_greenspan_runup", "solitary_wave", "solitary_runup", "solitary_runup_linear", "solitary_rundown_linear", "solitary_breaking_limit"]
+           "carrier_greenspan_runup", "solitary_wave", "solitary_potential", "solitary_runup", "solitary_runup_linear", "solitary_rundown_linear", "solitary_breaking_limit"]
 
 
 def water_depth(bed, eta=None, depth=None):
@@ -391,6 +391,50 @@ def solitary_wave(x, h: float, d: float, x0: float, g: float = 9.81):
     gamma = math.sqrt(3 * h / (4 * d))
     eta = h / np.cosh(gamma * (x - x0) / d) ** 2
     return eta, -math.sqrt(g / d) * eta
+
+
+def solitary_potential(x, h: float, d: float, x0: float, g: float = 9.81):
+    """The surface potential of :func:`solitary_wave` for the linear depth steppers, whose state is (η, φ) with
+    u = ∂φ/∂x: φ = −√(g/d)·H·(d/γ)·tanh(γ(x − x₀)/d), m²/s (u = −√(g/d)·η integrated exactly; φ's constant
+    is free, chosen so that φ is odd about the crest).
+
+    With ``solitary_wave``'s η it starts a wave that runs towards −x alone (the long-wave relation; the linear
+    dispersive steppers shed a tail of order (γ)² from it).
+
+    Parameters
+    ----------
+    x : array_like
+        m.
+    h : float
+        Height H, m, > 0.
+    d : float
+        Depth, m, > 0.
+    x0 : float
+        Crest position, m.
+    g : float
+        m/s², > 0.
+
+    Returns
+    -------
+    ndarray
+        φ at ``x``, m²/s.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> x = np.linspace(-40.0, 40.0, 8001)
+    >>> eta, u = solitary_wave(x, 0.02, 1.0, 0.0)
+    >>> phi = solitary_potential(x, 0.02, 1.0, 0.0)
+    >>> bool(np.abs(np.gradient(phi, x) - u).max() < 1e-6)
+    True
+    """
+    x = np.asarray(check_array("x", x), np.float64)
+    check_scalar("h", h, lo=0.0, lo_open=True)
+    check_scalar("d", d, lo=0.0, lo_open=True)
+    check_scalar("x0", x0)
+    check_scalar("g", g, lo=0.0, lo_open=True)
+    gamma = math.sqrt(3 * h / (4 * d))
+    return -math.sqrt(g / d) * h * (d / gamma) * np.tanh(gamma * (x - x0) / d)
 
 
 def solitary_breaking_limit(cot_beta: float) -> float:

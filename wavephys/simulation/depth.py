@@ -683,7 +683,7 @@ samples (the texel convention of a walled tank)."""
 
 
 def run_profile(depth, dx: float, water: Water, dt: float, eta, phi, steps: int, method: str = "symmetric",
-                levels: int = 4, ends: str = "periodic"):
+                levels: int = 4, ends: str = "periodic", every: Optional[int] = None):
     """Plane waves along x over a depth profile h(x): the steppers of :data:`DEPTH_METHODS` on one row (what a
     square grid gives for waves uniform in y, at 1/n of the cost), periodic or between walls.
 
@@ -708,11 +708,15 @@ def run_profile(depth, dx: float, water: Water, dt: float, eta, phi, steps: int,
         ``"periodic"`` (default): the profile wraps (a ramp up must come back down); ``"walls"``: a reflecting
         wall half a sample past each end (cosine modes cos(mπx/L), L = n·dx), so a beach or a ramp can end
         where it ends.
+    every : int, optional
+        Also return η every ``every`` steps (≥ 1, dividing ``steps``): frames at steps 0, every, …, steps, for
+        run-up and gauges, from the one compiled loop.
 
     Returns
     -------
-    (jax.Array, jax.Array)
-        η and φ after ``steps`` steps, (n,), float64 when x64 is on, else float32.
+    (jax.Array, jax.Array) or (jax.Array, jax.Array, jax.Array)
+        η and φ after ``steps`` steps, (n,), float64 when x64 is on, else float32; with ``every``, the frames
+        (steps // every + 1, n) too.
     """
     check_array("depth", depth, ndim=1, lo=0.0)
     n = check_int("depth.shape[0]", np.shape(depth)[0], lo=4, even=True)
@@ -725,6 +729,11 @@ def run_profile(depth, dx: float, water: Water, dt: float, eta, phi, steps: int,
     DEPTH_METHODS.check(method, "method")
     levels = check_int("levels", levels, lo=1, hi=16)
     check_choice("ends", ends, PROFILE_ENDS)
+    if every is not None:
+        every = check_int("every", every, lo=1)
+        if steps % every:
+            raise ValueError(f"every: {every} does not divide steps = {steps} (frames are taken every `every` steps "
+                             f"up to the last)")
     walled = ends == "walls"
     h = np.broadcast_to(np.asarray(depth, np.float64), (2, n))
     dtype = jnp.float64 if jax.config.jax_enable_x64 else jnp.float32
@@ -765,5 +774,13 @@ def run_profile(depth, dx: float, water: Water, dt: float, eta, phi, steps: int,
             sub = _substeps(c * dt / (0.5 * dx), dt, "shallow")
             one = lambda f: _shallow_steps(dx, water.g, dt, jnp.asarray(hx, dtype), jnp.asarray(hy, dtype), None, f,
                                            sub, jnp.asarray(inv, dtype))[0]
-    out = jax.jit(lambda f: jax.lax.fori_loop(0, steps, lambda _, f: one(f), f))(fields)
-    return out[0, 0], out[1, 0]
+    if every is None:
+        out = jax.jit(lambda f: jax.lax.fori_loop(0, steps, lambda _, f: one(f), f))(fields)
+        return out[0, 0], out[1, 0]
+
+    def chunk(f, _):
+        f = jax.lax.fori_loop(0, every, lambda _, f: one(f), f)
+        return f, f[0, 0]
+
+    out, frames = jax.jit(lambda f: jax.lax.scan(chunk, f, None, length=steps // every))(fields)
+    return out[0, 0], out[1, 0], jnp.concatenate([fields[0, 0][None], frames])
