@@ -706,6 +706,7 @@ SHAPE_FREE = {
     ("wavephys.harness.dispersion.measure_dispersion", "eta"),
     ("wavephys.harness.spectra.spacetime_spectrum", "eta"),  # any rectangle of frames, one row included
     ("wavephys.harness.tank.measure_seiches", "eta"),  # any rectangle of frames is a tank
+    ("wavephys.harness.record.Record", "eta"),  # a strip of frames (n_y != n_x) is a record
     ("wavephys.app.pytest_plugin.Checker.dispersion", "eta"),
     ("wavephys.plot.plot_surface", "eta"), ("wavephys.plot.plot_wake", "eta"), ("wavephys.plot.plot_images", "images"),
     ("wavephys.models.finite_difference.laplacian", "eta"), ("wavephys.models.truncated_kernel.convolve_periodic", "eta"),

@@ -252,8 +252,8 @@ def test_the_reflected_rays_are_dropped_only_where_they_show_nothing():
     assert kept.choice is True and kept.error == 0.0
     change = float(kept.reason.split("up to ")[1].split(" image")[0])
     assert change > 5.0  # quanta: the walls' reflection
-    assert p.drawn(sea, reflection="measure").effects.reflection is False
-    assert p.drawn(pool, reflection="measure").effects.reflection is True
+    assert p.drawn(sea, reflection="measure", width=48, height=36).effects.reflection is False
+    assert p.drawn(pool, reflection="measure", width=48, height=36).effects.reflection is True
     assert p.drawn(sea).effects.reflection is True  # "keep": the render scene's own switch
     assert p.reflection([sea, pool], width=48, height=36).choice is True
     already = p.reflection(sea.with_effects(reflection=False), width=8, height=6)

@@ -308,7 +308,7 @@ def solitary_runup_run(height: float, cot_beta: float, per_depth: int = 20, orde
     times = np.linspace(0.0, end, 1000)
     if model == "pipes":
         from wavephys.models.pipes import Pipes, PipesState
-        from wavephys.steppers import PipesStepper
+        from wavephys.models.pipes import PipesStepper
 
         h = np.maximum(eta - bed[0], 0.0)
         flows = np.zeros((4, 1, n))
@@ -323,12 +323,12 @@ def solitary_runup_run(height: float, cot_beta: float, per_depth: int = 20, orde
         state = sw_state(bed, eta[None], u=u[None], dtype=_dtype(dtype))
         if model == "split":
             from wavephys.simulation.split import Split
-            from wavephys.steppers import SplitStepper
+            from wavephys.simulation.split import SplitStepper
 
             stepper = SplitStepper(Split(ShallowWater(dx, order=order), levels=(0.25, 0.5, 1.0), taper=(0.2, 0.5)),
                                    bed)
         else:
-            from wavephys.steppers import ShallowWaterStepper
+            from wavephys.simulation.shallow_water import ShallowWaterStepper
 
             stepper = ShallowWaterStepper(ShallowWater(dx, sides={"right": "open"}, order=order), bed)
         run = stepper.run(state, until=end, every=end / 999)

@@ -737,16 +737,10 @@ def run_profile(depth, dx: float, water: Water, dt: float, eta, phi, steps: int,
     walled = ends == "walls"
     h = np.broadcast_to(np.asarray(depth, np.float64), (2, n))
     dtype = jnp.float64 if jax.config.jax_enable_x64 else jnp.float32
-    if walled:  # cosine modes along x, the two rows (uniform in y) by rfft
-        from wavephys.core.spectral import cosine_transform, inverse_cosine_transform
-
-        forward = lambda f: jnp.fft.rfft(cosine_transform(f, -1), axis=-2)
-        inverse = lambda spec: inverse_cosine_transform(jnp.fft.irfft(spec, n=2, axis=-2), -1)
+    if walled:
         kx = np.pi * np.arange(n)[None, :] / (n * dx)
         ky = 2 * np.pi * np.fft.rfftfreq(2, dx)[:, None]
     else:
-        forward = jnp.fft.rfft2
-        inverse = lambda spec: jnp.fft.irfft2(spec, s=(2, n))
         ky = 2 * np.pi * np.fft.fftfreq(2, dx)[:, None]
         kx = 2 * np.pi * np.fft.rfftfreq(n, dx)[None, :]
     k = np.sqrt(kx * kx + ky * ky)
@@ -757,30 +751,50 @@ def run_profile(depth, dx: float, water: Water, dt: float, eta, phi, steps: int,
     with jax.enable_x64(True):
         if method == "levels":
             lv = depth_levels(h, levels)
-            args = (np.asarray(_level_operators(k, water, dt, lv)), np.asarray(depth_weights(h, lv)))
-            one = lambda f: _levels_program(forward, inverse, *(jnp.asarray(a, dtype) for a in args), None, f)[0]
+            args, sub = (np.asarray(_level_operators(k, water, dt, lv)), np.asarray(depth_weights(h, lv))), 0
         elif method == "symmetric":
             lv = symmetric_levels(h, levels)
             big_k, restoring, sub = _symmetric_operators(k, water, lv, dt)
             roots = np.sqrt(np.asarray(depth_weights(h, lv))[int(lv[0] == 0):])
-            args = (np.asarray(big_k), None if restoring is None else np.asarray(restoring), roots)
-            one = lambda f: _symmetric_steps(forward, inverse, jnp.asarray(args[0], dtype), jnp.asarray(args[2], dtype),
-                                             None if args[1] is None else jnp.asarray(args[1], dtype), water.g, dt,
-                                             None, f, sub)[0]
+            args = (np.asarray(big_k), roots, None if restoring is None else np.asarray(restoring))
         else:
             hx, _, inv = _shore_geometry(h, (walled, False))
-            hy = np.zeros((2, n))
             c = math.sqrt(float(water.g) * float(h.max()))
             sub = _substeps(c * dt / (0.5 * dx), dt, "shallow")
-            one = lambda f: _shallow_steps(dx, water.g, dt, jnp.asarray(hx, dtype), jnp.asarray(hy, dtype), None, f,
-                                           sub, jnp.asarray(inv, dtype))[0]
+            args = (hx, np.zeros((2, n)), inv)
+    args = tuple(None if a is None else jnp.asarray(a, dtype) for a in args)
+    scalars = tuple(jnp.asarray(v, dtype) for v in (dx, water.g, dt))
+    out, frames = _profile_program(method, walled, steps, every, sub, scalars, args, fields)
     if every is None:
-        out = jax.jit(lambda f: jax.lax.fori_loop(0, steps, lambda _, f: one(f), f))(fields)
         return out[0, 0], out[1, 0]
+    return out[0, 0], out[1, 0], jnp.concatenate([fields[0, 0][None], frames])
+
+
+@functools.partial(jax.jit, static_argnums=(0, 1, 2, 3, 4))
+def _profile_program(method, walled, steps, every, substeps, scalars, args, fields):
+    """:func:`run_profile`'s loop, compiled once per (method, ends, steps, every, sub-steps) and shape: the
+    profile's operators and (dx, g, Δt) are its arguments."""
+    n = fields.shape[-1]
+    dx, g, dt = scalars
+    if walled:  # cosine modes along x, the two rows (uniform in y) by rfft
+        from wavephys.core.spectral import cosine_transform, inverse_cosine_transform
+
+        forward = lambda f: jnp.fft.rfft(cosine_transform(f, -1), axis=-2)
+        inverse = lambda spec: inverse_cosine_transform(jnp.fft.irfft(spec, n=2, axis=-2), -1)
+    else:
+        forward = jnp.fft.rfft2
+        inverse = lambda spec: jnp.fft.irfft2(spec, s=(2, n))
+    if method == "levels":
+        one = lambda f: _levels_program(forward, inverse, *args, None, f)[0]
+    elif method == "symmetric":
+        one = lambda f: _symmetric_steps(forward, inverse, args[0], args[1], args[2], g, dt, None, f, substeps)[0]
+    else:
+        one = lambda f: _shallow_steps(dx, g, dt, args[0], args[1], None, f, substeps, args[2])[0]
+    if every is None:
+        return jax.lax.fori_loop(0, steps, lambda _, f: one(f), fields), None
 
     def chunk(f, _):
         f = jax.lax.fori_loop(0, every, lambda _, f: one(f), f)
         return f, f[0, 0]
 
-    out, frames = jax.jit(lambda f: jax.lax.scan(chunk, f, None, length=steps // every))(fields)
-    return out[0, 0], out[1, 0], jnp.concatenate([fields[0, 0][None], frames])
+    return jax.lax.scan(chunk, fields, None, length=steps // every)
