@@ -27,6 +27,40 @@ def test_validate_exit_code_on_failure(monkeypatch, capsys):
     assert "FAIL" in capsys.readouterr().out
 
 
+def test_validate_streams_rows_and_keeps_them_on_ctrl_c(monkeypatch, tmp_path, capsys):
+    """Each check's rows are printed as it finishes; Ctrl-C during the second check: exit 130, one line saying
+    so (no traceback), the first check's rows in the table and in --json (written whole, atomically)."""
+    def interrupted():
+        raise KeyboardInterrupt
+
+    monkeypatch.setitem(wavephys.checks.CHECKS, "first", lambda: [compare("one quantity", 1.0, 1.0, rtol=0.01),
+                                                                 compare("another", 2.0, 2.0, rtol=0.01)])
+    monkeypatch.setitem(wavephys.checks.CHECKS, "second", interrupted)
+    out = tmp_path / "v.json"
+    assert cli.main(["validate", "--only", "first", "second", "--json", str(out)]) == 130
+    captured = capsys.readouterr()
+    assert "ok    one quantity: 1" in captured.err and "Traceback" not in captured.err
+    last = captured.err.strip().splitlines()[-1]
+    assert last.startswith("wavephys validate: interrupted (Ctrl-C) after 1 of 2 checks; their 2 rows") and str(out) in last
+    assert [r["quantity"] for r in json.loads(out.read_text())] == ["one quantity", "another"]
+    assert "one quantity" in captured.out and sorted(p.name for p in tmp_path.iterdir()) == ["v.json"]
+
+
+def test_every_commands_help_gives_its_own_exit_codes():
+    """One table (cli.COMMANDS) writes each subcommand's help and exit codes: none says 'validation row' but
+    validate, plan's code 1 once, render and textures describe themselves."""
+    parser = cli.build_parser()
+    sub = next(a for a in parser._actions if isinstance(a, type(parser._subparsers._group_actions[0])))
+    assert set(sub.choices) == set(cli.COMMANDS)
+    for name, p in sub.choices.items():
+        text = p.format_help()
+        assert "exit status:" in text and p.description, name
+        codes = [line.split()[0] for line in text.split("exit status:")[1].splitlines() if line.strip()[:1].isdigit()]
+        assert codes == [str(c) for c, _ in cli.COMMANDS[name].codes], (name, codes)
+        assert ("validation row" in text) == (name == "validate"), name
+    assert "wavephys check FRAMES" in parser.format_help()
+
+
 def _usage_error(argv, capsys):
     """A usage error: exit status 2 and one line on stderr naming the problem."""
     with pytest.raises(SystemExit) as exc:

@@ -137,6 +137,8 @@ def test_bad_requests_are_refused_before_measuring(tmp_path):
         calibrate(tmp_path / "cal.json", only="texture", base=tmp_path / "none.json", progress=never.append)
     with pytest.raises(TypeError, match="base must be a calibration"):
         calibrate(tmp_path / "cal.json", only="texture", base=3, progress=never.append)
+    with pytest.raises(ValueError, match="base: it is for only="):  # before: a full seven-minute calibration
+        calibrate(tmp_path / "cal.json", base=tmp_path / "cal.json", progress=never.append)
     with pytest.raises(TypeError, match="progress must be callable"):
         calibrate(tmp_path / "cal.json", only="texture", progress="print")
     assert never == [] and not (tmp_path / "cal.json").exists()

@@ -17,14 +17,6 @@ from pathlib import Path
 __internal__ = True  # the command's `check` subcommand: used through `wavephys check`, not fuzzed as public API
 __all__ = ["add_check_parser", "cmd_check"]
 
-CHECK_EXIT_CODES = """exit status:
-  0  every check ok (frames), or the function meets the physics (a shader)
-  1  a check failed, or the function does not meet the physics
-  2  usage error: a bad option or output path, unreadable frames, or a shader that does not compile or whose
-     function cannot be called as asked (said before any check runs)
-  3  no OpenGL context (apt-get install libegl1 libegl-mesa0 libgl1-mesa-dri), or for HLSL no translator
-     (apt-get install glslang-tools spirv-cross)"""
-
 _WAKE_FIELDS = (("at", "source", "X,Y", "where that source is in the first frame, m (default 0,0: the centre)"),
                 ("heading", "direction", "DEG", "its heading, degrees, 0 = +x (default 0)"),
                 ("size", "size", "M", "its size as a Gaussian pressure, m (wake_max check)"))
@@ -133,8 +125,9 @@ def add_check_parser(sub, fmt, parser_class, helpers) -> None:
     helpers : dict
         The command's shared argument types: ``setting`` (KEY=VALUE) and ``checked`` (an output path check).
     """
-    ck = sub.add_parser("check", help="check exported frames, or a shader function, against the physics",
-                        epilog=CHECK_EXIT_CODES, formatter_class=fmt,
+    from wavephys.app.commands import COMMANDS
+
+    ck = sub.add_parser("check", help=COMMANDS["check"].help, epilog=COMMANDS["check"].epilog(), formatter_class=fmt,
                         description="Frames: read a folder, glob or list of EXR / 16-bit PNG / npy / npz height "
                                     "frames (dx, dt and units from the files' headers where they say, else from "
                                     "--dx and --dt) and print each check's verdict and, on failure, its likely "

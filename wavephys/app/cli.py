@@ -1,14 +1,7 @@
 """The wavephys command: validate the physics, simulate the default scene, render, export textures.
 
-  wavephys run                 simulate the built-in default scene (the main job)
-  wavephys validate            run the built-in validations, expected against measured
-  wavephys render              render a built-in scene with the headless renderer
-  wavephys textures            export a built-in scene's textures
-  wavephys plan SCENE          the cheapest model that meets a tolerance (the scene planner)
-  wavephys calibrate --out F   measure the planner's costs on this machine (for plan --calibration F)
-  wavephys report --out DIR    one self-contained HTML page of what is measured
-  wavephys check FRAMES...     check exported frames against the physics (dispersion, energy, …)
-  wavephys check --glsl FILE   check a GLSL function against the physics (Fresnel, refraction, …)
+Its subcommands, their one-line help, descriptions and exit codes are one table, :data:`COMMANDS`; each
+``--help`` is generated from it (``wavephys --help`` lists them).
 """
 
 from __future__ import annotations
@@ -20,11 +13,29 @@ import sys
 import time
 from pathlib import Path
 
-EXIT_CODES = """exit status:
-  0  done (every validation row ok)
-  1  a validation row failed
-  2  usage error: a bad option or output path (checked before any work starts)
-  3  no OpenGL context (headless EGL missing: apt-get install libegl1 libegl-mesa0 libgl1-mesa-dri)"""
+from wavephys.app.commands import COMMANDS, INTERRUPTED, NO_OPENGL, USAGE_ERROR, Command  # noqa: F401
+
+
+def _overview() -> str:
+    """``wavephys --help``'s description: each subcommand in a line."""
+    width = max(len(c.usage) for c in COMMANDS.values())
+    return (__doc__.splitlines()[0] + "\n\n" +
+            "\n".join(f"  {c.usage:<{width}}  {c.help}" for c in COMMANDS.values()))
+
+
+EXIT_CODES = """exit status: each command's --help gives its own (wavephys COMMAND --help); 2 is always a usage
+error (a bad option or output path, said before any work starts)."""
+"""``wavephys --help``'s exit-status line (each subcommand's own: :attr:`Command.epilog`)."""
+
+
+def _subcommand(sub, name: str, fmt, description: str | None = None):
+    """The subparser of :data:`COMMANDS`' ``name``: its help, description and exit codes from the table."""
+    import textwrap
+
+    c = COMMANDS[name]
+    return sub.add_parser(name, help=c.help, description=textwrap.fill(description or c.description, 100),
+                          epilog=c.epilog(), formatter_class=fmt)
+
 
 EFFECTS = ("refraction", "reflection", "fresnel", "absorption", "caustics")
 from wavephys.app import SCENES  # light: --help answers at once
@@ -149,17 +160,32 @@ def cmd_validate(args, parser) -> int:
     if unknown:
         parser.error(f"unknown check(s) {', '.join(unknown)}; 'wavephys validate --list' names them")
     start = time.perf_counter()
-    rows = []
-    for i, name in enumerate(names):
-        _progress(i, len(names), name, start)
-        rows.extend(registry[name]())
-    print(_table(rows))
+    rows, done = [], 0
+    try:
+        for i, name in enumerate(names):
+            _progress(i, len(names), name, start)
+            got = registry[name]()
+            rows.extend(got)
+            done += 1
+            for r in got:  # each row as it finishes (the table follows at the end)
+                print(f"  {'ok  ' if r.ok else 'FAIL'}  {r.quantity}: {r.measured:.6g} ({_rule(r)})", file=sys.stderr,
+                      flush=True)
+    except KeyboardInterrupt:
+        done = -done - 1  # interrupted after `done` checks
+    if rows:
+        print(_table(rows))
     failed = [r for r in rows if not r.ok]
     print(f"\n{len(rows) - len(failed)} passed, {len(failed)} failed ({time.perf_counter() - start:.1f} s)")
-    if json_path is not None:
+    if json_path is not None and rows:
         with atomic_path(json_path) as tmp:
             tmp.write_text(json.dumps([r.as_dict() for r in rows], indent=2))
         print(f"wrote {json_path}")
+    if done < 0:
+        finished = -done - 1
+        print(f"wavephys validate: interrupted (Ctrl-C) after {finished} of {len(names)} checks; their {len(rows)} "
+              f"rows are above" + (f" and in {json_path}" if json_path is not None and rows else ""),
+              file=sys.stderr)
+        return INTERRUPTED[0]
     return 1 if failed else 0
 
 
@@ -408,26 +434,22 @@ HELPERS = {"setting": _setting, "checked": _checked}
 def build_parser() -> argparse.ArgumentParser:
     """The argument parser (no heavy imports: ``--help`` answers at once)."""
     fmt = argparse.RawDescriptionHelpFormatter
-    parser = _Parser(prog="wavephys", description=__doc__, epilog=EXIT_CODES, formatter_class=fmt)
+    parser = _Parser(prog="wavephys", description=_overview(), epilog=EXIT_CODES, formatter_class=fmt)
     parser.add_argument("--version", action="version", version=_version())
     sub = parser.add_subparsers(dest="command", parser_class=_Parser)
-    v = sub.add_parser("validate", help="run the built-in physics validations", epilog=EXIT_CODES, formatter_class=fmt,
-                       description="Run the built-in validations and print expected against measured.")
+    v = _subcommand(sub, "validate", fmt)
     v.add_argument("--json", metavar="PATH", help="also write the table as JSON (a .json file in an existing folder)")
     v.add_argument("--only", nargs="+", metavar="NAME", help="run only these checks (names from --list)")
     v.add_argument("--list", action="store_true", help="list the checks and exit")
     v.add_argument("--x64", action="store_true", help="run in float64")
     v.set_defaults(func=cmd_validate)
-    r = sub.add_parser("run", help="simulate the built-in default scene (the main job)", epilog=EXIT_CODES,
-                       formatter_class=fmt, description="Three stones in 16 m of open water; writes surface.npz "
-                                                        "(heights, m) and surface.png.")
+    r = _subcommand(sub, "run", fmt)
     r.add_argument("--n", type=_int(128, even=True, hi=MAX_N), default=256,
                    help=f"grid points per side (even, 128 to {MAX_N})")
     r.add_argument("--steps", type=_int(1, hi=MAX_STEPS), default=120, help=f"steps of 1/30 s (1 to {MAX_STEPS})")
     r.add_argument("--out", default="wavephys-out", help="output folder (created if its parent exists)")
     r.set_defaults(func=cmd_run)
-    g = sub.add_parser("render", help="render a built-in scene with the headless moderngl renderer",
-                       epilog=EXIT_CODES, formatter_class=fmt)
+    g = _subcommand(sub, "render", fmt)
     g.add_argument("--scene", choices=SCENES, default="pool")
     g.add_argument("--out", default="frame.png", help="a .png file (one frame) or a folder (--frames > 1)")
     g.add_argument("--frames", type=_int(1), default=1, help="number of frames (an animation when > 1)")
@@ -443,7 +465,7 @@ def build_parser() -> argparse.ArgumentParser:
     g.add_argument("--off", nargs="+", choices=EFFECTS, metavar="EFFECT", help=f"switch effects off: {', '.join(EFFECTS)}")
     g.add_argument("--video", metavar="NAME", help="also write a video in the folder (needs imageio-ffmpeg)")
     g.set_defaults(func=cmd_render)
-    t = sub.add_parser("textures", help="export a built-in scene's textures", epilog=EXIT_CODES, formatter_class=fmt)
+    t = _subcommand(sub, "textures", fmt)
     t.add_argument("--scene", choices=SCENES, default="pool")
     t.add_argument("--out", default="textures", help="output folder (created if its parent exists)")
     t.add_argument("--n", type=_int(64, even=True, hi=MAX_N), default=256, help=f"texels per side (even, 64 to {MAX_N})")
@@ -454,10 +476,8 @@ def build_parser() -> argparse.ArgumentParser:
     t.add_argument("--fps", type=_float(0.0, open_lo=True, hi=MAX_FPS), default=30.0,
                    help=f"frames per second of --frames (up to {MAX_FPS:g})")
     t.set_defaults(func=cmd_textures)
-    pl = sub.add_parser("plan", help="the cheapest model that meets a tolerance (the scene planner)",
-                        epilog=EXIT_CODES + "\n  1  (plan) no model meets the tolerance", formatter_class=fmt,
-                        description="Plan a scene (a TOML file, or a built-in: " + ", ".join(PLAN_SCENES) + "): "
-                                    "print its model card.")
+    pl = _subcommand(sub, "plan", fmt, "Plan a scene (a TOML file, or a built-in: " + ", ".join(PLAN_SCENES)
+                     + "): print its model card.")
     pl.add_argument("scene", help="a scene TOML file or a built-in scene's name")
     pl.add_argument("--tolerance", type=_tolerance, default=("q", 0.5),
                     help="largest height error: metres (0.001) or height-texture quanta (0.5q, the default)")
@@ -471,9 +491,7 @@ def build_parser() -> argparse.ArgumentParser:
     pl.add_argument("--chart", metavar="PATH", help="draw the Pareto front and error budget (a .png)")
     pl.set_defaults(func=cmd_plan)
     _add_calibrate_parser(sub, fmt)
-    rp = sub.add_parser("report", help="one self-contained HTML page of what is measured", epilog=EXIT_CODES,
-                        formatter_class=fmt, description="Validation table, wake pattern and angles, ring waves, bench "
-                                                         "charts, model cards, rendered frames: DIR/report.html.")
+    rp = _subcommand(sub, "report", fmt)
     rp.add_argument("--out", default="wavephys-report", help="output folder (created if its parent exists)")
     rp.add_argument("--checks", nargs="+", metavar="NAME", help="run only these validations (default: all)")
     rp.add_argument("--validation", metavar="JSON", help="show this 'wavephys validate --json' table instead")
@@ -487,12 +505,7 @@ def build_parser() -> argparse.ArgumentParser:
 
 
 def _add_calibrate_parser(sub, fmt) -> None:
-    ca = sub.add_parser("calibrate", help="measure the planner's costs on this machine", epilog=EXIT_CODES,
-                        formatter_class=fmt,
-                        description="Time every piece the planner's cost model reads (steps, frames, shading, caustics, "
-                                    "textures, float32 rounding) on this machine and its JAX device, and write them "
-                                    "to a JSON file for 'wavephys plan --calibration FILE'. All tables took 7 minutes "
-                                    "on a 2-core CPU; --only measures some.")
+    ca = _subcommand(sub, "calibrate", fmt)
     ca.add_argument("--out", required=True, metavar="FILE", help="the calibration file to write (.json)")
     ca.add_argument("--only", nargs="+", choices=CALIBRATION_TABLES, metavar="TABLE",
                     help="measure these tables alone, the rest from --base: " + ", ".join(CALIBRATION_TABLES))

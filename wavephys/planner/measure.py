@@ -465,8 +465,8 @@ def calibrate(out, *, only=None, base=None, progress=None) -> dict:
     Raises
     ------
     ValueError
-        For an ``out`` that cannot be written, an unknown table, or a ``base`` that is not a
-        calibration (before measuring anything).
+        For an ``out`` that cannot be written, an unknown table, a ``base`` that is not a
+        calibration, or a ``base`` without ``only`` (before measuring anything).
 
     Examples
     --------
@@ -479,6 +479,9 @@ def calibrate(out, *, only=None, base=None, progress=None) -> dict:
     from wavephys.planner.cost import check_calibration, load_calibration
 
     path = output_file(out, "out", (".json",))
+    if only is None and base is not None:
+        raise ValueError("base: it is for only= (the tables not re-measured come from it); a full calibration "
+                         "measures every table: drop base, or name the tables to measure with only=")
     if only is None:
         names = TABLES
         data: dict = {}
