@@ -29,7 +29,7 @@ _legacy = _install(__name__, {
     "reference": "optics.rendering.reference",
     "textures": "optics.rendering.textures",
     "scenes": "wavephys.app.scenes",  # the built-in scenes moved to the application layer in 0.2
-}, deprecated=("scenes",))
+})  # every old name warns when imported (removed in 0.4)
 
 
 def __getattr__(name):

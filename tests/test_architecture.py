@@ -185,12 +185,52 @@ def test_optics_submodules_on_attribute_access():
     ("optics.fresnel", "optics.light.fresnel", "reflectance"),
     ("optics.render", "optics.rendering.renderer", "Renderer"),
 ])
+@pytest.mark.filterwarnings("ignore::DeprecationWarning")  # they warn (the test below): here, that they still work
 def test_old_module_names_still_import(old, new, name):
     import importlib
 
     assert getattr(importlib.import_module(old), name) is getattr(importlib.import_module(new), name)
 
 
+def test_every_old_module_name_warns_naming_the_new_one():
+    """Each moved name of wavephys, optics and wavephys.harness, imported in a fresh interpreter as a module and
+    as an attribute: a DeprecationWarning naming the new place and the release that removes it (0.4), pointing
+    at the importing line, so Python's default filter shows it to a script."""
+    code = r"""  # the old names: from each package's installed finder
+import sys, warnings
+import wavephys, optics, wavephys.harness
+from wavephys.core.aliases import REMOVAL, _AliasFinder
+olds = {}
+for f in sys.meta_path:
+    if isinstance(f, _AliasFinder):
+        olds.update(f.aliases)
+print(len(olds))
+for old, new in sorted(olds.items()):
+    package, name = old.rsplit(".", 1)
+    for how in ("import", "attribute"):
+        for m in [m for m in sys.modules if m == old]:
+            del sys.modules[m]
+        if name in vars(sys.modules[package]):
+            delattr(sys.modules[package], name)
+        with warnings.catch_warnings(record=True) as caught:
+            warnings.simplefilter("always")
+            if how == "import":
+                __import__(old)
+            else:
+                getattr(sys.modules[package], name)
+        said = [str(w.message) for w in caught if issubclass(w.category, DeprecationWarning)]
+        here = [w.filename for w in caught if issubclass(w.category, DeprecationWarning)]
+        ok = len(said) == 1 and all(n in said[0] for n in new) and REMOVAL in said[0] and here[0] == "<string>"
+        print(old, how, "ok" if ok else f"BAD {said} {here}")
+"""
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
+    lines = out.stdout.split("\n")
+    assert int(lines[0]) >= 25, out.stdout
+    bad = [line for line in lines[1:] if line and not line.endswith(" ok")]
+    assert not bad, "\n".join(bad)
+
+
+@pytest.mark.filterwarnings("ignore::DeprecationWarning")
 def test_split_module_re_exports_both_halves():
     from wavephys.wake import steady_wake, wake_angle  # physics + harness under the old name
 

@@ -62,7 +62,7 @@ _legacy_getattr = _install(__name__, {
     "gerstner": "wavephys.surfaces.gerstner",
     "choppy": "wavephys.surfaces.choppy",
     "scenes": "wavephys.app.scenes",
-})
+})  # every old name warns when imported (removed in 0.4)
 
 
 def __getattr__(name: str):

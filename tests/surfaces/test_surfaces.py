@@ -13,9 +13,9 @@ import jax.numpy as jnp
 import numpy as np
 import pytest
 
-import wavephys.choppy as choppy
-import wavephys.gerstner as gerstner
-import wavephys.noise as noise
+import wavephys.surfaces.choppy as choppy
+import wavephys.surfaces.gerstner as gerstner
+import wavephys.surfaces.noise as noise
 from wavephys import Grid, Water
 from wavephys.checks.surfaces import normal_orders, random_sea
 from wavephys.surfaces import resample_heights

@@ -5,7 +5,7 @@ they now live in. ``import wavephys.dispersion`` and ``from wavephys import disp
 then give the very module object at the new place (nothing is copied, so monkeypatching
 either name affects both). An old name that was split over several modules gets a
 module of its own that re-exports their public names. Nothing is imported until the old
-name is used. Names listed as ``deprecated`` warn (``DeprecationWarning``) when imported.
+name is used. Every old name warns (``DeprecationWarning``, pointing at the importing line) when imported.
 :func:`renamed_options` does the same for a keyword argument that was renamed.
 """
 
@@ -20,6 +20,10 @@ import warnings
 
 __internal__ = True  # tooling for the library's own modules: not fuzzed as public API
 __all__ = ["install", "renamed_options", "deprecated_function"]
+
+
+REMOVAL = "0.4"
+"""The release in which the moved names of :func:`install` go."""
 
 
 class _AliasFinder(importlib.abc.MetaPathFinder, importlib.abc.Loader):
@@ -39,7 +43,8 @@ class _AliasFinder(importlib.abc.MetaPathFinder, importlib.abc.Loader):
     def exec_module(self, module):
         if module.__name__ in self.deprecated:
             warnings.warn(f"{module.__name__} has moved to {', '.join(self.aliases[module.__name__])}; the old "
-                          "name will be removed in a later release", DeprecationWarning, stacklevel=2)
+                          f"name will be removed in {REMOVAL}", DeprecationWarning, stacklevel=2)  # the importing line (the
+            # warnings module skips the import machinery's frames)
         targets = [importlib.import_module(t) for t in self.aliases[module.__name__]]
         if len(targets) == 1:
             sys.modules[module.__name__] = targets[0]  # the import system returns this object
@@ -53,20 +58,33 @@ class _AliasFinder(importlib.abc.MetaPathFinder, importlib.abc.Loader):
         module.__doc__ = "Re-exports " + ", ".join(t.__name__ for t in targets) + " (the old module name)."
 
 
-def install(package: str, aliases: dict[str, str | tuple[str, ...]], deprecated=()):
+def install(package: str, aliases: dict[str, str | tuple[str, ...]], deprecated=None):
     """Make ``package.<old>`` importable for each ``old → new`` (or ``old → (new, new2, …)``);
-    the old names in ``deprecated`` warn when imported.
+    the old names in ``deprecated`` (default: every one) warn when imported, naming the new place and the
+    release that removes them (:data:`REMOVAL`).
 
     Returns a module ``__getattr__`` for the package, so ``package.<old>`` also works as an
     attribute after ``import package``.
     """
     table = {old: (new,) if isinstance(new, str) else tuple(new) for old, new in aliases.items()}
+    deprecated = tuple(table) if deprecated is None else tuple(deprecated)
     if not any(isinstance(f, _AliasFinder) and f.package == package for f in sys.meta_path):
         sys.meta_path.append(_AliasFinder(package, table, deprecated))
 
     def __getattr__(name: str) -> types.ModuleType:
         if name in table:
-            return importlib.import_module(f"{package}.{name}")
+            full = f"{package}.{name}"
+            if full in sys.modules or name not in deprecated:
+                return importlib.import_module(full)
+            with warnings.catch_warnings():  # the finder's warning would name this line: said below instead
+                warnings.simplefilter("ignore", DeprecationWarning)
+                module = importlib.import_module(full)
+            level, frame = 2, sys._getframe(1)  # the caller's line: past the package's own __getattr__
+            while frame is not None and frame.f_globals.get("__name__") == package:
+                level, frame = level + 1, frame.f_back
+            warnings.warn(f"{full} has moved to {', '.join(table[name])}; the old name will be removed in "
+                          f"{REMOVAL}", DeprecationWarning, stacklevel=level)
+            return module
         raise AttributeError(f"module {package!r} has no attribute {name!r}")
 
     return __getattr__
