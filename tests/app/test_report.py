@@ -61,3 +61,23 @@ def test_report_bad_input_is_a_usage_error(capsys, tmp_path, args, words):
     err = capsys.readouterr().err
     for w in words:
         assert w in err
+
+
+def test_ctrl_c_writes_the_sections_finished_and_says_what_is_missing(monkeypatch, tmp_path, capsys):
+    """Ctrl-C while the wake section is built: exit 130 and one line (no traceback); the page holds the
+    validation section (its rows printed as they finished) and names the sections missing."""
+    import wavephys.app.report as report
+    from wavephys.app.cli import main
+
+    def stop(quick, say):
+        raise KeyboardInterrupt
+
+    monkeypatch.setattr(report, "_wake", stop)
+    assert main(["report", "--out", str(tmp_path), "--checks", "fresnel", "--quick"]) == 130
+    err = capsys.readouterr().err
+    assert "Traceback" not in err and "ok  " in err
+    assert err.strip().splitlines()[-1].startswith("wavephys report: interrupted (Ctrl-C) while building Wake pattern")
+    page = (tmp_path / "report.html").read_text()
+    assert "<h2>Validation</h2>" in page and "<h2>Ring waves</h2>" not in page
+    assert "missing Wake pattern, Ring waves, Bench" in page
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["report.html"]

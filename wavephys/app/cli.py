@@ -390,9 +390,16 @@ def cmd_report(args, parser) -> int:
             parser.error(f"unknown check(s) {', '.join(unknown)}; 'wavephys validate --list' names them")
     from wavephys.app.report import build_report
 
+    from wavephys.app.report import ReportInterrupted
+
     start = time.perf_counter()
-    path = build_report(out, args.checks, args.validation, args.figures, args.quick,
-                        progress=lambda m: print(m, file=sys.stderr, flush=True))
+    try:
+        path = build_report(out, args.checks, args.validation, args.figures, args.quick,
+                            progress=lambda m: print(m, file=sys.stderr, flush=True))
+    except ReportInterrupted as stop:
+        print(f"wavephys report: interrupted (Ctrl-C) while building {stop.section}; the page so far, with what is "
+              f"missing said at its top: {stop.path}", file=sys.stderr)
+        return INTERRUPTED[0]
     print(f"wrote {path} in {time.perf_counter() - start:.0f} s")
     return 0
 

@@ -74,8 +74,9 @@ COMMANDS = {
                          ((0, "done: the calibration file written"), USAGE_ERROR)),
     "report": Command("wavephys report --out DIR", "one self-contained HTML page of what is measured",
                       "Validation table, wake pattern and angles, ring waves, bench charts, model cards, rendered "
-                      "frames: DIR/report.html.",
-                      ((0, "done: DIR/report.html written"), USAGE_ERROR)),
+                      "frames: DIR/report.html, each validation row printed as it finishes. Ctrl-C writes the page "
+                      "with the sections finished, saying which are missing.",
+                      ((0, "done: DIR/report.html written"), USAGE_ERROR, INTERRUPTED)),
     "check": Command("wavephys check FRAMES... | --glsl FILE", "check exported frames, or a shader function, against "
                      "the physics", "",  # its options and description: wavephys.app.check_command
                      ((0, "every check ok (frames), or the function meets the physics (a shader)"),

@@ -21,7 +21,7 @@ import time
 from pathlib import Path
 from typing import Callable, Optional
 
-__all__ = ["build_report", "read_validation", "FIGURES"]
+__all__ = ["build_report", "read_validation", "FIGURES", "ReportInterrupted"]
 
 FIGURES = Path(__file__).resolve().parents[2] / "bench" / "figures"
 """The bench's charts in a checkout (absent from an installed package: the report says so)."""
@@ -123,7 +123,10 @@ def _validation(names, validation: Optional[Path], say) -> str:
         rows = []
         for i, name in enumerate(names):
             say(f"[validate {i + 1}/{len(names)}] {name}")
-            rows += [r.as_dict() for r in reg[name]()]
+            got = reg[name]()
+            for r in got:  # each row as it finishes
+                say(f"  {'ok  ' if r.ok else 'FAIL'}  {r.quantity}: {r.measured:.6g}")
+            rows += [r.as_dict() for r in got]
         source = f"measured now ({', '.join(names)})"
     failed = [r for r in rows if not r["ok"]]
     head = "<tr><th>quantity</th><th>expected</th><th>measured</th><th>margin</th><th>verdict</th></tr>"
@@ -257,6 +260,9 @@ def build_report(out_dir, checks=None, validation=None, figures=None, quick: boo
     ValueError
         When ``out_dir`` is not a usable folder, ``validation`` is not a file, or a name in
         ``checks`` is unknown.
+    ReportInterrupted
+        On Ctrl-C (a ``KeyboardInterrupt``), after writing the page with the sections finished and a line
+        naming those missing.
     TypeError
         When ``quick`` is not a bool.
     """
@@ -276,12 +282,25 @@ def build_report(out_dir, checks=None, validation=None, figures=None, quick: boo
             raise ValueError(f"checks: unknown {unknown}; 'wavephys validate --list' names them")
     say = progress or (lambda _m: None)
     start = time.perf_counter()
-    sections = [("Validation", _validation(checks, validation, say)), ("Wake pattern", _wake(quick, say)),
-                ("Ring waves", _rings(quick, say)), ("Bench", _bench(Path(figures) if figures else FIGURES)),
-                ("Model cards of the built-in scenes", _planner(quick, say)), ("Rendered frames", _frames(quick, say))]
+    parts = [("Validation", lambda: _validation(checks, validation, say)), ("Wake pattern", lambda: _wake(quick, say)),
+             ("Ring waves", lambda: _rings(quick, say)),
+             ("Bench", lambda: _bench(Path(figures) if figures else FIGURES)),
+             ("Model cards of the built-in scenes", lambda: _planner(quick, say)),
+             ("Rendered frames", lambda: _frames(quick, say))]
+    sections, stopped = [], None
+    for title, make in parts:
+        try:
+            sections.append((title, make()))
+        except KeyboardInterrupt:  # Ctrl-C: the page keeps the sections finished, and says what is missing
+            stopped = title
+            break
     from wavephys import __version__
 
     body = "".join(f"<h2>{html.escape(t)}</h2>{s}" for t, s in sections)
+    if stopped is not None:
+        missing = ", ".join(t for t, _ in parts[len(sections):])
+        body = (f"<p class=\"summary fail\">Interrupted (Ctrl-C) while building {html.escape(stopped)}: "
+                f"missing {html.escape(missing)}.</p>") + body
     page = (f"<!DOCTYPE html><html lang=\"en\"><head><meta charset=\"utf-8\"><title>wavephys report</title>"
             f"<style>{_CSS}</style></head><body><h1>wavephys {__version__}: what is measured</h1>"
             f"<p>Generated {time.strftime('%Y-%m-%d %H:%M')} in {time.perf_counter() - start:.0f} s. Every figure is "
@@ -290,4 +309,22 @@ def build_report(out_dir, checks=None, validation=None, figures=None, quick: boo
     path = out / "report.html"
     with atomic_path(path) as tmp:
         tmp.write_text(page, encoding="utf-8")
+    if stopped is not None:
+        raise ReportInterrupted(path, stopped)
     return path
+
+
+class ReportInterrupted(KeyboardInterrupt):
+    """Ctrl-C stopped :func:`build_report`: the page was written with the sections finished before it.
+
+    Attributes
+    ----------
+    path : pathlib.Path
+        The page written.
+    section : str
+        The section being built when it was stopped (it and those after it are missing).
+    """
+
+    def __init__(self, path, section):
+        super().__init__(f"interrupted while building {section}; the page so far: {path}")
+        self.path, self.section = path, section
