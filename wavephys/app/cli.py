@@ -148,14 +148,17 @@ def cmd_validate(args, parser) -> int:
 
     if args.x64:
         jax.config.update("jax_enable_x64", True)
-    from wavephys.app.registry import registry as get_registry
+    from wavephys.app.registry import LONG_CHECKS, registry as get_registry
 
     registry = get_registry()
     if args.list:
         for name, fn in registry.items():
-            print(f"{name:24s} {((fn.__doc__ or '').strip().splitlines() or [''])[0]}")
+            print(f"{name:24s} {'long  ' if name in LONG_CHECKS else '      '}"
+                  f"{((fn.__doc__ or '').strip().splitlines() or [''])[0]}")
         return 0
-    names = args.only or list(registry)
+    if args.only and args.all:
+        parser.error("--all and --only: name the checks with --only, or run every one with --all")
+    names = args.only or [n for n in registry if args.all or n not in LONG_CHECKS]
     unknown = [n for n in names if n not in registry]
     if unknown:
         parser.error(f"unknown check(s) {', '.join(unknown)}; 'wavephys validate --list' names them")
@@ -448,6 +451,8 @@ def build_parser() -> argparse.ArgumentParser:
     v.add_argument("--json", metavar="PATH", help="also write the table as JSON (a .json file in an existing folder)")
     v.add_argument("--only", nargs="+", metavar="NAME", help="run only these checks (names from --list)")
     v.add_argument("--list", action="store_true", help="list the checks and exit")
+    v.add_argument("--all", action="store_true", help="also run the long checks (marked 'long' by --list; about 4 "
+                                                     "minutes more on a 2-core CPU)")
     v.add_argument("--x64", action="store_true", help="run in float64")
     v.set_defaults(func=cmd_validate)
     r = _subcommand(sub, "run", fmt)

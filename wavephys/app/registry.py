@@ -13,7 +13,14 @@ from typing import Callable
 
 from wavephys.harness.checks import Check, bound
 
-__all__ = ["REGISTRY", "registry", "run", "check_builtin_scenes"]
+__all__ = ["REGISTRY", "registry", "run", "check_builtin_scenes", "LONG_CHECKS"]
+
+LONG_CHECKS = ("varying-depth", "shallow-water", "second-order-heights", "steady-wakes", "gerstner-waves", "caustics",
+               "builtin-scenes")
+"""The check groups ``wavephys validate`` leaves to ``--all`` (or ``--only``): each about 9 s or more on a 2-core
+CPU (measured, s: varying-depth 9, shallow-water 20, second-order-heights 10, steady-wakes 21, gerstner-waves 9,
+caustics 35, builtin-scenes 123 of a 264 s full run); the others run by default (about 40 s). The test suite and
+the report run every group."""
 
 
 def check_builtin_scenes(width: int = 160, height: int = 120, n: int = 128) -> list[Check]:
