@@ -398,7 +398,9 @@ def cmd_report(args, parser) -> int:
     start = time.perf_counter()
     try:
         path = build_report(out, args.checks, args.validation, args.figures, args.quick,
-                            progress=lambda m: print(m, file=sys.stderr, flush=True))
+                            progress=lambda m: print(m if m.startswith("  ") else
+                                                     f"{m} ({time.perf_counter() - start:.1f} s elapsed)",
+                                                     file=sys.stderr, flush=True))
     except ReportInterrupted as stop:
         print(f"wavephys report: interrupted (Ctrl-C) while building {stop.section}; the page so far, with what is "
               f"missing said at its top: {stop.path}", file=sys.stderr)
@@ -508,7 +510,8 @@ def build_parser() -> argparse.ArgumentParser:
     rp.add_argument("--checks", nargs="+", metavar="NAME", help="run only these validations (default: all)")
     rp.add_argument("--validation", metavar="JSON", help="show this 'wavephys validate --json' table instead")
     rp.add_argument("--figures", metavar="DIR", help="the bench charts' folder (default: the checkout's bench/figures)")
-    rp.add_argument("--quick", action="store_true", help="smaller grids, one model card, one frame")
+    rp.add_argument("--quick", action="store_true", help="smaller grids, one model card, one frame, and the "
+                                                          "validations but the long ones (validate --all has them)")
     rp.set_defaults(func=cmd_report)
     from wavephys.app.check_command import add_check_parser
 

@@ -15,12 +15,12 @@ from wavephys.harness.checks import Check, bound
 
 __all__ = ["REGISTRY", "registry", "run", "check_builtin_scenes", "LONG_CHECKS"]
 
-LONG_CHECKS = ("varying-depth", "shallow-water", "second-order-heights", "steady-wakes", "gerstner-waves", "caustics",
-               "builtin-scenes")
-"""The check groups ``wavephys validate`` leaves to ``--all`` (or ``--only``): each about 9 s or more on a 2-core
-CPU (measured, s: varying-depth 9, shallow-water 20, second-order-heights 10, steady-wakes 21, gerstner-waves 9,
-caustics 35, builtin-scenes 123 of a 264 s full run); the others run by default (about 40 s). The test suite and
-the report run every group."""
+LONG_CHECKS = ("reflecting-walls", "varying-depth", "shallow-water", "second-order-heights", "steady-wakes",
+               "gerstner-waves", "choppy-waves", "caustics", "builtin-scenes")
+"""The check groups ``wavephys validate`` (and ``wavephys report --quick``) leave to ``--all`` (or ``--only``):
+each 7.5 s or more on a 2-core CPU (measured, s: reflecting-walls 8, varying-depth 9, shallow-water 20,
+second-order-heights 10, steady-wakes 21, gerstner-waves 9, choppy-waves 8, caustics 35, builtin-scenes 123 of a
+264 s full run); the others run by default. The test suite and the full report run every group."""
 
 
 def check_builtin_scenes(width: int = 160, height: int = 120, n: int = 128) -> list[Check]:

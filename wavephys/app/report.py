@@ -214,7 +214,7 @@ def _frames(quick: bool, say) -> str:
 
     out = ""
     with renderer:
-        for name in (("pool",) if quick else ("pool", "shore", "ship", "storm")):
+        for name in (("calm",) if quick else ("pool", "shore", "ship", "storm")):  # quick: the cheapest to build
             image = renderer.render(builtin_scene(name, n=128 if quick else 256))
             buf = io.BytesIO()
             Image.fromarray(to_srgb8(np.asarray(image))).save(buf, format="PNG")
@@ -246,7 +246,8 @@ def build_report(out_dir, checks=None, validation=None, figures=None, quick: boo
         The bench charts' folder (default: the checkout's ``bench/figures``, :data:`FIGURES`); when
         it is not a folder the page says so.
     quick : bool
-        Smaller grids, one planner scene and one frame (for tests).
+        Smaller grids, one planner scene and one frame, and (unless ``checks`` or ``validation`` says) every
+        validation group but the long ones (:data:`~wavephys.app.registry.LONG_CHECKS`).
     progress : callable, optional
         Called with one message (str) as each part of the page starts.
 
@@ -282,6 +283,10 @@ def build_report(out_dir, checks=None, validation=None, figures=None, quick: boo
             raise ValueError(f"checks: unknown {unknown}; 'wavephys validate --list' names them")
     say = progress or (lambda _m: None)
     start = time.perf_counter()
+    if checks is None and validation is None and quick:  # --quick: the long groups are left to validate --all
+        from wavephys.app.registry import LONG_CHECKS, registry
+
+        checks = [n for n in registry() if n not in LONG_CHECKS]
     parts = [("Validation", lambda: _validation(checks, validation, say)), ("Wake pattern", lambda: _wake(quick, say)),
              ("Ring waves", lambda: _rings(quick, say)),
              ("Bench", lambda: _bench(Path(figures) if figures else FIGURES)),
