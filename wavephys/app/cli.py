@@ -241,13 +241,14 @@ def cmd_render(args, parser) -> int:
     with renderer:
         if args.frames == 1:
             print(f"rendering {args.scene} ({args.width}x{args.height}) ...", file=sys.stderr, flush=True)
-            scene = builtin_scene(args.scene, n=args.n, time=args.time).with_effects(**off)
+            scene = builtin_scene(args.scene, n=args.n, time=args.time, caustics="caustics" not in off
+                                  ).with_effects(**off)  # caustics off: the map is not computed either
             path = save_png(renderer.render(scene), out)
             print(f"rendered {args.scene} ({args.width}x{args.height}, {renderer.renderer_name}) in "
                   f"{time.perf_counter() - start:.1f} s; wrote {path}")
             return 0
         scenes = (s.with_effects(**off) for s in scene_frames(args.scene, args.frames, fps=args.fps, n=args.n,
-                                                                  start=args.time))
+                                                                  start=args.time, caustics="caustics" not in off))
         paths = render_sequence(renderer, scenes, out, count=args.frames, video=args.video, fps=round(args.fps))
         print(f"rendered {len(paths)} frames of {args.scene} in {time.perf_counter() - start:.1f} s; wrote {out}/")
     return 0

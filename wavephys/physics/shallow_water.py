@@ -361,7 +361,8 @@ def carrier_greenspan(x, t: float, h0: float, length: float, amplitude: float, p
 
 
 def solitary_wave(x, h: float, d: float, x0: float, g: float = 9.81):
-    """A solitary wave of height H on depth d centred at x0, travelling towards −x: (η, u).
+    """A solitary wave of height H on depth d centred at x0, travelling towards −x: (η, u) (its potential for the
+    linear steppers: :func:`solitary_potential`).
 
     η = H sech²(γ(x − x₀)/d), γ = √(3H/4d); u = −√(g/d)·η (the long-wave relation the run-up
     benchmarks start from; Synolakis 1987).
@@ -383,14 +384,19 @@ def solitary_wave(x, h: float, d: float, x0: float, g: float = 9.81):
     -------
     (eta, u) : ndarray
     """
+    x, gamma = _solitary_inputs(x, h, d, x0, g)
+    eta = h / np.cosh(gamma * (x - x0) / d) ** 2
+    return eta, -math.sqrt(g / d) * eta
+
+
+def _solitary_inputs(x, h, d, x0, g):
+    """The solitary wave's inputs checked by name, and x as float64 with γ = √(3H/4d)."""
     x = np.asarray(check_array("x", x), np.float64)
     check_scalar("h", h, lo=0.0, lo_open=True)
     check_scalar("d", d, lo=0.0, lo_open=True)
     check_scalar("x0", x0)
     check_scalar("g", g, lo=0.0, lo_open=True)
-    gamma = math.sqrt(3 * h / (4 * d))
-    eta = h / np.cosh(gamma * (x - x0) / d) ** 2
-    return eta, -math.sqrt(g / d) * eta
+    return x, math.sqrt(3 * h / (4 * d))
 
 
 def solitary_potential(x, h: float, d: float, x0: float, g: float = 9.81):
@@ -403,16 +409,8 @@ def solitary_potential(x, h: float, d: float, x0: float, g: float = 9.81):
 
     Parameters
     ----------
-    x : array_like
-        m.
-    h : float
-        Height H, m, > 0.
-    d : float
-        Depth, m, > 0.
-    x0 : float
-        Crest position, m.
-    g : float
-        m/s², > 0.
+    x, h, d, x0, g
+        As :func:`solitary_wave` (m; H, d > 0; crest position; m/s²).
 
     Returns
     -------
@@ -428,12 +426,7 @@ def solitary_potential(x, h: float, d: float, x0: float, g: float = 9.81):
     >>> bool(np.abs(np.gradient(phi, x) - u).max() < 1e-6)
     True
     """
-    x = np.asarray(check_array("x", x), np.float64)
-    check_scalar("h", h, lo=0.0, lo_open=True)
-    check_scalar("d", d, lo=0.0, lo_open=True)
-    check_scalar("x0", x0)
-    check_scalar("g", g, lo=0.0, lo_open=True)
-    gamma = math.sqrt(3 * h / (4 * d))
+    x, gamma = _solitary_inputs(x, h, d, x0, g)
     return -math.sqrt(g / d) * h * (d / gamma) * np.tanh(gamma * (x - x0) / d)
 
 
