@@ -71,6 +71,18 @@ def test_validate_leaves_the_long_checks_to_all(monkeypatch, capsys):
     assert "--all and --only" in err
 
 
+def test_a_reader_that_goes_away_is_no_error(monkeypatch):
+    """`wavephys validate --list | head -1`: when the reader has gone, the command stops quietly (exit 0, no
+    BrokenPipe traceback). Here stdout is a pipe whose reading end is closed, so every write fails."""
+    import os
+
+    read, write = os.pipe()
+    os.close(read)
+    with os.fdopen(write, "w") as closed:
+        monkeypatch.setattr(sys, "stdout", closed)
+        assert cli.main(["validate", "--list"]) == 0
+
+
 def test_every_commands_help_gives_its_own_exit_codes():
     """One table (cli.COMMANDS) writes each subcommand's help and exit codes: none says 'validation row' but
     validate, plan's code 1 once, render and textures describe themselves."""
