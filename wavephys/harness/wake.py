@@ -25,6 +25,7 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 
+import jax
 import jax.numpy as jnp
 import numpy as np
 
@@ -75,6 +76,15 @@ class WakeAngle:
             return f"{self.angle:.2f}° ± {self.uncertainty:.2f}° ({self.method}: {each})"
         return f"{self.angle:.2f}° ± {self.uncertainty:.2f}° ({self.method}, {self.points} sections)"
 
+
+
+
+@jax.jit
+def _spline_at(coefficients, u, v):
+    """The periodic cubic B-spline of one channel at texel coordinates (u, v), compiled once per shape."""
+    from wavephys.core.sampling import bspline
+
+    return bspline(coefficients, u, v)[:, 0]
 
 def _wave_envelope(eta, grid: Grid, direction: float):
     """Envelope of every wave in a steady wake: the modulus of the analytic signal along the
@@ -605,19 +615,22 @@ def wake_angle_darmon(eta, grid: Grid, *, source=(0.0, 0.0), direction: float = 
     radii = _check_radii(radii, float(grid.length) / 2)
     check_scalar("span", span, lo=20.0, hi=80.0)
     check_scalar("tolerance", tolerance, lo=0.0, hi=0.5, lo_open=True)
-    from wavephys.core.sampling import bspline
     from wavephys.core.spectral import bspline_coefficients
 
-    coefficients = bspline_coefficients(jnp.asarray(eta, jnp.float32))[..., None]
+    coefficients = jnp.asarray(bspline_coefficients(np.asarray(eta, np.float32))[..., None])  # numpy: no compiles
     c, s = math.cos(direction), math.sin(direction)
     length, dx = float(grid.length), float(grid.dx)
 
     def sample(behind, lateral):
         x = source[0] - c * behind - s * lateral
         y = source[1] - s * behind + c * lateral
-        u = jnp.asarray((x + 0.5 * length) / dx - 0.5, jnp.float32)
-        v = jnp.asarray((y + 0.5 * length) / dx - 0.5, jnp.float32)
-        return np.asarray(bspline(coefficients, u, v))[:, 0]
+        u = np.ravel((x + 0.5 * length) / dx - 0.5).astype(np.float32)
+        v = np.ravel((y + 0.5 * length) / dx - 0.5).astype(np.float32)
+        # one compiled program per power-of-two count of points (the arcs' counts vary with the radius)
+        count = u.size
+        size = max(64, 1 << (count - 1).bit_length())
+        padded = [np.pad(a, (0, size - count)) for a in (u, v)]
+        return np.asarray(_spline_at(coefficients, *padded))[:count]
 
     return _darmon(sample, radii, span, dx / 4, tolerance, "darmon")
 
