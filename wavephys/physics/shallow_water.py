@@ -516,10 +516,8 @@ def solitary_rundown_linear(h: float, d: float, cot_beta: float, samples: int = 
 
     Parameters
     ----------
-    h, d, cot_beta : float
-        Wave height and depth (m, > 0), beach slope as cot β (> 0).
-    samples : int
-        FFT length in time (≥ 1024).
+    h, d, cot_beta, samples
+        As :func:`solitary_runup_linear` (m, m, cot β; FFT length in time, ≥ 1024).
 
     Returns
     -------
