@@ -527,7 +527,12 @@ def _minmod(a, b):
     return jnp.where(a * b > 0, jnp.sign(a) * jnp.minimum(jnp.abs(a), jnp.abs(b)), 0.0)
 
 
-def _face_value(a, b, c, side, order, dry):
+def _mean(a, b):
+    """The unlimited (central) slope: the linear scheme that minmod limits."""
+    return 0.5 * (a + b)
+
+
+def _face_value(a, b, c, side, order, dry, limited=True):
     """The value at one face (``side`` = +1: the face towards c, −1: towards a) of the middle cell b of three
     consecutive cells a, b, c, each a tuple (h, normal discharge, tangential discharge, bed) of arrays:
     (h, bed, u, v) there. Written as a function of the three cells alone, so XLA fuses all of it into one
@@ -543,9 +548,10 @@ def _face_value(a, b, c, side, order, dry):
     hc, ec, uc, vc = prim(c)
     keep = (ha > dry) & (hb > dry) & (hc > dry)  # first order next to a dry cell: a shoreline at rest stays so
     half = 0.5 * side * jnp.where(keep, 1.0, 0.0)
-    h = hb + half * _minmod(hb - ha, hc - hb)
-    eta = eb + half * _minmod(eb - ea, ec - eb)
-    return h, eta - h, ub + half * _minmod(ub - ua, uc - ub), vb + half * _minmod(vb - va, vc - vb)
+    slope = _minmod if limited else _mean
+    h = hb + half * slope(hb - ha, hc - hb)
+    eta = eb + half * slope(eb - ea, ec - eb)
+    return h, eta - h, ub + half * slope(ub - ua, uc - ub), vb + half * slope(vb - va, vc - vb)
 
 
 def _hll(g, hl, ul, vl, hr, ur, vr):
@@ -569,7 +575,7 @@ def _hll(g, hl, ul, vl, hr, ur, vr):
     return mass, normal, along
 
 
-def _axis_rate(p, axis, g, dx, order, dry, walls):
+def _axis_rate(p, axis, g, dx, order, dry, walls, limited=True):
     """Rate of change (h, normal, tangential), each (ny, nx), from the fluxes across ``axis`` of a padded
     (4, …) array (two ghost cells each end of that axis); ``walls`` = (lo, hi) set the wall faces' mass flux
     to exactly 0."""
@@ -584,15 +590,17 @@ def _axis_rate(p, axis, g, dx, order, dry, walls):
         def cells(k, count):
             return tuple(cut(p[i], k, count) for i in range(4))
 
-        lh, lb, lu, lv = _face_value(cells(0, n + 1), cells(1, n + 1), cells(2, n + 1), 1.0, order, dry)
-        rh, rb, ru, rv = _face_value(cells(1, n + 1), cells(2, n + 1), cells(3, n + 1), -1.0, order, dry)
+        lh, lb, lu, lv = _face_value(cells(0, n + 1), cells(1, n + 1), cells(2, n + 1), 1.0, order, dry, limited)
+        rh, rb, ru, rv = _face_value(cells(1, n + 1), cells(2, n + 1), cells(3, n + 1), -1.0, order, dry, limited)
         top = jnp.maximum(lb, rb)
         hl = jnp.maximum(0.0, lh + lb - top)
         hr = jnp.maximum(0.0, rh + rb - top)
         return _hll(g, hl, lu, lv, hr, ru, rv) + (lh, hl, rh, hr)
 
     # a conditional is a boundary XLA does not fuse across: the face fluxes are computed once, in their own
-    # loop, then differenced (fused into the difference, each face was recomputed per use: ×30 slower on CPU, measured at 256²)
+    # loop, then differenced (fused into the difference, each face was recomputed per use: ×30 slower on CPU, measured at 256²).
+    # g must be traced for it (the solver an argument of the compiled program, not a constant in it): XLA folds a
+    # constant predicate away with the boundary (measured: 27 ms a step at 128² instead of 1)
     def nothing(p):  # never taken (g > 0): a branch as cheap as possible
         return (jnp.zeros_like(cut(p[0], 0, n + 1)),) * 7
 
@@ -615,13 +623,13 @@ def _axis_rate(p, axis, g, dx, order, dry, walls):
     r_along = -(cut(along, 1, n) - cut(along, 0, n)) / dx
     if order == 2:  # the cell-centred bed source that keeps the second-order scheme balanced
         a, b, c = (tuple(cut(p[i], k, n) for i in range(4)) for k in (1, 2, 3))
-        hm, bm, _, _ = _face_value(a, b, c, -1.0, order, dry)
-        hp, bp, _, _ = _face_value(a, b, c, 1.0, order, dry)
+        hm, bm, _, _ = _face_value(a, b, c, -1.0, order, dry, limited)
+        hp, bp, _, _ = _face_value(a, b, c, 1.0, order, dry, limited)
         r_normal = r_normal + 0.5 * g * (hm + hp) * (bm - bp) / dx
     return r_mass, r_normal, r_along
 
 
-def _rate(solver: ShallowWater, bed, fields, t):
+def _rate(solver: ShallowWater, bed, fields, t, limited=True):
     """d/dt of (h, hu, hv): the fluxes across x and across y, both on the fields' own layout (no transposes:
     XLA on CPU fuses each axis's stencil into the sum; transposed, it recomputed the faces, ×15 slower)."""
     h, hu, hv = fields[0], fields[1], fields[2]
@@ -631,13 +639,13 @@ def _rate(solver: ShallowWater, bed, fields, t):
         p = _pad_axis(jnp.stack([h, hu, hv, bed]), -1, solver.sides[:2], solver.inflows[:2], t, solver.g,
                       solver.dry)
         r = _axis_rate(p, -1, solver.g, solver.dx, solver.order, solver.dry,
-                       (solver.sides[0] == "wall", solver.sides[1] == "wall"))
+                       (solver.sides[0] == "wall", solver.sides[1] == "wall"), limited)
         out = out + jnp.stack([r[0], r[1], r[2]])
     if ny > 1 or "inflow" in solver.sides[2:]:
         p = _pad_axis(jnp.stack([h, hv, hu, bed]), -2, solver.sides[2:], solver.inflows[2:], t, solver.g,
                       solver.dry)
         r = _axis_rate(p, -2, solver.g, solver.dx, solver.order, solver.dry,
-                       (solver.sides[2] == "wall", solver.sides[3] == "wall"))
+                       (solver.sides[2] == "wall", solver.sides[3] == "wall"), limited)
         out = out + jnp.stack([r[0], r[2], r[1]])
     return out
 
@@ -648,12 +656,12 @@ def _dry_out(fields, dry):
     return jnp.stack([h, jnp.where(wet, fields[1], 0.0), jnp.where(wet, fields[2], 0.0)])
 
 
-def _advance(solver, bed, fields, t, dt):
-    k1 = _rate(solver, bed, fields, t)
+def _advance(solver, bed, fields, t, dt, limited=True):
+    k1 = _rate(solver, bed, fields, t, limited)
     u1 = _dry_out(fields + dt * k1, solver.dry)
     if solver.order == 1:
         return u1
-    k2 = _rate(solver, bed, u1, t + dt)
+    k2 = _rate(solver, bed, u1, t + dt, limited)
     return _dry_out(0.5 * fields + 0.5 * (u1 + dt * k2), solver.dry)
 
 
@@ -675,6 +683,15 @@ def _stable_dt(solver, fields, bed=None, t=None):
                 depth = jnp.maximum(eta.astype(h.dtype) - edge, 0.0)
                 top = jnp.maximum(top, jnp.max(jnp.abs(u_in.astype(h.dtype)) + 2 * _sqrt_gh(solver.g, depth)))
     return jnp.where(top > 0, solver.cfl * solver.dx / jnp.where(top > 0, top, 1.0), jnp.inf)
+
+
+def _linear_advance(solver: ShallowWater, bed, fields, t, dt):
+    """One step of Δt (s) of the solver's scheme with its slopes unlimited (central, no minmod) on raw fields
+    (3, ny, nx): the linear scheme the second-order solver limits (order 1: the solver's own step), traced,
+    without checks. Its Jacobian about still water is the solver's linearization for small waves, which the
+    split's correction needs (:mod:`wavephys.simulation.split`): minmod's own derivative at still water is 0,
+    the first-order scheme's, more diffusive than the solver on smooth waves."""
+    return _advance(solver, bed, fields, t, dt, limited=False)
 
 
 def advance_fields(solver: ShallowWater, bed, fields, t, dt):

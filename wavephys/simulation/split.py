@@ -16,17 +16,25 @@ is 1 in water deeper than ``taper[1]`` and 0 below ``taper[0]`` (surface waves l
    a constant over the wet region is kept exactly, so a lake at rest has no surface waves); the surface
    waves are x̃ = w (x − x̄) and the bulk is x − x̃.
 2. **Advance.** The bulk by one shallow-water step, SW(x − x̃); the surface waves by the exact linear
-   operator A = exp(−iMΔt) of each depth level (η̂_t = −i|k| q̂_l, q̂_l,t = −i (ω²/|k|) η̂, q_l the
-   discharge along k; the discharge across k is left alone), blended per place by the local bulk depth.
-3. **Recombine**, with a correction that makes the sum exact: new = SW(x − x̃) + A x̃ + (A − S)(w x̄), where
-   S is the same operator with the shallow-water frequency k√(gh). For small waves over a constant
-   depth SW ≈ S, so new ≈ S(x − x̃) + A x̃ + (A − S) w x̄ = A x: the recombined model has the exact ω(k)
-   at every kh, whatever the split (Jeschke & Wojtan derive a correction factor to the same end). What
-   is left is the shallow-water solver's own error on the bulk, which the bulk length keeps well
-   resolved (σ ≥ 8 cells by default; below 2 cells the split is unstable).
+   operator A_j = exp(−iMΔt) of each depth level j (η̂_t = −i|k| q̂_l, q̂_l,t = −i (ω²/|k|) η̂, q_l the
+   discharge along k; the discharge across k is left alone), blended per place by the local bulk depth h:
+   B = E T⁻¹ Σ_j √W_j A_j √W_j T E, in the variables (η, p = q/√h) that make shallow water's energy
+   g η² + |p|² the same for every level (A_j reads p as q/√h_j), with weights W_j linear in √h and their
+   square roots on both sides, so the blend keeps that energy; E = exp(CΔt/2), a turn in each cell, adds the
+   half of the slope terms (−p·∇√h in η_t, none in p_t) the blend's long-wave limit lacks, so long waves
+   shoal and run up as shallow water says.
+3. **Recombine**, with a correction that makes the sum exact: new = SW(x − x̃) + B(w x) − L(w x̄), where L is
+   the bulk solver's own step linearized about still water of the bulk's depth (its slopes unlimited: the
+   linear scheme its minmod limits; by ``jax.jvp``). Since x − x̃ = (1 − w) x + w x̄ and SW ≈ L for small
+   waves, new ≈ L((1 − w) x) + B(w x): where the taper is 1 the exact ω(k) of the local depth at every kh,
+   whatever the split, and shallow water where it is 0. What is left is the limited solver's difference from
+   its linear scheme on the smooth x̄ (and the nonlinear terms). Blending Σ_j W_j A_j on (η, q), and
+   correcting with the constant-depth shallow-water operator of each level in place of L, grew noise over
+   steps in the bed into a grid-scale mode (docs/physics.md §1.15). The bulk length σ (≥ 8 cells by
+   default; below 2 cells the split is unstable) sets what the nonlinear bulk holds.
 
 Water is conserved exactly: the shallow-water step conserves it, and the surface increment is made to
-hold the surface waves' water: A and S keep each field's mean at each level, but the blend of levels
+hold the surface waves' water: each A_j and L keep the water they are given, but the blend of levels
 (weights varying in space) and the part that lands where the taper is 0 (on dry or very shallow cells)
 do not, and their difference is put back evenly over the surface-wave region. A surface wave running into shallow water is handed to
 the bulk by the taper, where it shoals, breaks as a bore and runs up the beach as shallow water.
@@ -60,7 +68,7 @@ from wavephys.physics.depth import depth_weights
 from wavephys.physics.dispersion import angular_frequency
 from wavephys.core.stepper import Stepper, _bed
 from wavephys.simulation.shallow_water import (ShallowWater, ShallowWaterStepper, SWState, advance_fields, check_run,
-                                               stable_dt_fields)
+                                               stable_dt_fields, _linear_advance)
 
 __all__ = ["Split", "MovingPressure", "split_step", "split_run", "split_frames", "split_parts"]
 
@@ -234,8 +242,8 @@ def _from_spectrum(split, spec, shape):
 
 @functools.lru_cache(maxsize=16)
 def _tables(split: Split, shape):
-    """On the (extended) grid's half spectrum: |k|, the unit vector k/|k|, the bulk's Gaussian, and ω of A and S
-    at each level, (J, 2, my, mx//2 + 1), all as numpy float64."""
+    """On the (extended) grid's half spectrum: |k|, the unit vector k/|k|, the bulk's Gaussian, and the exact ω at
+    each level, (J, my, mx//2 + 1), all as numpy float64."""
     ny, nx = shape
     dx = split.solver.dx
     my = 2 * ny if split.solver.sides[2] == "wall" else ny
@@ -249,8 +257,7 @@ def _tables(split: Split, shape):
     with jax.ensure_compile_time_eval(), jax.enable_x64(True):
         for h in split.levels:
             water = Water(g=split.solver.g, rho=split.rho, sigma=split.sigma, depth=h)
-            w_a = np.asarray(angular_frequency(jnp.asarray(k, jnp.float64), water))
-            omegas.append(np.stack([w_a, k * math.sqrt(split.solver.g * h)]))
+            omegas.append(np.asarray(angular_frequency(jnp.asarray(k, jnp.float64), water)))
     return k, np.broadcast_to(kx / safe, k.shape), np.broadcast_to(ky / safe, k.shape), gauss, np.stack(omegas)
 
 
@@ -284,18 +291,18 @@ def _separate(split, bed, fields):
     return surf, bar, w, ref
 
 
-def _advance_surface(split, surf, wbar, depth, dt):
-    """A x̃ + (A − S)(w x̄) at each level, blended by ``depth`` (the bulk's, m): the surface increment (3, ny, nx)."""
-    shape = surf.shape[1:]
-    dtype = surf.dtype
+def _advance_surface(split, waves, depth, dt):
+    """B x: the exact operator Aⱼ of each level, blended by ``depth`` (the bulk's, m) as T⁻¹ E Σⱼ √Wⱼ Aⱼ √Wⱼ E T x
+    (3, ny, nx): T turns q into p = q/m (m = √h), the weights Wⱼ are linear in √h (so Σⱼ Wⱼ √hⱼ = m), Aⱼ reads
+    p as q/√hⱼ, and E = exp(CΔt/2) puts the blend's long-wave slope terms right (:func:`_slope_turn`)."""
+    shape = waves.shape[1:]
+    dtype = waves.dtype
     k, ux, uy, _, omegas = _tables(split, tuple(shape))
     k = jnp.asarray(k, dtype)
     ux, uy = jnp.asarray(ux, dtype), jnp.asarray(uy, dtype)
     omegas = jnp.asarray(omegas, dtype)
     pos = k > 0
     odd = ((False, False), (True, False), (False, True))
-    spec_s = [_to_spectrum(split, surf[i], *odd[i]) for i in range(3)]
-    spec_b = [_to_spectrum(split, wbar[i], *odd[i]) for i in range(3)]
 
     def evolve(spec, omega):
         eta, qx, qy = spec
@@ -307,15 +314,66 @@ def _advance_surface(split, surf, wbar, depth, dt):
         ql_n = ql * c - 1j * w_over_k * s * eta
         return eta_n, qx + (ql_n - ql) * ux, qy + (ql_n - ql) * uy
 
-    weights = depth_weights(depth, np.asarray(split.levels)).astype(dtype)
-    out = jnp.zeros_like(surf)
+    levels = np.asarray(split.levels)
+    # a dry level first (depth 0, its operator the identity), so that Σⱼ Wⱼ √hⱼ = √h down to no water at all
+    roots = _root(depth_weights(_root(depth), np.sqrt(np.concatenate([[0.0], levels]))).astype(dtype))
+    scale = _root(jnp.clip(depth, 0.0, levels[-1])).astype(dtype)  # m = Σⱼ Wⱼ √hⱼ, exactly
+    some = scale > 0
+    p = waves.at[1:].set(jnp.where(some, waves[1:] / jnp.where(some, scale, 1.0), 0.0))
+    # the correction's slope from m smoothed over the bulk length: from m itself, over beds that change within a
+    # cell, it grew a lake at rest with an island from 1e-12 to 1 m in 2000 steps (2-D, float64; measured)
+    gauss = jnp.asarray(_tables(split, tuple(shape))[3], dtype)
+    turn = _slope_turn(split, _from_spectrum(split, gauss * _to_spectrum(split, scale), shape), dt)
+    p = turn(p)
+    out = roots[0] ** 2 * p
     for j in range(len(split.levels)):
-        a_s = evolve(spec_s, omegas[j, 0])
-        a_b = evolve(spec_b, omegas[j, 0])
-        s_b = evolve(spec_b, omegas[j, 1])
-        planes = [_from_spectrum(split, a_s[i] + a_b[i] - s_b[i], shape) for i in range(3)]
-        out = out + weights[j] * jnp.stack(planes)
-    return out
+        lift = jnp.asarray([1.0, math.sqrt(levels[j]), math.sqrt(levels[j])], dtype)[:, None, None]
+        root = roots[j + 1]
+        spec = evolve([_to_spectrum(split, root * lift[i] * p[i], *odd[i]) for i in range(3)], omegas[j])
+        out = out + root * jnp.stack([_from_spectrum(split, spec[i], shape) for i in range(3)]) / lift
+    return turn(out).at[1:].multiply(scale)
+
+
+def _root(x):
+    """√x for x ≥ 0, with a finite derivative at 0 (for jax.grad and jacfwd through a step)."""
+    some = x > 0
+    return jnp.where(some, jnp.sqrt(jnp.where(some, x, 1.0)), 0.0)
+
+
+def _slope_turn(split, scale, dt):
+    """exp(C Δt/2): the blend's long-wave correction, a rotation in each cell (``scale``: m, smoothed). In
+    (η, p = q/m) with m = √h the blend's long-wave generator is shallow water's but for half its slope terms
+    (η_t lacks −½ p·∇m, p_t has an extra −½ g η ∇m); C = (η_t = −½ p·∇m, p_t = ½ g η ∇m) puts them right. It
+    keeps g η² + |p|², so it turns (√g η, p·∇m/|∇m|) by ½ |∇m| √g Δt (a quarter over each half step)."""
+    sides = split.solver.sides
+    dx = split.solver.dx
+    ny, nx = scale.shape
+    ax = _central(scale, -1, sides[0] == "periodic") / dx if nx > 1 else jnp.zeros_like(scale)
+    ay = _central(scale, -2, sides[2] == "periodic") / dx if ny > 1 else jnp.zeros_like(scale)
+    size = _root(ax * ax + ay * ay)
+    some = size > 0
+    ux = jnp.where(some, ax / jnp.where(some, size, 1.0), 0.0)
+    uy = jnp.where(some, ay / jnp.where(some, size, 1.0), 0.0)
+    root_g = math.sqrt(split.solver.g)
+    angle = 0.25 * size * root_g * dt
+    c, s = jnp.cos(angle), jnp.sin(angle)
+
+    def turn(z):
+        u = root_g * z[0]
+        along = ux * z[1] + uy * z[2]
+        u_n = u * c - along * s
+        along_n = along * c + u * s
+        return jnp.stack([u_n / root_g, z[1] + (along_n - along) * ux, z[2] + (along_n - along) * uy])
+
+    return turn
+
+
+def _bulk_linear(solver, bed, depth, perturbation, t, dt):
+    """L y: the bulk solver's step linearized about still water of ``depth`` (m), with its slopes unlimited (the
+    linear scheme its minmod limits, so L is second order like the solver on smooth fields), applied to
+    ``perturbation`` (3, ny, nx)."""
+    rest = jnp.stack([depth, jnp.zeros_like(depth), jnp.zeros_like(depth)])
+    return jax.jvp(lambda f: _linear_advance(solver, bed, f, t, dt), (rest,), (perturbation,))[1]
 
 
 def _central(f, axis, periodic):
@@ -344,14 +402,16 @@ def _force(split, bed, fields, t, dt):
     return jnp.stack([h, fields[1] - dt * g * h * gx, fields[2] - dt * g * h * gy])
 
 
-def _split_advance(split, bed, fields, t, dt):
-    """One step of the split (module doc, steps 1–3)."""
+def _split_advance(split, bed, fields, t, dt, solver=None):
+    """One step of the split (module doc, steps 1–3); ``solver``: ``split.solver`` as an argument of the compiled
+    program (traced: the bulk solver's constants folded into the program make its step ×27 slower)."""
+    solver = split.solver if solver is None else solver
     fields = _force(split, bed, fields, t, dt)
     surf, bar, w, ref = _separate(split, bed, fields)
     bulk = fields - surf
-    bulk_new = advance_fields(split.solver, bed, bulk, t, dt)
+    bulk_new = advance_fields(solver, bed, bulk, t, dt)
     bulk_depth = jnp.maximum(bar[0] + ref - bed, 0.0)
-    inc = _advance_surface(split, surf, w * bar, bulk_depth, dt)
+    inc = _advance_surface(split, surf + w * bar, bulk_depth, dt) - _bulk_linear(solver, bed, bulk_depth, w * bar, t, dt)
     # the surface waves keep their water: what lands where there are none (on dry or very shallow cells), and
     # what the blend of levels with weights varying in space adds or takes (each level alone keeps it), goes
     # back evenly over the surface-wave region
@@ -370,9 +430,13 @@ def _check_split_run(split, fields, t, dt=None):
     try:
         check_run(split.solver, fields, t, dt)
     except ValueError as error:
-        raise ValueError(f"{error}; in the split model, a bulk_length of "
-                         f"{split.bulk_length / split.solver.dx:.3g} cells (at least 8 advised) and surface "
-                         f"waves steep near the taper's depths {split.taper} m can do this too") from None
+        raise ValueError(_split_hint(split, error)) from None
+
+
+def _split_hint(split, error):
+    return (f"{error}; in the split model, a bulk_length of {split.bulk_length / split.solver.dx:.3g} cells (at "
+            f"least 8 advised), surface waves steep near the taper's depths {split.taper} m, and waves as high as "
+            f"the depth (a dam break, a bore: shallow water's alone, docs/physics.md §1.15) can do this too")
 
 
 def _checked(split, bed, state):
@@ -598,7 +662,7 @@ class SplitStepper(ShallowWaterStepper):
         return state
 
     def _parts(self):
-        return self.split, jnp.asarray(self.bed)
+        return self.split, (self.split.solver, jnp.asarray(self.bed))
 
     def _limit(self, state):
         return float(_limit_program(self.split, state.fields))
@@ -606,9 +670,24 @@ class SplitStepper(ShallowWaterStepper):
     def step(self, state, dt=None):
         return Stepper.step(self, state, dt)
 
+    @staticmethod
+    def _finite(state):
+        """Finite, and no depth below −rounding: a run stops there (a split that blows up, as on a dam break, would
+        otherwise go on with ever shorter steps)."""
+        h = state.fields[0]
+        rounding = 1e3 * jnp.finfo(h.dtype).eps * jnp.max(jnp.abs(jnp.where(jnp.isfinite(h), h, 0.0)))
+        return Stepper._finite(state) & (jnp.min(h) >= -rounding)
+
+    def _result(self, state):
+        try:
+            return super()._result(state)
+        except ValueError as error:
+            raise ValueError(_split_hint(self.split, error)) from None
+
     @classmethod
     def _advance(cls, static, dynamic, state, dt):
-        fields = _split_advance(static, dynamic.astype(state.fields.dtype), state.fields, state.time, dt)
+        solver, bed = dynamic
+        fields = _split_advance(static, bed.astype(state.fields.dtype), state.fields, state.time, dt, solver)
         return type(state)(fields, state.time + dt)
 
     @classmethod
@@ -617,4 +696,4 @@ class SplitStepper(ShallowWaterStepper):
 
     @classmethod
     def _height(cls, static, dynamic, state):
-        return dynamic.astype(state.fields.dtype) + state.fields[0]
+        return dynamic[1].astype(state.fields.dtype) + state.fields[0]
