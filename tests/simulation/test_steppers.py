@@ -255,9 +255,8 @@ def test_the_virtual_pipes_run_a_solitary_wave_up_a_beach_short_their_documented
 def test_the_split_runs_a_solitary_wave_up_a_beach_when_its_surface_waves_fade_before_the_shore():
     """The NTHMP case at d/10 (solitary_runup_run, model='split': levels 0.25, 0.5, 1 m, surface waves faded into
     the bulk between 0.5 and 0.2 m): run-up +0.4 % of the exact linear one, run-down 0.88 of it (levels 0.5 and
-    1 m with the taper (0.4, 0.5): −0.9 %, 0.93; one level at 1 m: +2.1 %, 0.79). With the split's default taper
-    (surface waves carried to a quarter of the shallowest level, at its speed where the water is shallower) +17 %,
-    run-down 0.47 (docs/physics.md §1.15)."""
+    1 m with the taper (0.4, 0.5): −1.1 %, 0.95; one level at 1 m: −3.2 %, 0.83). With the split's default taper
+    (surface waves carried to a quarter of the shallowest level) +16 %, run-down 0.52 (docs/physics.md §1.15)."""
     from wavephys.checks.shallow_water import solitary_runup_run
     from wavephys.physics.shallow_water import solitary_breaking_limit
 

@@ -269,7 +269,7 @@ def solitary_runup_run(height: float, cot_beta: float, per_depth: int = 20, orde
     model : {"shallow_water", "split", "pipes"}
         ``"shallow_water"`` (default; the offshore side open), ``"split"`` (its surface waves at the depths
         0.25, 0.5 and 1 m, faded into the bulk between 0.5 and 0.2 m deep — carried shallower, with the
-        default taper, the run-up is +17 % at d/10 (+0.4 % as set); a wall offshore, far enough not
+        default taper, the run-up is +16 % at d/10 (+0.4 % as set); a wall offshore, far enough not
         to return in time), ``"pipes"`` (area "depth"; the wave's velocity given as the pipes' outflows; a wall
         offshore likewise).
 

@@ -19,8 +19,9 @@ is 1 in water deeper than ``taper[1]`` and 0 below ``taper[0]`` (surface waves l
    operator A_j = exp(−iMΔt) of each depth level j (η̂_t = −i|k| q̂_l, q̂_l,t = −i (ω²/|k|) η̂, q_l the
    discharge along k; the discharge across k is left alone), blended per place by the local bulk depth h:
    B = E T⁻¹ Σ_j √W_j A_j √W_j T E, in the variables (η, p = q/√h) that make shallow water's energy
-   g η² + |p|² the same for every level (A_j reads p as q/√h_j), with weights W_j linear in √h and their
-   square roots on both sides, so the blend keeps that energy; E = exp(CΔt/2), a turn in each cell, adds the
+   g η² + |p|² the same for every level (A_j reads p as q/√h_j), with weights W_j linear in √h (a dry level
+   of depth 0, the identity, below the shallowest) and their square roots on both sides, so the blend keeps
+   that energy; E = exp(CΔt/2), a turn in each cell, adds the
    half of the slope terms (−p·∇√h in η_t, none in p_t) the blend's long-wave limit lacks, so long waves
    shoal and run up as shallow water says.
 3. **Recombine**, with a correction that makes the sum exact: new = SW(x − x̃) + B(w x) − L(w x̄), where L is
