@@ -5,7 +5,8 @@ Problems: a lake at rest over an uneven bed with every kind of side it takes; th
 2 × 1.25 m tank (Lx ≠ Ly), and the same tank over a sloping floor checked by `wavephys check`; a solitary
 wave's run-up on plane beaches (the linear depth stepper against the exact linear theory; the split and the
 pipes on the NTHMP case); Ritter's dam break by the nonlinear steppers; dispersion of a standing wave per kh band (0.1, 1, 3); mass over a run.
-Elsewhere, by stepper: Lamb's beach with dry land (test_shoreline.py, test_depth.py), dam breaks, Thacker and
+Elsewhere, by stepper: Lamb's beach with dry land for the linear depth steppers (test_shoreline.py, test_depth.py;
+here for the nonlinear ones), dam breaks, Thacker and
 the solitary run-up (test_shallow_water.py), open sides at rest over 10⁵ steps (test_open_sides.py)."""
 
 import math
@@ -538,3 +539,51 @@ def test_the_pure_forms_settle_an_open_side_from_the_state_they_start_from():
         assert np.abs(np.asarray(end.h[0]) + bed[0]).max() <= 1e-15, method
         ends.append(end)
     assert float(ends[0].time) == float(ends[1].time) == 1.0
+
+
+# -- Lamb's standing wave on a plane beach with dry land, by the nonlinear steppers --------------------------
+def _lamb(name, wet_cells=64, slope=0.1, offset=0.37, periods=3):
+    """Lamb's gravest mode (η = A J₀(2ω√((x − x_s)/(g tan β))), A = 1 mm) on a 1:10 beach whose still shoreline
+    lies ``offset`` of a cell past a face, with dry land beyond and a wall offshore, through the stepper ``name``
+    (float64): its fitted ω over the exact one − 1, and the fitted amplitude − 1, over ``periods`` periods."""
+    from scipy.special import j0, jn_zeros
+
+    n = int(math.ceil(wet_cells * 4 / 3))
+    dx, amp = 1.0, 1e-3
+    x = (np.arange(n) + 0.5) * dx
+    shore = n * dx - (wet_cells - offset) * dx
+    omega = jn_zeros(1, 1)[0] / (2 * math.sqrt((n * dx - shore) / (G * slope)))
+    bed = (-slope * (x - shore))[None]
+    eta0 = np.where(x > shore, amp * j0(2 * omega * np.sqrt(np.maximum(x - shore, 0.0) / (G * slope))), 0.0)
+    period = 2 * math.pi / omega
+    with jax.enable_x64(True):
+        surface = np.where(x > shore, eta0, bed[0])[None]  # dry cells: no water on the land
+        if name == "PipesStepper":
+            stepper, state = PipesStepper(Pipes(dx), bed, period / 400), pipes_state(bed, surface, dtype=jnp.float64)
+        else:
+            solver = sw.ShallowWater(dx, sides={"left": "wall", "right": "wall", "bottom": "periodic",
+                                                "top": "periodic"})
+            stepper = ShallowWaterStepper(solver, bed) if name == "ShallowWaterStepper" else \
+                SplitStepper(Split(solver, levels=(1.6, 6.4)), bed)
+            state = sw.sw_state(bed, surface, dtype=jnp.float64)
+        run = stepper.run(state, until=periods * period, every=period / 40)
+        frames = np.asarray(run.frames, np.float64)[:, 0]
+    wet = x > shore
+    proj = frames[:, wet] @ eta0[wet] / np.sum(eta0[wet] ** 2)
+    t = np.asarray(run.times)
+    (a, w, _), _ = curve_fit(lambda t, a, w, p: a * np.cos(w * t + p), t, proj, p0=[1.0, omega, 0.0])
+    return w / omega - 1, abs(a) - 1
+
+
+@pytest.mark.slow
+def test_lambs_beach_with_dry_land_by_the_nonlinear_steppers():
+    """Lamb's standing wave on a 1:10 beach, the shoreline 0.37 of a cell past a face, 64 wet cells, 3 periods,
+    1 mm (the linear depth stepper's own test, within 3e-4: test_shoreline.py). Measured, ω − 1 and the fitted
+    amplitude − 1: shallow water −0.67 %, −24 % (its limiter and the first-order cells beside the shoreline damp
+    the mode at this resolution); the split −6.1 %, −87 % and the virtual pipes −6.2 %, −83 %: their measured
+    failures, found this stop and not fixed (the split's was the same before its blend was made stable: −6.1 %,
+    −88 %). Each assertion below flips when its stepper is fixed."""
+    got = {name: _lamb(name) for name in ("ShallowWaterStepper", "SplitStepper", "PipesStepper")}
+    omega, amplitude = got["ShallowWaterStepper"]
+    assert abs(omega) < 0.01 and amplitude > -0.3, got
+    assert all(got[name][1] < -0.7 for name in ("SplitStepper", "PipesStepper")), got  # their measured failures
