@@ -545,7 +545,8 @@ def test_the_pure_forms_settle_an_open_side_from_the_state_they_start_from():
 def _lamb(name, wet_cells=64, slope=0.1, offset=0.37, periods=3):
     """Lamb's gravest mode (η = A J₀(2ω√((x − x_s)/(g tan β))), A = 1 mm) on a 1:10 beach whose still shoreline
     lies ``offset`` of a cell past a face, with dry land beyond and a wall offshore, through the stepper ``name``
-    (float64): its fitted ω over the exact one − 1, and the fitted amplitude − 1, over ``periods`` periods."""
+    (float64): its fitted ω over the exact one − 1, and the amplitude left after ``periods`` periods − 1 (a damped
+    cosine fitted to the mode's projection)."""
     from scipy.special import j0, jn_zeros
 
     n = int(math.ceil(wet_cells * 4 / 3))
@@ -571,19 +572,23 @@ def _lamb(name, wet_cells=64, slope=0.1, offset=0.37, periods=3):
     wet = x > shore
     proj = frames[:, wet] @ eta0[wet] / np.sum(eta0[wet] ** 2)
     t = np.asarray(run.times)
-    (a, w, _), _ = curve_fit(lambda t, a, w, p: a * np.cos(w * t + p), t, proj, p0=[1.0, omega, 0.0])
-    return w / omega - 1, abs(a) - 1
+    scan = omega * np.linspace(0.5, 2.0, 301)  # the strongest frequency first: a fit from ω alone can lock onto a wrong one
+    guess = scan[np.argmax([abs(np.sum(proj * np.exp(-1j * w * t))) for w in scan])]
+    (a, w, decay, _), _ = curve_fit(lambda t, a, w, d, p: a * np.exp(-d * t) * np.cos(w * t + p), t, proj,
+                                    p0=[1.0, guess, 0.0, 0.0])
+    return w / omega - 1, abs(a) * math.exp(-decay * t[-1]) - 1
 
 
 @pytest.mark.slow
 def test_lambs_beach_with_dry_land_by_the_nonlinear_steppers():
     """Lamb's standing wave on a 1:10 beach, the shoreline 0.37 of a cell past a face, 64 wet cells, 3 periods,
-    1 mm (the linear depth stepper's own test, within 3e-4: test_shoreline.py). Measured, ω − 1 and the fitted
-    amplitude − 1: shallow water −0.67 %, −24 % (its limiter and the first-order cells beside the shoreline damp
-    the mode at this resolution); the split −6.1 %, −87 % and the virtual pipes −6.2 %, −83 %: their measured
-    failures, found this stop and not fixed (the split's was the same before its blend was made stable: −6.1 %,
-    −88 %). Each assertion below flips when its stepper is fixed."""
+    1 mm (the linear depth stepper's own test, within 3e-4: test_shoreline.py). Measured, ω − 1 and the amplitude
+    left − 1: shallow water −0.68 %, −44 % (its limiter and the first-order cells beside the shoreline damp the
+    mode at this resolution); the virtual pipes +39 % (their documented √2 speed at area="depth"), −33 %; the
+    split destroys the mode within a period (amplitude left 5e-4; the same with the blend before this stop's):
+    a failure found this stop, not fixed. Each failure's assertion flips when its stepper is fixed."""
     got = {name: _lamb(name) for name in ("ShallowWaterStepper", "SplitStepper", "PipesStepper")}
     omega, amplitude = got["ShallowWaterStepper"]
-    assert abs(omega) < 0.01 and amplitude > -0.3, got
-    assert all(got[name][1] < -0.7 for name in ("SplitStepper", "PipesStepper")), got  # their measured failures
+    assert abs(omega) < 0.01 and amplitude > -0.6, got
+    assert got["SplitStepper"][1] < -0.95, got  # its measured failure
+    assert got["PipesStepper"][0] > 0.3, got  # theirs: √2 fast
