@@ -253,16 +253,18 @@ def test_the_virtual_pipes_run_a_solitary_wave_up_a_beach_short_their_documented
 
 
 @pytest.mark.slow
-def test_the_split_runs_a_solitary_wave_up_a_beach_when_its_surface_waves_fade_before_the_shore():
+def test_the_split_runs_a_solitary_wave_up_a_beach_a_few_percent_short():
     """The NTHMP case at d/10 (solitary_runup_run, model='split': levels 0.25, 0.5, 1 m, surface waves faded into
-    the bulk between 0.5 and 0.2 m): run-up +0.4 % of the exact linear one, run-down 0.88 of it (levels 0.5 and
-    1 m with the taper (0.4, 0.5): −1.1 %, 0.95; one level at 1 m: −3.2 %, 0.83). With the split's default taper
-    (surface waves carried to a quarter of the shallowest level) +16 %, run-down 0.52 (docs/physics.md §1.15)."""
+    the bulk between 0.5 and 0.2 m): run-up −6.0 % of the exact linear one, run-down 1.10 of it; with the default
+    taper (surface waves carried to a quarter of the shallowest level) −6.8 %, 1.12; levels 0.5 and 1 m with the
+    taper (0.4, 0.5) −5.3 %, 1.10; one level at 1 m −5.3 %, 1.10. Shallow water alone on the same cells: −1.9 %.
+    Before the split stopped weighting its increment by the taper a second time, the run-up hung on the taper:
+    +0.4 % as set, +16 % with the default (docs/physics.md §1.15)."""
     from wavephys.checks.shallow_water import solitary_runup_run
     from wavephys.physics.shallow_water import solitary_breaking_limit
 
     r = solitary_runup_run(0.34 * solitary_breaking_limit(19.85), 19.85, per_depth=10, model="split")
-    assert abs(r["runup"] / r["linear"] - 1) < 0.05 and 0.6 < r["rundown"] / r["rundown_linear"] < 0.9, r
+    assert abs(r["runup"] / r["linear"] - 1) < 0.08 and 1.0 < r["rundown"] / r["rundown_linear"] < 1.2, r
 
 
 # -- a dam break on a dry bed: the nonlinear steppers against Ritter -----------------------------------------
@@ -431,6 +433,43 @@ def test_every_stepper_is_in_the_set():
     assert posed == set(STEPPERS), set(STEPPERS) - posed
 
 
+def test_one_program_serves_every_step_and_run_of_a_stepper():
+    """A step, runs of 1, 7 and 10 steps, runs to a time with and without frames, frames() and advance_to() of one
+    stepper compile one loop between them (each used to compile its own, and a run of so many steps again for
+    each count), and agree with each other."""
+    from jax import monitoring
+
+    compiled = []
+    loops = {f"jit({name})" for name in ("_loop_program", "_steps_program", "_until_program", "_frames_program")}
+
+    def listen(event, duration, **kw):
+        if "backend_compile" in event and str(kw.get("fun_name")) in loops:
+            compiled.append(kw.get("fun_name"))
+
+    monitoring.register_event_duration_secs_listener(listen)
+    try:
+        bed = _uneven_bed(np.random.default_rng(3), (7, 11))  # a shape no other test steps
+        stepper = ShallowWaterStepper(sw.ShallowWater(0.05, sides="wall"), bed)
+        state = sw.sw_state(bed, np.where(bed < 0, 1e-3 * np.cos(np.arange(11) / 3), 0.0),
+                            dtype=jnp.float64)
+        one = stepper.step(state)
+        seven = stepper.run(state, steps=7).state
+        ten = stepper.run(state, steps=10, every=3)
+        by_steps = stepper.run(one, steps=6).state
+        timed = stepper.run(state, until=0.05, every=0.01)
+        frames = stepper.frames(state, [0.01, 0.02, 0.03, 0.04, 0.05])
+        reached, _ = stepper.advance_to(state, 0.05)
+        whole = stepper.run(state, until=0.05).state
+    finally:
+        monitoring.unregister_event_duration_listener(listen)
+    assert len(compiled) <= 1, compiled
+    assert ten.frames.shape[0] == 4 and timed.frames.shape[0] == 5
+    np.testing.assert_array_equal(np.asarray(seven.fields), np.asarray(by_steps.fields))
+    np.testing.assert_array_equal(np.asarray(frames.fields[-1]), np.asarray(timed.state.fields))
+    np.testing.assert_array_equal(np.asarray(reached.fields), np.asarray(whole.fields))
+    np.testing.assert_array_equal(np.asarray(ten.state.fields), np.asarray(stepper.run(seven, steps=3).state.fields))
+
+
 def test_the_run_streams_frames_to_a_callback_and_keeps_none():
     stepper, state, mode = _seiche("ShallowWaterStepper")
     seen = []
@@ -584,11 +623,14 @@ def test_lambs_beach_with_dry_land_by_the_nonlinear_steppers():
     """Lamb's standing wave on a 1:10 beach, the shoreline 0.37 of a cell past a face, 64 wet cells, 3 periods,
     1 mm (the linear depth stepper's own test, within 3e-4: test_shoreline.py). Measured, ω − 1 and the amplitude
     left − 1: shallow water −0.68 %, −44 % (its limiter and the first-order cells beside the shoreline damp the
-    mode at this resolution); the virtual pipes +39 % (their documented √2 speed at area="depth"), −33 %; the
-    split destroys the mode within a period (amplitude left 5e-4; the same with the blend before this stop's):
-    a failure found this stop, not fixed. Each failure's assertion flips when its stepper is fixed."""
+    mode at this resolution); the split −0.66 %, −46 % (before it weighted its increment by the taper again and
+    destroyed the mode within a period: amplitude left 5e-4); the virtual pipes +39 % (their documented √2 speed
+    at area="depth"), −33 %. On a 1:20 beach (shoreline 0.1 past a face) the split −0.77 %, shallow water
+    −0.88 %; on 1:5 (0.8) the split errs −4.4 % where shallow water errs +0.6 % (docs/physics.md §1.15)."""
     got = {name: _lamb(name) for name in ("ShallowWaterStepper", "SplitStepper", "PipesStepper")}
-    omega, amplitude = got["ShallowWaterStepper"]
-    assert abs(omega) < 0.01 and amplitude > -0.6, got
-    assert got["SplitStepper"][1] < -0.95, got  # its measured failure
+    for name in ("ShallowWaterStepper", "SplitStepper"):
+        omega, amplitude = got[name]
+        assert abs(omega) < 0.01 and amplitude > -0.6, got
+    omega, amplitude = _lamb("SplitStepper", slope=0.05, offset=0.1)
+    assert abs(omega) < 0.01 and amplitude > -0.3, (omega, amplitude)
     assert got["PipesStepper"][0] > 0.3, got  # theirs: √2 fast

@@ -17,9 +17,11 @@ class methods of (static settings, array settings, state): ``_parts``, ``_advanc
 * :attr:`Stepper.sides` — the four sides (``left``, ``right``, ``bottom``, ``top``) in one vocabulary,
   :data:`SIDE_KINDS`; one clock: each state carries its time, s.
 
-The loop is written once here (``_steps_program``, ``_until_program``, ``_frames_program``): a compiled
-``fori_loop`` of the stepper's own step, or a ``while_loop`` of stable steps with the last one cut to land on
-a time. The steppers themselves and their registry: :mod:`wavephys.steppers`.
+The loop is written once here: one compiled ``while_loop`` (``_loop_program``) of the stepper's own step or a
+given Δt, up to a time (the last step cut to land on it) or a number of steps, both arguments, so one program
+serves every step and run of a stepper; ``_steps_program``, the ``fori_loop`` of a static count, is the form
+``jax.grad`` differentiates (:meth:`Stepper.advance` under a trace). The steppers themselves and their
+registry: :mod:`wavephys.steppers`.
 """
 
 from __future__ import annotations
@@ -95,7 +97,8 @@ register(TwoLevelState, ("eta", "eta_prev", "time"))
 # -- the loop, written once ---------------------------------------------------------------------
 @functools.partial(jax.jit, static_argnums=(0, 1, 4))
 def _steps_program(cls, static, dynamic, state, steps, dt):
-    """``steps`` steps (of ``dt``, or the stepper's own where it is NaN)."""
+    """``steps`` steps (of ``dt``, or the stepper's own where it is NaN), the count static: the form
+    ``jax.grad`` differentiates (:meth:`Stepper.advance`)."""
     def body(_, s):
         own = cls._dt(static, dynamic, s)
         return cls._advance(static, dynamic, s, jnp.where(jnp.isnan(dt), own, dt).astype(own.dtype))
@@ -104,8 +107,13 @@ def _steps_program(cls, static, dynamic, state, steps, dt):
 
 
 @functools.partial(jax.jit, static_argnums=(0, 1))
-def _until_program(cls, static, dynamic, state, until, max_steps):
-    """Stable steps up to ``until`` (the last one cut to land on it)."""
+def _loop_program(cls, static, dynamic, state, until, max_steps, dt):
+    """Steps of ``dt`` (the stepper's own where it is NaN) up to ``until`` (the last one cut to land on it; +inf:
+    no end time) or ``max_steps`` steps, stopping at a state that is not finite: ``(state, steps taken)``.
+
+    One program per stepper and settings serves a step, a run of so many steps and a run to a time: the counts
+    and times are arguments, not constants compiled in (each was a program of its own, compiled again for
+    each count: these loops took 28 % of the test suite's XLA compile time, measured)."""
     def cond(c):
         s, n = c
         return (cls._time(s) < until) & (n < max_steps) & cls._finite(s)
@@ -113,11 +121,27 @@ def _until_program(cls, static, dynamic, state, until, max_steps):
     def body(c):
         s, n = c
         t = cls._time(s)
-        dt = jnp.minimum(cls._dt(static, dynamic, s), until - t)
-        s = cls._advance(static, dynamic, s, dt)
-        return cls._with_time(s, jnp.where(until - t <= dt, until, t + dt).astype(t.dtype)), n + 1
+        own = cls._dt(static, dynamic, s)
+        step = jnp.minimum(jnp.where(jnp.isnan(dt), own, dt).astype(own.dtype), until - t)
+        s = cls._advance(static, dynamic, s, step)
+        return cls._with_time(s, jnp.where(until - t <= step, until, t + step).astype(t.dtype)), n + 1
 
     return jax.lax.while_loop(cond, body, (state, jnp.asarray(0, jnp.int32)))
+
+
+def _until_program(cls, static, dynamic, state, until, max_steps):
+    """Stable steps up to ``until`` (the last one cut to land on it): ``(state, steps taken)``."""
+    dtype = jnp.asarray(cls._time(state)).dtype
+    return _loop_program(cls, static, dynamic, state, jnp.asarray(until, dtype), jnp.asarray(max_steps, jnp.int32),
+                         jnp.asarray(np.nan, dtype))
+
+
+def _count_program(cls, static, dynamic, state, steps, dt):
+    """``steps`` steps (of ``dt``, or the stepper's own where it is NaN), the count an argument; it stops early
+    at a state that is not finite."""
+    dtype = jnp.asarray(cls._time(state)).dtype  # strong dtypes: one compiled program for every call
+    return _loop_program(cls, static, dynamic, state, jnp.asarray(np.inf, dtype), jnp.asarray(steps, jnp.int32),
+                         jnp.asarray(dt, dtype))[0]
 
 
 @functools.partial(jax.jit, static_argnums=(0, 1))
@@ -240,7 +264,7 @@ class Stepper:
         if dt is not None:
             dt = self._check_dt(state, dt)
         static, dynamic = self._parts()
-        out = _steps_program(type(self), static, dynamic, state, 1, jnp.asarray(np.nan if dt is None else dt))
+        out = _count_program(type(self), static, dynamic, state, 1, jnp.asarray(np.nan if dt is None else dt))
         return self._result(out)
 
     def _check_dt(self, state, dt):
@@ -274,8 +298,10 @@ class Stepper:
         if dt is not None and not (is_traced(dt) or is_traced(state)):
             dt = self._check_dt(state, dt)  # past the stable step: refused by name
         static, dynamic = self._parts()
-        return _steps_program(type(self), static, dynamic, state, steps,
-                              jnp.asarray(np.nan) if dt is None else jnp.asarray(dt))
+        dt = jnp.asarray(np.nan) if dt is None else jnp.asarray(dt)
+        if any(is_traced(v) for v in jax.tree_util.tree_leaves((state, dt, dynamic))):
+            return _steps_program(type(self), static, dynamic, state, steps, dt)  # jax.grad needs a static count
+        return _count_program(type(self), static, dynamic, state, steps, dt)
 
     def _whole_steps(self, state, time, name):
         """The number of the stepper's fixed steps from the state's time to ``time`` (ValueError naming
@@ -352,8 +378,15 @@ class Stepper:
                 state = self.advance(state, n) if n else state
                 out.append(state)
             return jax.tree_util.tree_map(lambda *leaves: jnp.stack(leaves), *out)
-        return _frames_program(type(self), static, dynamic, state, jnp.asarray(times, self._time(state).dtype),
-                               jnp.asarray(max_steps, jnp.int32))
+        times = jnp.asarray(times, self._time(state).dtype)
+        max_steps = jnp.asarray(max_steps, jnp.int32)
+        if any(is_traced(v) for v in jax.tree_util.tree_leaves((state, times, dynamic))):
+            return _frames_program(type(self), static, dynamic, state, times, max_steps)
+        out = []  # concrete: the run's own program from frame to frame (no program of its own to compile)
+        for t in times:
+            state, _ = _until_program(type(self), static, dynamic, state, t, max_steps)
+            out.append(state)
+        return jax.tree_util.tree_map(lambda *leaves: jnp.stack(leaves), *out)
 
     def run(self, state, until: Optional[float] = None, *, steps: Optional[int] = None, every=None,
             callback: Optional[Callable] = None, max_steps: int = 1_000_000) -> Run:
@@ -430,7 +463,7 @@ class Stepper:
         nan = jnp.asarray(np.nan)
         for index, (kind, value) in enumerate(plan):
             if kind == "steps":
-                state = _steps_program(cls, static, dynamic, state, value, nan)
+                state = _count_program(cls, static, dynamic, state, value, nan)
             else:
                 state, n = _until_program(cls, static, dynamic, state, jnp.asarray(value, self._time(state).dtype),
                                           jnp.asarray(max_steps, jnp.int32))

@@ -413,15 +413,18 @@ def _split_advance(split, bed, fields, t, dt, solver=None):
     bulk_new = advance_fields(solver, bed, bulk, t, dt)
     bulk_depth = jnp.maximum(bar[0] + ref - bed, 0.0)
     inc = _advance_surface(split, surf + w * bar, bulk_depth, dt) - _bulk_linear(solver, bed, bulk_depth, w * bar, t, dt)
-    # the surface waves keep their water: what lands where there are none (on dry or very shallow cells), and
-    # what the blend of levels with weights varying in space adds or takes (each level alone keeps it), goes
-    # back evenly over the surface-wave region
+    # the increment lands whole on every wet cell: the taper already chose the surface waves in step 1, and
+    # weighting the increment by it again took w(1 − w)(x − x̄) from the water each step where it fades, which
+    # destroyed Lamb's standing wave on a beach within a period (measured: amplitude left 5e-4 after three;
+    # now −47 %, shallow water's own −44 %). The surface waves keep their water: what the blend of levels with
+    # weights varying in space adds or takes (each level alone keeps it), and what −L would put on a dry cell,
+    # goes back evenly over the surface-wave region
+    inc = jnp.where(bulk_new[0] > split.solver.dry, inc, 0.0)
     w_new = _taper(split, bulk_new[0])
-    lost = jnp.sum(surf[0]) - jnp.sum(inc[0] * w_new)
+    lost = jnp.sum(surf[0] - inc[0])
     total = jnp.sum(w_new)
     spread = jnp.where(total > 0, lost / jnp.where(total > 0, total, 1.0), 0.0)
-    inc = jnp.stack([inc[0] * w_new + spread * w_new, inc[1] * w_new, inc[2] * w_new])
-    new = bulk_new + inc
+    new = bulk_new + inc.at[0].add(spread * w_new)
     dry = split.solver.dry
     wet = new[0] > dry
     return jnp.stack([new[0], jnp.where(wet, new[1], 0.0), jnp.where(wet, new[2], 0.0)])
