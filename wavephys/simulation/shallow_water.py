@@ -1012,8 +1012,11 @@ def _check_result(solver, fields, t, dt=None):
     h = fields[..., 0, :, :]
     low = float(h.min())
     if low < rounding:
-        raise ValueError(f"the shallow-water solution made a negative depth ({low:.3g} m) by t = {when:.6g} s "
-                         f"(cfl = {float(solver.cfl):g}: h >= 0 is guaranteed for cfl <= 0.5, try a smaller one)")
+        cfl = float(solver.cfl)
+        why = (f"cfl = {cfl:g}: h >= 0 is guaranteed for cfl <= 0.5, try a smaller one" if cfl > 0.5 else
+               f"cfl = {cfl:g} keeps h >= 0 in the solver's own step, so the water was taken by something else: a "
+               f"source, or a model around the solver")
+        raise ValueError(f"the shallow-water solution made a negative depth ({low:.3g} m) by t = {when:.6g} s ({why})")
 
 
 sw_run = deprecated_function(
