@@ -324,9 +324,10 @@ WALLS = {"left": "wall", "right": "wall", "bottom": "periodic", "top": "periodic
 def test_noise_over_a_smooth_ramp_stays_quiet_with_several_levels():
     """1e-6 m of noise over a smooth ramp from 1 to 0.25 m (walls, 128 cells of 0.1 m, float64), 50 s. Measured:
     levels (0.25, 1) reach 0.31 m, and the same at dx 0.39 m and with three levels; one level at 1 m stays at
-    2e-7. Suspect: each level's operator turns (η, q) so as to keep g η² + |q|² k/tanh(kh) (shallow water's
-    g η² + |q|²/h only for long waves), so the blend of levels with weights that change along the ramp keeps no
-    norm for short waves. The noise test over steps and blocks (above) uses beds this does not show on."""
+    2e-7. Cause (a trial, docs/physics.md §1.15): each level's operator keeps g η² + |q|² k/tanh(kh), shallow
+    water's g η² + |q|²/h only for long waves, so the blend of levels with weights that change along the ramp
+    keeps no norm for short waves; a pure rotation of (√g η, q/√hⱼ) per level keeps 1.9e-6 but gives short
+    waves the wrong q/η. The noise test over steps and blocks (below) uses beds this does not show on."""
     x = np.arange(128) * 0.1
     bed = -np.clip(1.0 - 0.75 * (x - x[25]) / (x[102] - x[25]), 0.25, 1.0)[None]
     eta = 1e-6 * np.random.default_rng(0).standard_normal((1, 128))
