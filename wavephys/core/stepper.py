@@ -278,7 +278,8 @@ class Stepper:
     # -- pure forms (jit, vmap; grad through a fixed number of steps) ---------------------------------
     def advance(self, state, steps: int, dt=None):
         """``steps`` steps of the stepper's own Δt, or of ``dt``: the state after them (pure: ``jax.jit``,
-        ``jax.vmap`` and, with a fixed Δt, ``jax.grad`` apply; no stability check: see :meth:`step`).
+        ``jax.vmap`` and, with a fixed Δt, ``jax.grad`` apply; no stability check: see :meth:`step`; called with
+        concrete arrays it stops at the first state that is not finite, whose time then says how far it got).
 
         Parameters
         ----------
