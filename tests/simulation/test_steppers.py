@@ -253,18 +253,21 @@ def test_the_virtual_pipes_run_a_solitary_wave_up_a_beach_short_their_documented
 
 
 @pytest.mark.slow
-def test_the_split_runs_a_solitary_wave_up_a_beach_a_few_percent_short():
+@pytest.mark.xfail(strict=True, reason="found this stop, not fixed: the split runs up 6 % short of the exact linear "
+                                       "run-up (shallow water: 1.9 %); docs/physics.md §1.15")
+def test_the_split_runs_a_solitary_wave_up_a_beach_as_the_exact_linear_theory_says():
     """The NTHMP case at d/10 (solitary_runup_run, model='split': levels 0.25, 0.5, 1 m, surface waves faded into
     the bulk between 0.5 and 0.2 m): run-up −6.0 % of the exact linear one, run-down 1.10 of it; with the default
     taper (surface waves carried to a quarter of the shallowest level) −6.8 %, 1.12; levels 0.5 and 1 m with the
     taper (0.4, 0.5) −5.3 %, 1.10; one level at 1 m −5.3 %, 1.10. Shallow water alone on the same cells: −1.9 %.
     Before the split stopped weighting its increment by the taper a second time, the run-up hung on the taper:
-    +0.4 % as set, +16 % with the default (docs/physics.md §1.15)."""
+    +0.4 % as set, +16 % with the default (docs/physics.md §1.15). The bound is the one the split was held to
+    before: it fails it now, an open defect (its slope terms on a beach, the suspect), not a wider bound."""
     from wavephys.checks.shallow_water import solitary_runup_run
     from wavephys.physics.shallow_water import solitary_breaking_limit
 
     r = solitary_runup_run(0.34 * solitary_breaking_limit(19.85), 19.85, per_depth=10, model="split")
-    assert abs(r["runup"] / r["linear"] - 1) < 0.08 and 1.0 < r["rundown"] / r["rundown_linear"] < 1.2, r
+    assert abs(r["runup"] / r["linear"] - 1) < 0.05, r
 
 
 # -- a dam break on a dry bed: the nonlinear steppers against Ritter -----------------------------------------
