@@ -398,7 +398,7 @@ OVERRIDES = {
     "wavephys.simulation.split.Split": {"solver": _SW["solver"], "levels": lambda: (0.5,), "bulk_length": lambda: 0.5,
                                         "taper": lambda: (0.1, 0.5)},
     "wavephys.simulation.split.split_step": {**_SPLIT, "dt": lambda: 0.01},
-    "wavephys.simulation.split.split_run": {**_SPLIT, "until": lambda: 0.02, "max_steps": lambda: 1000},
+    "wavephys.simulation.split.split_run": {**_SPLIT, "until": lambda: 0.02, "max_steps": lambda: 100},  # a huge until: 100 steps
     "wavephys.simulation.split.split_frames": {**_SPLIT, "times": lambda: np.array([0.01, 0.02])},
     "wavephys.simulation.split.split_parts": _SPLIT,
     "wavephys.planner.regime.CoastalScene": {"depth": lambda: (0.0, 2.0), "wave_height": lambda: 0.1,

@@ -36,7 +36,7 @@ import jax.numpy as jnp
 import numpy as np
 
 from wavephys.core.inputs import check_array, check_int
-from wavephys.core.methods import Methods
+from wavephys.core.methods import Methods, shader_form
 from wavephys.core.sampling import array_module
 
 __all__ = ["N_AIR", "N_WATER", "normal_reflectance", "reflectance_sp", "reflectance_exact", "reflectance_schlick",
@@ -119,6 +119,17 @@ def reflectance_sp(cos_theta, n1=N_AIR, n2=N_WATER):
     return _sp(xp, c, n1, n2)
 
 
+@shader_form("fresnel_exact", """
+float fresnel_exact(float cos_i, float n1, float n2) {  // unpolarized dielectric reflectance
+    float c = clamp(cos_i, 0.0, 1.0);
+    float sin_t2 = (n1 / n2) * (n1 / n2) * (1.0 - c * c);
+    if (sin_t2 >= 1.0) return 1.0;
+    float ct = sqrt(max(1.0 - sin_t2, 0.0));
+    float rs = (n1 * c - n2 * ct) / max(n1 * c + n2 * ct, 1e-30);
+    float rp = (n1 * ct - n2 * c) / max(n1 * ct + n2 * c, 1e-30);
+    return 0.5 * (rs * rs + rp * rp);
+}
+""")
 def reflectance_exact(cos_theta, n1=N_AIR, n2=N_WATER):
     """Exact unpolarized reflectance R = (R_s + R_p)/2 (1 under total internal reflection).
 
@@ -141,6 +152,18 @@ def reflectance_exact(cos_theta, n1=N_AIR, n2=N_WATER):
     return 0.5 * (rs + rp)
 
 
+@shader_form("fresnel_schlick", """
+float fresnel_schlick(float cos_i, float n1, float n2) {  // cos(theta_t) from the denser side, 1 under TIR
+    float c = clamp(cos_i, 0.0, 1.0);
+    float f = (n1 - n2) / (n1 + n2);
+    if (n1 > n2) {
+        float sin_t2 = (n1 / n2) * (n1 / n2) * (1.0 - c * c);
+        if (sin_t2 >= 1.0) return 1.0;
+        c = sqrt(max(1.0 - sin_t2, 0.0));
+    }
+    return f * f + (1.0 - f * f) * pow(1.0 - c, 5.0);
+}
+""")
 def reflectance_schlick(cos_theta, n1=N_AIR, n2=N_WATER):
     """Schlick's R ≈ f0 + (1 − f0)(1 − cos θ)⁵, with cos θt from the denser side (module doc).
 
@@ -170,6 +193,11 @@ def reflectance_schlick(cos_theta, n1=N_AIR, n2=N_WATER):
     return xp.where(tir, 1.0, f0 + (1.0 - f0) * (1.0 - cos_used) ** 5)
 
 
+@shader_form("fresnel_jensen_golias", """
+float fresnel_jensen_golias(float cos_i, float n1, float n2) {  // the indices are not used
+    return 1.0 / pow(1.0 + clamp(cos_i, 0.0, 1.0), 8.0);
+}
+""")
 def reflectance_jensen_golias(cos_theta, n1=N_AIR, n2=N_WATER):
     """Jensen & Goliáš's R ≈ 1/(1 + cos θ)⁸ (from air; the indices are not used).
 
@@ -194,6 +222,11 @@ def reflectance_jensen_golias(cos_theta, n1=N_AIR, n2=N_WATER):
     return 1.0 / (1.0 + c) ** 8
 
 
+@shader_form("fresnel_loviscach", """
+float fresnel_loviscach(float cos_i, float n1, float n2) {  // the indices are not used
+    return clamp(1.0 - 2.5 * clamp(cos_i, 0.0, 1.0), 0.0, 1.0);
+}
+""")
 def reflectance_loviscach(cos_theta, n1=N_AIR, n2=N_WATER):
     """Loviscach's sky reflection factor clamp(1 − 2.5 cos θ) (the indices are not used).
 
@@ -237,6 +270,14 @@ def fresnel_lut(n1=N_AIR, n2=N_WATER, size: int = 64):
     return reflectance_exact(jnp.linspace(0.0, 1.0, size), n1, n2)
 
 
+@shader_form("fresnel_lut", """
+float fresnel_lut(float cos_i, float n1, float n2) {  // the exact R at 64 nodes, linearly interpolated
+    float u = clamp(cos_i, 0.0, 1.0) * 63.0;
+    float i = clamp(floor(u), 0.0, 62.0);
+    float a = fresnel_exact(i / 63.0, n1, n2), b = fresnel_exact((i + 1.0) / 63.0, n1, n2);
+    return mix(a, b, u - i);
+}
+""")
 def reflectance_lut(cos_theta, n1=N_AIR, n2=N_WATER, *, size: int = 64):
     """R by linear interpolation in a uniform table of ``size`` exact values.
 

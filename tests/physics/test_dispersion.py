@@ -127,3 +127,32 @@ class TestInverse:
     def test_bad_omega(self, bad):
         with pytest.raises(ValueError, match="omega"):
             d.wavenumber(bad, Water())
+
+
+def test_one_program_serves_every_shape_in_a_power_of_two_bucket():
+    """Concrete arrays of any shape whose sizes share a power-of-two bucket run one compiled program, with
+    the values of the formula compiled for their own shape; a scalar and a traced k keep their own paths (a scalar keeps its weak type; under grad the formula is traced inline)."""
+    import jax.monitoring
+
+    compiles = []
+
+    def listen(event, duration, **kw):
+        if "backend_compile" in event and "traced" in kw.get("fun_name", ""):
+            compiles.append(kw["fun_name"])
+
+    jax.monitoring.register_event_duration_secs_listener(listen)
+    water = Water(depth=1.7)
+    rng = np.random.default_rng(3)
+    shapes = [(71,), (9, 11), (3, 5, 7), (120,), (2, 60)]  # sizes 71 … 120: the 128 bucket
+    ks = [jnp.asarray(rng.uniform(0.0, 80.0, s), jnp.float32) for s in shapes]
+    try:
+        got = [d.group_speed(k, water) for k in ks]
+    finally:
+        jax.monitoring.unregister_event_duration_listener(listen)
+    assert len(compiles) <= 1, compiles
+    for k, g in zip(ks, got):
+        assert g.shape == k.shape and g.dtype == k.dtype
+        np.testing.assert_allclose(np.asarray(g), np.asarray(jax.jit(lambda k: d.group_speed(k, water))(k)),
+                                   rtol=2e-7, atol=0)
+    assert d.angular_frequency(2.0, water).shape == ()
+    assert float(jax.grad(lambda k: d.angular_frequency(k, water))(2.0)) > 0

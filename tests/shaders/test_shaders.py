@@ -156,17 +156,48 @@ def test_list_names_every_check(shaders, capsys):
 
 def test_library_glsl_passes_its_own_checks(shaders):
     """The renderer's and the GL caustics' shared GLSL (optics.gpu) meets the physics."""
-    from optics.gpu import GLSL_OPTICS
+    from optics.gpu import GLSL_FRESNEL_FORMS, GLSL_OPTICS
 
     fresnel = shaders.check_glsl(GLSL_OPTICS, "fresnel_exact", "fresnel")
     refract = shaders.check_glsl(GLSL_OPTICS, "refract_dir", "refract", tir="zero")
     assert fresnel.ok and refract.ok, fresnel.report() + "\n" + refract.report()
-    # the shader forms the renderer draws for a plan, each against its own float64 form
-    for form, takes in (("schlick", None), ("lut", None), ("jensen_golias", ("cos_theta",)),
-                        ("loviscach", ("cos_theta",))):
-        kw = dict(takes=takes) if takes else {}
-        report = shaders.check_glsl(GLSL_OPTICS, f"fresnel_{form}", "fresnel", form=form, **kw)
+    # every shader form the renderer can draw for a plan (generated from the family's registry), each
+    # against its own float64 form
+    assert GLSL_FRESNEL_FORMS[0] == "exact" and len(GLSL_FRESNEL_FORMS) >= 5
+    for form in GLSL_FRESNEL_FORMS[1:]:
+        report = shaders.check_glsl(GLSL_OPTICS, f"fresnel_{form}", "fresnel", form=form)
         assert report.ok, report.report()
+
+
+def test_a_new_fresnel_form_is_one_function_and_its_glsl_beside_it(shaders):
+    """A throwaway Fresnel method registered with its GLSL (one decorator, one registry entry) is generated
+    into the family's GLSL: its own function and the switch's next index, which a shader compiles and calls."""
+    from optics.light.fresnel import N_AIR, N_WATER, REFLECTANCE_METHODS, reflectance_exact
+    from optics.shaders.glsl import evaluate, find_function
+    from wavephys.core.methods import Methods, glsl_family, shader_form
+
+    @shader_form("fresnel_half", "float fresnel_half(float cos_i, float n1, float n2) "
+                                 "{ return 0.5 * fresnel_exact(cos_i, n1, n2); }")
+    def reflectance_half(cos_theta, n1=N_AIR, n2=N_WATER):
+        return 0.5 * reflectance_exact(cos_theta, n1, n2)
+
+    family = Methods("Fresnel reflectance", **dict(REFLECTANCE_METHODS), half=reflectance_half,
+                     plain=lambda cos_theta, n1=N_AIR, n2=N_WATER: cos_theta)  # no shader form: no index
+    glsl = glsl_family(family, "fresnel_form", "float cos_i, float n1, float n2", "cos_i, n1, n2")
+    index = len(REFLECTANCE_METHODS)
+    assert list(family.glsl_forms) == list(REFLECTANCE_METHODS) + ["half"]
+    assert f"if (form == {index}) return fresnel_half(cos_i, n1, n2);" in glsl and "plain" not in glsl
+    source = glsl + f"float picked(float cos_i, float n1, float n2) {{ return fresnel_form({index}, cos_i, n1, n2); }}\n"
+    c = np.linspace(0.0, 1.0, 33, dtype=np.float32)[:, None]
+    n1, n2 = np.full_like(c, N_AIR), np.full_like(c, N_WATER)
+    got = evaluate(source, find_function(source, "picked"), [c, n1, n2])[:, 0]
+    np.testing.assert_allclose(got, reflectance_half(c[:, 0].astype(np.float64)), atol=2e-6)
+    with pytest.raises(ValueError, match="no method has a shader form"):
+        glsl_family(Methods("q", plain=lambda x: x), "f", "float x", "x")
+    with pytest.raises(TypeError, match="name"):
+        shader_form(3, "float f() { return 1.0; }")
+    with pytest.raises(ValueError, match="source must define g"):
+        shader_form("g", "float f() { return 1.0; }")
 
 
 @pytest.mark.parametrize("source,function,kwargs,error,words", [

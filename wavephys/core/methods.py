@@ -7,6 +7,10 @@ the keyword arguments its own signature declares, so options of other methods of
 family can travel in one bag (a planner's configuration) without piling up in every
 signature. A keyword that no method of the family takes is a typo and raises
 ``TypeError``. Adding a method: write the function, add it to the family's mapping.
+
+A method a shader can draw carries its GLSL beside its Python function (:func:`shader_form`);
+:func:`glsl_family` writes every form of a family and the switch that picks one by its index,
+so the GLSL a renderer compiles is generated from the registry, not kept by hand beside it.
 """
 
 from __future__ import annotations
@@ -16,7 +20,7 @@ from collections.abc import Mapping
 from typing import Callable
 
 __internal__ = True  # tooling for the library's own modules: not fuzzed as public API
-__all__ = ["Methods", "dispatch"]
+__all__ = ["Methods", "dispatch", "shader_form", "glsl_family"]
 
 
 class Methods(Mapping):
@@ -71,6 +75,79 @@ class Methods(Mapping):
         """Call ``method`` with ``args`` and the keyword arguments its signature declares."""
         fn = self.check(method)
         return fn(*args, **self.options(method, kwargs))
+
+    @property
+    def glsl_forms(self) -> dict:
+        """``{method: (GLSL function name, GLSL source)}`` for the methods with a shader form
+        (:func:`shader_form`), in the family's order."""
+        return {k: (f.glsl_name, f.glsl) for k, f in self._methods.items() if getattr(f, "glsl", None)}
+
+
+def shader_form(name: str, source: str) -> Callable:
+    """Decorator: the GLSL form of a method, registered beside its Python function.
+
+    Parameters
+    ----------
+    name : str
+        The GLSL function's name (it must be defined by ``source``).
+    source : str
+        GLSL source defining ``name`` (and nothing a sibling form defines); it may call the forms
+        registered before it in its family.
+
+    Returns
+    -------
+    Callable
+        A decorator that sets ``fn.glsl_name`` and ``fn.glsl`` and returns ``fn`` itself.
+
+    >>> @shader_form("twice", "float twice(float x) { return 2.0 * x; }")
+    ... def twice(x):
+    ...     return 2 * x
+    >>> twice.glsl_name, twice(2)
+    ('twice', 4)
+    """
+    if not isinstance(name, str):
+        raise TypeError(f"name must be a str (a GLSL function's name), got {type(name).__name__}")
+    if not name.isidentifier():
+        raise ValueError(f"name must be a GLSL identifier, got {name!r}")
+    if not isinstance(source, str):
+        raise TypeError(f"source must be a str (GLSL), got {type(source).__name__}")
+    if f"{name}(" not in source:
+        raise ValueError(f"source must define {name}(...), got {source[:60]!r}")
+
+    def register(fn: Callable) -> Callable:
+        fn.glsl_name, fn.glsl = name, source.strip() + "\n"
+        return fn
+
+    return register
+
+
+def glsl_family(methods: "Methods", switch: str, params: str, args: str, returns: str = "float") -> str:
+    """GLSL: every shader form of ``methods`` (in the family's order) and ``switch``, the function that
+    calls form ``i`` (its index in :attr:`Methods.glsl_forms`; an unknown index: form 0).
+
+    Parameters
+    ----------
+    methods : Methods
+        A family with at least one shader form; every form takes ``params``.
+    switch : str
+        The switch's GLSL name; it takes ``int form`` and then ``params``.
+    params, args : str
+        The forms' parameter list (``"float cos_i, float n1, float n2"``) and the arguments passed on
+        (``"cos_i, n1, n2"``).
+    returns : str
+        The GLSL type every form returns.
+
+    Returns
+    -------
+    str
+        GLSL source.
+    """
+    forms = list(methods.glsl_forms.values())
+    if not forms:
+        raise ValueError(f"{methods.quantity}: no method has a shader form")
+    calls = "".join(f"    if (form == {i}) return {name}({args});\n" for i, (name, _) in enumerate(forms) if i)
+    return ("".join(src for _, src in forms) + f"{returns} {switch}(int form, {params}) {{  // "
+            f"{methods.quantity}: the forms in their family's order\n{calls}    return {forms[0][0]}({args});\n}}\n")
 
 
 def _keywords(fn: Callable) -> set[str]:
