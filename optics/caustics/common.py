@@ -272,7 +272,22 @@ _IMAGE = Array(ndim=2)
 
 @validate(image=_IMAGE)
 def blur_121(image):
-    """The 3 × 3 1-2-1 blur (periodic) Loviscach uses to hide the beam triangles; ``image`` 2-D."""
+    """The 3 × 3 1-2-1 blur (periodic) Loviscach uses to hide the beam triangles; ``image`` 2-D.
+
+    Parameters
+    ----------
+    image : array_like (ny, nx)
+        Any quantity per texel (irradiance, W/m² or relative).
+
+    Returns
+    -------
+    jax.Array (ny, nx)
+        Blurred, its sum kept (the kernel's weights add to 1).
+
+    References
+    ----------
+    J. Loviscach (2003). Complex water effects at interactive frame rates. *WSCG*.
+    """
     image = jnp.asarray(image)
     k = lambda a, ax: 0.25 * jnp.roll(a, 1, ax) + 0.5 * a + 0.25 * jnp.roll(a, -1, ax)
     return k(k(image, 0), 1)
@@ -285,6 +300,21 @@ def bilateral_filter(image, radius: int = 2, sigma_space: float = 1.0, sigma_ran
 
     ``sigma_space`` in pixels, ``sigma_range`` relative to the image mean (an all-zero
     image is returned unchanged); ``image`` 2-D, ``radius`` 1 to 32 pixels.
+
+    Parameters
+    ----------
+    image : array_like (ny, nx)
+        Any quantity per texel.
+    radius : int
+        Half-width of the window, pixels.
+    sigma_space : float
+        Spatial width, pixels.
+    sigma_range : float
+        Width in value, relative to the mean of |image|.
+
+    Returns
+    -------
+    jax.Array (ny, nx)
     """
     image = jnp.asarray(image)
     scale = jnp.maximum(jnp.mean(jnp.abs(image)), jnp.finfo(jnp.float32).tiny)

@@ -10,5 +10,11 @@ __all__ = ["working_dtype"]
 
 
 def working_dtype():
-    """float64 when ``jax_enable_x64`` is on (``wavephys validate --x64``), else float32."""
+    """float64 when ``jax_enable_x64`` is on (``wavephys validate --x64``), else float32.
+
+    Returns
+    -------
+    numpy.dtype
+        ``jnp.float64`` or ``jnp.float32``.
+    """
     return jnp.float64 if jax.config.jax_enable_x64 else jnp.float32

@@ -65,6 +65,20 @@ def install(package: str, aliases: dict[str, str | tuple[str, ...]], deprecated=
 
     Returns a module ``__getattr__`` for the package, so ``package.<old>`` also works as an
     attribute after ``import package``.
+
+    Parameters
+    ----------
+    package : str
+        The package that keeps the old names (``"wavephys"``).
+    aliases : dict of str to str or tuple of str
+        Old module name → the new module's full name (or several, searched in order for attributes).
+    deprecated : iterable of str, optional
+        The old names that warn (default: all).
+
+    Returns
+    -------
+    Callable
+        The package's module ``__getattr__(name)``.
     """
     table = {old: (new,) if isinstance(new, str) else tuple(new) for old, new in aliases.items()}
     deprecated = tuple(table) if deprecated is None else tuple(deprecated)
@@ -93,7 +107,24 @@ def install(package: str, aliases: dict[str, str | tuple[str, ...]], deprecated=
 def renamed_options(function: str, options: dict, renames: dict, since: str = "0.3") -> dict:
     """``options`` with each old keyword of ``renames`` ({old: new}) replaced by its new name,
     warning (``DeprecationWarning``) that ``function`` renamed it in ``since``; TypeError when a
-    call passes both names. The input is not modified."""
+    call passes both names. The input is not modified.
+
+    Parameters
+    ----------
+    function : str
+        The renaming function's name, for the messages.
+    options : dict
+        The keyword arguments of a call.
+    renames : dict of str to str
+        Old keyword → new keyword.
+    since : str
+        The release that renamed them.
+
+    Returns
+    -------
+    dict
+        The keyword arguments under their new names.
+    """
     out = dict(options)
     for old, new in renames.items():
         if old not in out:
@@ -109,7 +140,24 @@ def renamed_options(function: str, options: dict, renames: dict, since: str = "0
 def deprecated_function(function, name: str, replacement: str, since: str = "0.3", removal: str = "0.4"):
     """``function`` under its public ``name``, warning (``DeprecationWarning``) at each call that it is
     deprecated since ``since`` and goes in ``removal``, and what to use instead; its signature and
-    documentation are the function's, with the notice first."""
+    documentation are the function's, with the notice first.
+
+    Parameters
+    ----------
+    function : Callable
+        What the old name calls.
+    name : str
+        The old public name.
+    replacement : str
+        What to use instead, as the message says it.
+    since, removal : str
+        The releases that deprecate it and remove it.
+
+    Returns
+    -------
+    Callable
+        The warning wrapper.
+    """
     import functools
 
     message = f"{name} is deprecated since {since} and will be removed in {removal}: use {replacement}"

@@ -38,7 +38,22 @@ def _as_path(name: str, path) -> Path:
 
 def output_file(path, name: str = "path", suffixes: tuple[str, ...] = ()) -> Path:
     """Check that a file can be written at ``path``: its folder exists and is writable,
-    the path is not a folder, and its suffix is one of ``suffixes`` (if given)."""
+    the path is not a folder, and its suffix is one of ``suffixes`` (if given).
+
+    Parameters
+    ----------
+    path : str or os.PathLike
+        Where the file goes (TypeError naming ``name`` for another kind).
+    name : str
+        The parameter's name in messages.
+    suffixes : tuple of str
+        Allowed suffixes, lower case with the dot (``(".png",)``); empty: any.
+
+    Returns
+    -------
+    pathlib.Path
+        ``path``; ValueError naming ``name`` for a wrong suffix, a folder, a missing or read-only folder.
+    """
     p = _as_path(name, path)
     if suffixes and p.suffix.lower() not in suffixes:
         raise ValueError(f"{name} must end in {' or '.join(suffixes)}, got {str(p)!r}")
@@ -53,7 +68,20 @@ def output_file(path, name: str = "path", suffixes: tuple[str, ...] = ()) -> Pat
 
 
 def output_folder(path, name: str = "out_dir") -> Path:
-    """Check (and create, one level) an output folder: its parent must exist and be writable."""
+    """Check (and create, one level) an output folder: its parent must exist and be writable.
+
+    Parameters
+    ----------
+    path : str or os.PathLike
+        The folder (TypeError naming ``name`` for another kind).
+    name : str
+        The parameter's name in messages.
+
+    Returns
+    -------
+    pathlib.Path
+        The folder, existing and writable; ValueError naming ``name`` where it cannot be.
+    """
     p = _as_path(name, path)
     if p.exists() and not p.is_dir():
         raise ValueError(f"{name} {str(p)!r} exists and is not a folder")
@@ -72,7 +100,18 @@ def output_folder(path, name: str = "out_dir") -> Path:
 @contextlib.contextmanager
 def atomic_path(path):
     """Yield a temporary path beside ``path``; on success it replaces ``path`` atomically,
-    on any error (or interruption) it is removed and ``path`` is left as it was."""
+    on any error (or interruption) it is removed and ``path`` is left as it was.
+
+    Parameters
+    ----------
+    path : str or os.PathLike
+        The file to write.
+
+    Yields
+    ------
+    pathlib.Path
+        A fresh file beside ``path`` (same suffix, ``.part`` added) to write to.
+    """
     target = Path(path)
     fd, tmp = tempfile.mkstemp(prefix=f".{target.stem}.", suffix=target.suffix + ".part", dir=target.parent or ".")
     os.close(fd)

@@ -26,6 +26,20 @@ __all__ = ["Methods", "dispatch", "shader_form", "glsl_family"]
 class Methods(Mapping):
     """An immutable name → function mapping for the methods of one ``quantity``.
 
+    Parameters
+    ----------
+    quantity : str
+        What the methods compute, for messages (``"Fresnel reflectance"``).
+    **methods : Callable
+        Each method by name, in the family's order (at least one).
+
+    Attributes
+    ----------
+    quantity : str
+        As given.
+    glsl_forms : dict
+        The methods with a GLSL form (:func:`shader_form`).
+
     >>> family = Methods("doubling", twice=lambda x, *, scale=1: 2 * x * scale, plus=lambda x, *, offset=0: x + x + offset)
     >>> family("plus", 3, offset=1, scale=5)   # scale belongs to "twice": not passed to "plus"
     7
@@ -156,7 +170,24 @@ def _keywords(fn: Callable) -> set[str]:
 
 
 def dispatch(methods: Mapping, method: str, *args, _family: str = "method", **kwargs):
-    """Call ``methods[method](*args, **kwargs)`` for a plain mapping (see :class:`Methods`)."""
+    """Call ``methods[method](*args, **kwargs)`` for a plain mapping (see :class:`Methods`).
+
+    Parameters
+    ----------
+    methods : Mapping
+        Name → function (a :class:`Methods` or a plain mapping, made one for the call).
+    method : str
+        The method's name; ValueError naming ``method`` when it is not one of them.
+    *args, **kwargs
+        Passed on; each method gets only the keyword arguments its signature declares.
+    _family : str
+        The quantity's name in messages, for a plain mapping.
+
+    Returns
+    -------
+    object
+        What the method returns.
+    """
     if isinstance(methods, Methods):
         return methods(method, *args, **kwargs)
     return Methods(_family, **methods)(method, *args, **kwargs)

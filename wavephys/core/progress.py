@@ -15,7 +15,24 @@ __all__ = ["Progress"]
 
 
 class Progress:
-    """``with Progress(total, "frames") as p: ... p.update()`` (``enabled=False``: silent)."""
+    """``with Progress(total, "frames") as p: ... p.update()`` (``enabled=False``: silent).
+
+    A tqdm bar on a terminal; elsewhere (a log, a pipe) a line ``done/total unit (rate, elapsed)``
+    every ``every`` seconds and at the end.
+
+    Parameters
+    ----------
+    total : int
+        Units of work in all.
+    unit : str
+        Their name (``"frames"``).
+    stream : file, optional, keyword-only
+        Where it writes (default ``sys.stderr``).
+    every : float, optional, keyword-only
+        Seconds between lines when not on a terminal.
+    enabled : bool, optional, keyword-only
+        False: counts but writes nothing.
+    """
 
     def __init__(self, total: int, unit: str, *, stream=None, every: float = 5.0, enabled: bool = True):
         self.total, self.unit, self.every, self.enabled = int(total), unit, float(every), bool(enabled)

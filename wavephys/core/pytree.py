@@ -19,6 +19,20 @@ def register(cls, data: tuple[str, ...], static: tuple[str, ...] = ()):
     """Register frozen dataclass ``cls`` as a pytree with leaves ``data`` and static ``static``.
 
     Unflattening sets the fields directly (no validation), as JAX transformations need.
+
+    Parameters
+    ----------
+    cls : type
+        A frozen dataclass.
+    data : tuple of str
+        The fields that are leaves (arrays or numbers: traced under ``jit``, mapped by ``vmap``).
+    static : tuple of str
+        The fields kept as auxiliary data (hashable; a change compiles a new program).
+
+    Returns
+    -------
+    type
+        ``cls`` itself (usable as a class decorator's result).
     """
 
     def flatten(obj):
@@ -38,6 +52,16 @@ def register(cls, data: tuple[str, ...], static: tuple[str, ...] = ()):
 
 def stack(items):
     """Stack pytrees of one structure into one pytree of arrays with a leading batch axis.
+
+    Parameters
+    ----------
+    items : sequence of pytree
+        At least one, all of one structure (ValueError naming the first that differs).
+
+    Returns
+    -------
+    pytree
+        Of that structure, each leaf the leaves of ``items`` stacked along a new axis 0.
 
     >>> from wavephys import Water
     >>> batch = stack([Water(depth=d) for d in (1.0, 2.0, 4.0)])

@@ -18,7 +18,20 @@ GRID = Instance(Grid, "wavephys.Grid")
 
 def model_grid(model, name: str = "model") -> Grid:
     """The grid of a simulation model, for sources that must not import the simulation layer:
-    TypeError unless ``model`` looks like a ``wavephys.simulation.Model``."""
+    TypeError unless ``model`` looks like a ``wavephys.simulation.Model``.
+
+    Parameters
+    ----------
+    model : wavephys.simulation.Model
+        Anything with a :class:`Grid` ``grid``, a ``water`` and a ``dt``.
+    name : str
+        The parameter's name in messages.
+
+    Returns
+    -------
+    Grid
+        ``model.grid``.
+    """
     from wavephys.core.inputs import describe
 
     grid = getattr(model, "grid", None)

@@ -25,7 +25,22 @@ def _once(fn) -> float:
 
 def median_seconds(fn: Callable[[], object], repeats: int = 7, warmup: int = 1) -> float:
     """Median wall time of ``fn()``, s, over ``repeats`` runs after ``warmup`` runs (JAX results
-    are waited for with ``block_until_ready``)."""
+    are waited for with ``block_until_ready``).
+
+    Parameters
+    ----------
+    fn : Callable
+        Called with no arguments.
+    repeats : int
+        Timed runs.
+    warmup : int
+        Untimed runs first (compilation, caches).
+
+    Returns
+    -------
+    float
+        The median, s.
+    """
     for _ in range(warmup):
         jax.block_until_ready(fn())
     return statistics.median(_once(fn) for _ in range(repeats))
@@ -40,6 +55,22 @@ def interleaved(fns: dict[str, Callable[[], object]], repeats: int = 15, warmup:
     threads still spinning (XLA's pool does), and the block median discards it. Returns one
     time per round per function, in round order, so callers can pair the functions of one
     round (same machine state).
+
+    Parameters
+    ----------
+    fns : dict of str to Callable
+        The functions, each called with no arguments.
+    repeats : int
+        Rounds.
+    warmup : int
+        Untimed runs of each function first.
+    block : int
+        Runs of a function in a row within a round (their median is kept).
+
+    Returns
+    -------
+    dict of str to list of float
+        Per function, one time per round, s, in round order.
     """
     for fn in fns.values():
         for _ in range(warmup):

@@ -14,7 +14,18 @@ __all__ = ["check_levels", "run_two_level"]
 
 
 def check_levels(eta, eta_prev):
-    """Validate the two starting levels (finite, ≥ 2-D, one shape); return them as arrays."""
+    """Validate the two starting levels (finite, ≥ 2-D, one shape); return them as arrays.
+
+    Parameters
+    ----------
+    eta, eta_prev : array_like (..., ny, nx)
+        η^n and η^{n−1}, m.
+
+    Returns
+    -------
+    (jax.Array, jax.Array)
+        Both, ``eta_prev`` in ``eta``'s dtype.
+    """
     check_array("eta", eta, min_ndim=2)
     check_array("eta_prev", eta_prev, min_ndim=2)
     if jnp.shape(eta) != jnp.shape(eta_prev):
@@ -27,7 +38,23 @@ def check_levels(eta, eta_prev):
 def run_two_level(step, eta, eta_prev, args, steps: int, history: bool):
     """Apply ``step(η^n, η^{n−1}, *args)`` ``steps`` times in one compiled loop.
 
-    Returns (η^N, η^{N−1}) and, with ``history``, the stacked η^1 … η^N.
+    Parameters
+    ----------
+    step : Callable
+        ``step(eta, eta_prev, *args) -> eta_next``, traceable.
+    eta, eta_prev : jax.Array
+        η^0 and η^{−1}, m.
+    args : tuple
+        Passed to every step.
+    steps : int
+        N, static.
+    history : bool
+        Also return every step's η.
+
+    Returns
+    -------
+    tuple
+        (η^N, η^{N−1}) and, with ``history``, the stacked η^1 … η^N.
     """
     def body(carry, _):
         a, b = carry

@@ -27,7 +27,19 @@ AXIS = "rows"
 
 def row_mesh(devices, axis: str = AXIS) -> Mesh:
     """A one-axis :class:`jax.sharding.Mesh` named ``axis`` over ``devices`` (a sequence of
-    ``jax.Device``, all of one kind: CPU, GPU or TPU), in the order given."""
+    ``jax.Device``, all of one kind: CPU, GPU or TPU), in the order given.
+
+    Parameters
+    ----------
+    devices : sequence of jax.Device
+        At least one, no repeats, all of one platform.
+    axis : str
+        The mesh axis's name.
+
+    Returns
+    -------
+    jax.sharding.Mesh
+    """
     if isinstance(devices, (str, bytes)) or not hasattr(devices, "__iter__"):
         raise TypeError(f"devices must be a sequence of jax devices (e.g. jax.devices()), got {describe(devices)}")
     devices = list(devices)
@@ -51,7 +63,21 @@ def row_mesh(devices, axis: str = AXIS) -> Mesh:
 
 def check_mesh(mesh, axis: str, n: int) -> int:
     """Check that ``mesh`` can shard an n × n grid by rows over its axis ``axis``; returns the
-    number of devices along that axis. Named errors before any work."""
+    number of devices along that axis. Named errors before any work.
+
+    Parameters
+    ----------
+    mesh : jax.sharding.Mesh
+    axis : str
+        The axis to split the rows over (named ``mesh_axis`` in messages).
+    n : int
+        Grid points along a side; a multiple of the devices on ``axis``.
+
+    Returns
+    -------
+    int
+        Devices along ``axis``.
+    """
     check_instance("mesh", mesh, Mesh, "jax.sharding.Mesh")
     if not isinstance(axis, str):
         raise TypeError(f"mesh_axis must be a str, got {describe(axis)}")
@@ -69,13 +95,35 @@ def check_mesh(mesh, axis: str, n: int) -> int:
 
 
 def device_count(mesh, axis: str) -> int:
-    """Devices along the mesh axis (1 for no mesh)."""
+    """Devices along the mesh axis (1 for no mesh).
+
+    Parameters
+    ----------
+    mesh : jax.sharding.Mesh or None
+    axis : str
+
+    Returns
+    -------
+    int
+    """
     return 1 if mesh is None else int(mesh.shape[axis])
 
 
 def spectrum_width(n: int, shards: int) -> int:
     """Columns of the padded half spectrum: n/2 + 1 rounded up to a multiple of ``shards``
-    (the number of devices on the mesh axis)."""
+    (the number of devices on the mesh axis).
+
+    Parameters
+    ----------
+    n : int
+        Grid points along a side, ≥ 2.
+    shards : int
+        Devices on the mesh axis, ≥ 1.
+
+    Returns
+    -------
+    int
+    """
     n, shards = check_int("n", n, lo=2), check_int("shards", shards, lo=1)
     half = n // 2 + 1
     return -(-half // shards) * shards
@@ -88,19 +136,57 @@ def _spec(ndim: int, dim: int, axis: str) -> PartitionSpec:
 
 
 def field_sharding(mesh: Mesh, axis: str, ndim: int) -> NamedSharding:
-    """Real fields ``(..., n, n)``: rows (axis −2) over the mesh axis."""
+    """Real fields ``(..., n, n)``: rows (axis −2) over the mesh axis.
+
+    Parameters
+    ----------
+    mesh : jax.sharding.Mesh
+    axis : str
+        The mesh axis.
+    ndim : int
+        The fields' number of dimensions (≥ 2).
+
+    Returns
+    -------
+    jax.sharding.NamedSharding
+    """
     return NamedSharding(mesh, _spec(ndim, ndim - 2, axis))
 
 
 def spectrum_sharding(mesh: Mesh, axis: str, ndim: int) -> NamedSharding:
-    """Padded half spectra ``(..., n, W)``: kx columns (axis −1) over the mesh axis."""
+    """Padded half spectra ``(..., n, W)``: kx columns (axis −1) over the mesh axis.
+
+    Parameters
+    ----------
+    mesh : jax.sharding.Mesh
+    axis : str
+        The mesh axis.
+    ndim : int
+        The spectra's number of dimensions (≥ 2).
+
+    Returns
+    -------
+    jax.sharding.NamedSharding
+    """
     return NamedSharding(mesh, _spec(ndim, ndim - 1, axis))
 
 
 def place(x, sharding: NamedSharding):
     """``x`` as a global array with ``sharding``. Host data (numpy, Python numbers, or a
     single-process array) is cut into each local device's block, so the same call works in
-    one process and under ``jax.distributed`` (every process passes the same values)."""
+    one process and under ``jax.distributed`` (every process passes the same values).
+
+    Parameters
+    ----------
+    x : array_like or jax.Array
+        The values (traced: a sharding constraint instead).
+    sharding : jax.sharding.NamedSharding
+
+    Returns
+    -------
+    jax.Array
+        A global array laid out by ``sharding``.
+    """
     if isinstance(x, jax.core.Tracer):
         return jax.lax.with_sharding_constraint(x, sharding)
     if isinstance(x, jax.Array) and not x.is_fully_addressable:
@@ -112,5 +198,15 @@ def place(x, sharding: NamedSharding):
 
 
 def constrain(x, sharding: NamedSharding):
-    """Inside a traced program: ask XLA to keep ``x`` with ``sharding`` (no-op outside)."""
+    """Inside a traced program: ask XLA to keep ``x`` with ``sharding`` (outside one: :func:`place`).
+
+    Parameters
+    ----------
+    x : jax.Array or tracer
+    sharding : jax.sharding.NamedSharding
+
+    Returns
+    -------
+    jax.Array
+    """
     return jax.lax.with_sharding_constraint(x, sharding) if isinstance(x, jax.core.Tracer) else place(x, sharding)

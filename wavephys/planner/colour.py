@@ -21,7 +21,17 @@ __all__ = ["incidence_range", "colour_errors"]
 
 
 def incidence_range(scene: Scene) -> tuple[float, float]:
-    """Incidence angles (degrees) the view meets: the view's own ± the steepest facet tilt."""
+    """Incidence angles (degrees) the view meets: the view's own ± the steepest facet tilt.
+
+    Parameters
+    ----------
+    scene : Scene
+
+    Returns
+    -------
+    (float, float)
+        The lowest and highest incidence angle, degrees from the normal, within [0, 90].
+    """
     slope = scene_spectrum(scene).max_slope
     tilt = math.degrees(math.atan(min(slope, 50.0)))
     theta = 90.0 - scene.view_elevation
@@ -33,7 +43,18 @@ def colour_errors(scene: Scene) -> dict:
     {"fresnel": {form: max ΔR}, "absorption": {method: albedo · max ΔT}, "floor": the largest
     albedo · T} over the scene's incidence range and water paths. Every form of the Fresnel
     family (:data:`optics.light.fresnel.REFLECTANCE_METHODS`) and every absorption method
-    (:data:`optics.light.attenuation.WATER_TRANSMITTANCE_METHODS`) is bounded."""
+    (:data:`optics.light.attenuation.WATER_TRANSMITTANCE_METHODS`) is bounded.
+
+    Parameters
+    ----------
+    scene : Scene
+
+    Returns
+    -------
+    dict
+        ``{"fresnel": {form: float}, "absorption": {method: float}, "floor": float}``, on the [0, 1]
+        colour scale.
+    """
     check_instance("scene", scene, Scene, "wavephys.planner.Scene")
     import jax.numpy as jnp
 

@@ -54,7 +54,19 @@ __all__ = ["PlanTerm", "PlanContext", "Candidate", "Term", "TERMS", "HEIGHT_TERM
 
 @dataclass(frozen=True)
 class Candidate:
-    """One height configuration: its choices, predicted error bounds and predicted cost (s)."""
+    """One height configuration: its choices, predicted error bounds and predicted cost (s).
+
+    Attributes
+    ----------
+    choices : Choices
+        The height model's settings.
+    bounds : HeightBounds
+        Its predicted error bounds, m.
+    cost : float
+        Its predicted cost, s a frame.
+    pending : bool
+        Whether its bounds still lack the cutoff's change with the grid and Δt.
+    """
 
     choices: Choices
     bounds: HeightBounds
@@ -67,7 +79,23 @@ class Candidate:
 @dataclass(frozen=True)
 class Term:
     """One row of a model card: the term, its choice, what that choice alone adds to the error
-    (m for heights, [0, 1] for colour), what it saves (s), and why."""
+    (m for heights, [0, 1] for colour), what it saves (s), and why.
+
+    Attributes
+    ----------
+    term : str
+        The term's name.
+    choice : object
+        What the plan chose for it.
+    error : float
+        What that choice alone adds to the error, in ``unit``.
+    saving : float
+        What it saves against the term's most exact choice, s a frame.
+    reason : str
+        Why, in words.
+    unit : str
+        ``"m"`` for heights, ``"colour"`` for the [0, 1] colour scale.
+    """
 
     term: str
     choice: object
