@@ -30,12 +30,32 @@ __all__ = ["is_traced", "check_scalar", "check_array", "check_int", "check_choic
 
 
 def is_traced(x: Any) -> bool:
-    """True when ``x`` is (or contains) a JAX tracer, i.e. its value is not known yet."""
+    """True when ``x`` is (or contains) a JAX tracer, i.e. its value is not known yet.
+
+    Parameters
+    ----------
+    x : object
+        Any value or pytree.
+
+    Returns
+    -------
+    bool
+    """
     return any(isinstance(leaf, jax.core.Tracer) for leaf in jax.tree_util.tree_leaves(x))
 
 
 def describe(value: Any) -> str:
-    """A short description of a value for error messages: its type, and its repr when short."""
+    """A short description of a value for error messages: its type, and its repr when short.
+
+    Parameters
+    ----------
+    value : object
+
+    Returns
+    -------
+    str
+        ``"<type> <repr>"``; past 60 characters of repr, the type and its shape (or the type alone).
+    """
     text = repr(value)
     if len(text) > 60:
         shape = getattr(value, "shape", None)
@@ -83,6 +103,24 @@ def check_scalar(name: str, value: Any, *, lo: float | None = None, hi: float | 
     ``ValueError`` if it is not a scalar, is NaN, is infinite (unless ``allow_inf``) or
     lies outside the interval given by ``lo``/``hi`` (closed unless ``lo_open``/``hi_open``).
     Tracers pass unchecked (their shape must still be a scalar).
+
+    Parameters
+    ----------
+    name : str
+        The parameter's name, in the messages.
+    value : object
+        What the caller passed.
+    lo, hi : float, optional, keyword-only
+        Bounds of the allowed interval, in the parameter's own unit (None: unbounded).
+    lo_open, hi_open : bool, optional, keyword-only
+        Exclude the bound itself.
+    allow_inf : bool, optional, keyword-only
+        Accept ±inf (within the bounds).
+
+    Returns
+    -------
+    object
+        ``value``, unchanged.
     """
     if is_traced(value):
         if np.ndim(value) != 0:
@@ -113,6 +151,28 @@ def check_array(name: str, value: Any, *, lo: float | None = None, hi: float | N
     an empty array, NaN/inf, or values outside ``lo``/``hi``. Shapes are checked even
     under ``jit``; values only when concrete (large device arrays are summarized on the
     device, not copied).
+
+    Parameters
+    ----------
+    name : str
+        The parameter's name, in the messages.
+    value : object
+        What the caller passed.
+    lo, hi, lo_open, hi_open, allow_inf : optional, keyword-only
+        The values' allowed interval, as :func:`check_scalar`'s.
+    complex_ok : bool, optional, keyword-only
+        Accept complex values.
+    min_ndim : int, optional, keyword-only
+        Fewest dimensions.
+    ndim : int, optional, keyword-only
+        Exact number of dimensions.
+    shape_tail : tuple of int, optional, keyword-only
+        The trailing shape required.
+
+    Returns
+    -------
+    object
+        ``value``, unchanged.
     """
     _real_kind(name, value, "an array of numbers")
     shape = np.shape(value)
@@ -178,7 +238,23 @@ def _check_device_array(name, value, lo, hi, lo_open, hi_open, allow_inf, comple
 
 def check_int(name: str, value: Any, *, lo: int | None = None, hi: int | None = None,
               even: bool = False) -> int:
-    """Check an integer parameter (a Python or numpy integer, not a bool); return it as int."""
+    """Check an integer parameter (a Python or numpy integer, not a bool); return it as int.
+
+    Parameters
+    ----------
+    name : str
+        The parameter's name, in the messages.
+    value : object
+        What the caller passed.
+    lo, hi : int, optional, keyword-only
+        Inclusive bounds.
+    even : bool, optional, keyword-only
+        Require an even number.
+
+    Returns
+    -------
+    int
+    """
     if isinstance(value, (bool, np.bool_)) or not isinstance(value, (int, np.integer)):
         raise TypeError(f"{name} must be an integer, got {describe(value)}")
     v = int(value)
@@ -189,7 +265,19 @@ def check_int(name: str, value: Any, *, lo: int | None = None, hi: int | None = 
 
 
 def check_bool(name: str, value: Any) -> bool:
-    """Check a switch (a Python or numpy bool); return it as bool."""
+    """Check a switch (a Python or numpy bool); return it as bool.
+
+    Parameters
+    ----------
+    name : str
+        The parameter's name, in the messages.
+    value : object
+        What the caller passed.
+
+    Returns
+    -------
+    bool
+    """
     if not isinstance(value, (bool, np.bool_)):
         raise TypeError(f"{name} must be True or False, got {describe(value)}")
     return bool(value)
@@ -219,7 +307,22 @@ def check_state_dtype(name: str, dtype: Any):
 
 
 def check_choice(name: str, value: Any, choices) -> Any:
-    """Check that ``value`` is one of ``choices`` (TypeError for another kind of object)."""
+    """Check that ``value`` is one of ``choices`` (TypeError for another kind of object).
+
+    Parameters
+    ----------
+    name : str
+        The parameter's name, in the messages.
+    value : object
+        What the caller passed.
+    choices : iterable
+        The allowed values (ValueError listing them otherwise).
+
+    Returns
+    -------
+    object
+        ``value``, unchanged.
+    """
     kinds = {type(c) for c in choices}
     if kinds == {str} and not isinstance(value, str):
         raise TypeError(f"{name} must be one of {sorted(choices)}, got {describe(value)}")
@@ -244,7 +347,24 @@ def check_key(name: str, value: Any) -> Any:
 
 
 def check_instance(name: str, value: Any, cls, what: str | None = None) -> Any:
-    """TypeError naming the expected class unless ``value`` is an instance of ``cls``."""
+    """TypeError naming the expected class unless ``value`` is an instance of ``cls``.
+
+    Parameters
+    ----------
+    name : str
+        The parameter's name, in the messages.
+    value : object
+        What the caller passed.
+    cls : type or tuple of type
+        The accepted class(es).
+    what : str, optional
+        How the message names them (default: ``package.Class``).
+
+    Returns
+    -------
+    object
+        ``value``, unchanged.
+    """
     if not isinstance(value, cls):
         label = what or (cls.__module__.split(".")[0] + "." + cls.__name__ if isinstance(cls, type)
                          else " or ".join(c.__name__ for c in cls))

@@ -30,13 +30,39 @@ MODES = ("wrap", "clamp")
 
 
 def array_module(*arrays):
-    """``jax.numpy`` if any argument is a JAX array or tracer, else ``numpy``."""
+    """``jax.numpy`` if any argument is a JAX array or tracer, else ``numpy``.
+
+    Parameters
+    ----------
+    *arrays : object
+        The inputs of a formula.
+
+    Returns
+    -------
+    module
+        ``jax.numpy`` or ``numpy``.
+    """
     return jnp if any(isinstance(a, (jax.Array, jax.core.Tracer)) for a in arrays) else np
 
 
 def texel_coordinates(x, length, n: int):
     """Continuous texel index of coordinate ``x`` (m) on ``n`` cell-centred samples over
-    [−L/2, L/2): (x + L/2)/(L/n) − ½ (0 at the first sample's centre)."""
+    [−L/2, L/2): (x + L/2)/(L/n) − ½ (0 at the first sample's centre).
+
+    Parameters
+    ----------
+    x : array_like
+        Coordinates, m.
+    length : float
+        L, the side of the square, m.
+    n : int
+        Samples along it.
+
+    Returns
+    -------
+    array_like
+        Texel indices (continuous), shape of ``x``.
+    """
     return (x + 0.5 * length) * (n / length) - 0.5
 
 
@@ -59,6 +85,20 @@ def bilinear(field, u, v, mode: str = "wrap"):
 
     ``u`` runs along columns (x), ``v`` along rows (y); any broadcastable shapes. Channels
     (a trailing axis) are interpolated together. ``mode`` "wrap" (periodic) or "clamp".
+
+    Parameters
+    ----------
+    field : array_like (rows, cols[, channels])
+        Values at the texel centres.
+    u, v : array_like
+        Texel coordinates along columns and rows (texel (i, j)'s centre at (j, i)).
+    mode : str
+        ``"wrap"`` or ``"clamp"``.
+
+    Returns
+    -------
+    array_like
+        The interpolated values, shape of ``u`` and ``v`` broadcast (then the channels).
     """
     xp = array_module(field, u, v)
     f = xp.asarray(field)
@@ -90,6 +130,20 @@ def bspline(coefficients, u, v, derivatives: bool = False):
     stores the 16 shared gathers instead). Measured on 512² points, two channels, with
     derivatives: 7.9 ms against 40 ms for one gather of 4 × 4 windows contracted by
     ``einsum`` and 13 ms for the shared gathers (docs/physics.md §2.4). JAX only (traceable).
+
+    Parameters
+    ----------
+    coefficients : jax.Array (rows, cols, channels)
+        The spline's coefficients.
+    u, v : jax.Array (P,)
+        Texel coordinates along columns and rows.
+    derivatives : bool
+        Also return the derivatives per texel.
+
+    Returns
+    -------
+    jax.Array (P, channels) or tuple of three
+        The values; with ``derivatives``, (values, d/du, d/dv).
     """
     rows, cols, channels = coefficients.shape
     side = cols + 3
@@ -116,6 +170,22 @@ def cloud_in_cell(u, v, values, shape: tuple[int, int], mode: str = "wrap"):
 
     The adjoint of :func:`bilinear`: each value is split over the four nearest texels with
     the bilinear weights, so the map's total equals the total of ``values`` exactly.
+
+    Parameters
+    ----------
+    u, v : array_like
+        Texel coordinates along columns and rows.
+    values : array_like
+        What each point carries (shape of ``u`` and ``v``).
+    shape : tuple of int
+        (rows, cols) of the map.
+    mode : str
+        ``"wrap"`` (periodic) or ``"clamp"``.
+
+    Returns
+    -------
+    array_like (rows, cols)
+        The deposited sums.
     """
     xp = array_module(u, v, values)
     u, v, w = (xp.ravel(xp.asarray(a)) for a in (u, v, values))
@@ -169,7 +239,20 @@ def triangle_window(u, v, values=None) -> int:
     """The window side K (texels) that holds every group of triangles of vertices ``(u, v)``
     (``(3, G, ...)`` texel coordinates, as :func:`deposit_triangles` takes them) from the
     texel of its lowest corner: ⌊extent⌋ + 2, at least 2; groups whose ``values`` are all 0
-    do not count. Concrete arrays (reduced where they live; one number comes back)."""
+    do not count. Concrete arrays (reduced where they live; one number comes back).
+
+    Parameters
+    ----------
+    u, v : array_like (3, G, ...)
+        Texel coordinates of the vertices.
+    values : array_like (G, ...), optional
+        What each triangle carries.
+
+    Returns
+    -------
+    int
+        K.
+    """
     if not np.size(u):
         return 2
     w = jnp.ones(jnp.shape(u)[1:]) if values is None else jnp.asarray(values)
@@ -233,6 +316,24 @@ def deposit_triangles(u, v, values, shape: tuple[int, int], window: int, origin=
     fraction in ``u``, ``v``, and float32 keeps its digits for the coverage on any map size.
     JAX arrays, traceable (the window is static). :func:`rasterize_triangles` chooses the
     windows itself.
+
+    Parameters
+    ----------
+    u, v : jax.Array (3, G, ...)
+        Texel coordinates of the vertices.
+    values : jax.Array (G, ...)
+        What each triangle carries (e.g. a power, W).
+    shape : tuple of int
+        (rows, cols) of the map.
+    window : int
+        K, static.
+    origin : tuple of jax.Array, optional
+        Integer texel offsets (du, dv) of each group.
+
+    Returns
+    -------
+    jax.Array (rows, cols)
+        The deposited sums.
     """
     K = int(window)
     u, v = jnp.asarray(u) + 0.5, jnp.asarray(v) + 0.5  # texel edges at integers
@@ -314,6 +415,24 @@ def rasterize_triangles(u, v, values, shape: tuple[int, int], origin=None, chunk
     own (:func:`_wide_passes`; one window for all, the widest's, cost up to its area over theirs).
     Groups that carry nothing are skipped. Work past :data:`MAX_SHARES` or a group wider than 4094 texels is
     refused (ValueError) before it starts.
+
+    Parameters
+    ----------
+    u, v : array_like (3, G, ...)
+        Texel coordinates of the vertices.
+    values : array_like (G, ...)
+        What each triangle carries.
+    shape : tuple of int
+        (rows, cols) of the map.
+    origin : tuple of array_like, optional
+        Integer texel offsets (du, dv) of each group.
+    chunk : int
+        Most groups a pass of wide triangles.
+
+    Returns
+    -------
+    jax.Array (rows, cols)
+        The deposited sums.
     """
     shape = (int(shape[0]), int(shape[1]))
     u, v, w = jnp.asarray(u), jnp.asarray(v), jnp.asarray(values)

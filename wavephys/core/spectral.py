@@ -37,7 +37,24 @@ def angular_wavenumbers(shape: tuple[int, int], spacing, real: bool = False, xp=
 
     For ``jax.numpy`` with a concrete spacing they are made by NumPy in JAX's float dtype,
     operation for operation as ``jax.numpy`` rounds them, and then handed over: made eagerly by
-    JAX, each operation would be compiled for every new shape."""
+    JAX, each operation would be compiled for every new shape.
+
+    Parameters
+    ----------
+    shape : tuple of int
+        (ny, nx) of the field.
+    spacing : float
+        Grid spacing, m.
+    real : bool
+        The half spectrum of ``rfft2`` along x.
+    xp : module, optional
+        ``numpy`` or ``jax.numpy`` (default ``jax.numpy``).
+
+    Returns
+    -------
+    (array, array)
+        ky (ny, 1) and kx (1, nx or nx//2 + 1), rad/m.
+    """
     xp = xp or array_module(spacing)
     if xp is not np and isinstance(spacing, (int, float, np.number)):
         ky, kx = jax_rounded_wavenumbers(shape, spacing, real)
@@ -46,7 +63,22 @@ def angular_wavenumbers(shape: tuple[int, int], spacing, real: bool = False, xp=
 
 
 def jax_rounded_wavenumbers(shape: tuple[int, int], spacing: float, real: bool = False):
-    """:func:`angular_wavenumbers` as NumPy arrays in JAX's float dtype, rounded as ``jax.numpy`` rounds them."""
+    """:func:`angular_wavenumbers` as NumPy arrays in JAX's float dtype, rounded as ``jax.numpy`` rounds them.
+
+    Parameters
+    ----------
+    shape : tuple of int
+        (ny, nx) of the field.
+    spacing : float
+        Grid spacing, m (concrete).
+    real : bool
+        The half spectrum along x.
+
+    Returns
+    -------
+    (numpy.ndarray, numpy.ndarray)
+        ky (ny, 1) and kx (1, …), rad/m.
+    """
     dtype = np.dtype(jax.dtypes.canonicalize_dtype(np.float64))  # float32, or float64 with jax_enable_x64
     return _wavenumbers(shape, dtype.type(spacing), real, np, dtype)
 
@@ -76,7 +108,22 @@ def spectral_gradient(field, spacing, wavenumbers=None):
     """(∂f/∂x, ∂f/∂y) of a real periodic field by FFT: exact for band-limited fields, 1/m × f.
     ``wavenumbers``: the half spectrum's ``(ky, kx)`` (:func:`angular_wavenumbers` with
     ``real=True``) when the caller has them (a compiled caller whose spacing is traced passes the
-    ones formed outside, so that its slopes round exactly as an eager call's)."""
+    ones formed outside, so that its slopes round exactly as an eager call's).
+
+    Parameters
+    ----------
+    field : array_like (..., ny, nx)
+        A real periodic field.
+    spacing : float
+        Grid spacing, m.
+    wavenumbers : tuple of array, optional
+        The half spectrum's (ky, kx), rad/m.
+
+    Returns
+    -------
+    (array, array)
+        ∂f/∂x and ∂f/∂y, shape of ``field``.
+    """
     xp = array_module(field)
     f = xp.asarray(field)
     ny, nx = f.shape[-2:]
@@ -87,7 +134,20 @@ def spectral_gradient(field, spacing, wavenumbers=None):
 
 
 def central_gradient(field, spacing):
-    """(∂f/∂x, ∂f/∂y) by periodic central differences (second order, no transforms)."""
+    """(∂f/∂x, ∂f/∂y) by periodic central differences (second order, no transforms).
+
+    Parameters
+    ----------
+    field : array_like (..., ny, nx)
+        A periodic field.
+    spacing : float
+        Grid spacing, m.
+
+    Returns
+    -------
+    (array, array)
+        ∂f/∂x and ∂f/∂y, shape of ``field``.
+    """
     xp = array_module(field)
     f = xp.asarray(field)
     gx = (xp.roll(f, -1, -1) - xp.roll(f, 1, -1)) / (2 * spacing)
@@ -101,7 +161,20 @@ GRADIENT_METHODS = {"spectral": spectral_gradient, "central": central_gradient}
 
 def central_laplacian(field, spacing):
     """∇²f by the periodic 5-point stencil on the last two axes (second order, no transforms),
-    1/spacing² × f. NumPy in → NumPy out, JAX in → JAX out."""
+    1/spacing² × f. NumPy in → NumPy out, JAX in → JAX out.
+
+    Parameters
+    ----------
+    field : array_like (..., ny, nx)
+        A periodic field.
+    spacing : float
+        Grid spacing, m.
+
+    Returns
+    -------
+    array_like
+        ∇²f, shape of ``field``.
+    """
     xp = array_module(field)
     f = xp.asarray(field)
     return (xp.roll(f, 1, -1) + xp.roll(f, -1, -1) + xp.roll(f, 1, -2) + xp.roll(f, -1, -2) - 4.0 * f) / (
@@ -109,14 +182,42 @@ def central_laplacian(field, spacing):
 
 
 def gradient(field, spacing, method: str = "spectral"):
-    """(∂f/∂x, ∂f/∂y) by ``method`` in :data:`GRADIENT_METHODS`."""
+    """(∂f/∂x, ∂f/∂y) by ``method`` in :data:`GRADIENT_METHODS`.
+
+    Parameters
+    ----------
+    field : array_like (..., ny, nx)
+        A periodic field.
+    spacing : float
+        Grid spacing, m.
+    method : str
+        ``"spectral"`` or ``"central"``.
+
+    Returns
+    -------
+    (array, array)
+        ∂f/∂x and ∂f/∂y, shape of ``field``.
+    """
     from wavephys.core.methods import dispatch
 
     return dispatch(GRADIENT_METHODS, method, field, spacing, _family="gradient")
 
 
 def spectral_laplacian(field, spacing):
-    """∇²f of a real periodic field by FFT, 1/m² × f."""
+    """∇²f of a real periodic field by FFT, 1/m² × f.
+
+    Parameters
+    ----------
+    field : array_like (..., ny, nx)
+        A real periodic field.
+    spacing : float
+        Grid spacing, m.
+
+    Returns
+    -------
+    array_like
+        ∇²f, shape of ``field``.
+    """
     xp = array_module(field)
     f = xp.asarray(field)
     ny, nx = f.shape[-2:]
@@ -131,6 +232,17 @@ def fourier_refine(field, factor: int):
     cell centres (−L/2 + (j + ½)·L/(n·factor)), which are not a superset of the coarse
     ones: the spectrum is shifted by the half-cell difference before the inverse
     transform. The Nyquist row and column are split evenly between ±k_N.
+
+    Parameters
+    ----------
+    field : array_like (n, n)
+        A real periodic field at the cell centres.
+    factor : int
+        Refinement, ≥ 1.
+
+    Returns
+    -------
+    jax.Array (n·factor, n·factor)
     """
     if factor == 1:
         return field
@@ -164,7 +276,19 @@ def cosine_refine(field, factor: int):
     is the Fourier series of the field's even extension, twice the side: the extension is
     refined by :func:`fourier_refine` and its first quadrant kept. Exact for fields band-limited
     in the tank's cosine modes (Fourier interpolation of the tank itself would ring at the
-    walls, where its periodic copy jumps)."""
+    walls, where its periodic copy jumps).
+
+    Parameters
+    ----------
+    field : array_like (n, n)
+        A real field in a walled tank, at the cell centres.
+    factor : int
+        Refinement, ≥ 1.
+
+    Returns
+    -------
+    jax.Array (n·factor, n·factor)
+    """
     if factor == 1:
         return field
     xp = array_module(field)
@@ -177,7 +301,19 @@ def cosine_refine(field, factor: int):
 
 def spectral_derivatives(field, spacing):
     """(∂f/∂x, ∂f/∂y, ∂²f/∂x², ∂²f/∂x∂y, ∂²f/∂y²) of a real periodic field by one FFT: exact for
-    band-limited fields (1/m and 1/m² × f), stacked on a new first axis, in ``field``'s floating dtype."""
+    band-limited fields (1/m and 1/m² × f), stacked on a new first axis, in ``field``'s floating dtype.
+
+    Parameters
+    ----------
+    field : array_like (..., ny, nx)
+        A real periodic field.
+    spacing : float
+        Grid spacing, m.
+
+    Returns
+    -------
+    jax.Array (5, ..., ny, nx)
+    """
     xp = array_module(field)
     f = xp.asarray(field)
     ny, nx = f.shape[-2:]
@@ -195,6 +331,16 @@ def bspline_coefficients(field):
     function per axis is (4 + 2 cos ω)/6 (ω = 2π·fftfreq), so c is the field's spectrum
     divided by it (one FFT each way; Unser 1999, "Splines: a perfect fit for signal and
     image processing"). Evaluate with :func:`wavephys.core.sampling.bspline`.
+
+    Parameters
+    ----------
+    field : array_like (..., ny, nx)
+        Samples of a periodic field.
+
+    Returns
+    -------
+    jax.Array (..., ny, nx)
+        The coefficients c, in the field's floating dtype.
     """
     xp = array_module(field)
     f = xp.asarray(field)
@@ -269,6 +415,18 @@ def cosine_transform(field, axis: int = -1):
     ----------
     J. Makhoul (1980). A fast cosine transform in one and two dimensions. *IEEE Trans. ASSP*
     28(1), 27–34.
+
+    Parameters
+    ----------
+    field : array_like
+        Real samples at the cell centres.
+    axis : int
+        The axis transformed.
+
+    Returns
+    -------
+    array_like
+        X_k, shape of ``field``.
     """
     xp = array_module(field)
     x = xp.asarray(field)
@@ -286,7 +444,20 @@ def cosine_transform(field, axis: int = -1):
 def inverse_cosine_transform(coefficients, axis: int = -1):
     """The inverse of :func:`cosine_transform` along ``axis`` (a type-III transform): the
     samples at cell centres of the cosine series with these coefficients. One inverse real
-    FFT of length n (n even)."""
+    FFT of length n (n even).
+
+    Parameters
+    ----------
+    coefficients : array_like
+        X_k along ``axis``.
+    axis : int
+        The axis transformed.
+
+    Returns
+    -------
+    array_like
+        The samples, shape of ``coefficients``.
+    """
     xp = array_module(coefficients)
     if _is_numpy(xp):
         import scipy.fft
@@ -305,7 +476,18 @@ def cosine_transform2(field):
     """The 2-D type-II cosine transform of a real field on its last two axes ``(..., ny, nx)``
     (both even): :func:`cosine_transform` along both, by one real 2-D FFT (Makhoul's 2-D form:
     Z = ½e^{−iπk₂/2n}[e^{−iπk₁/2n}V(k₁, k₂) + e^{iπk₁/2n}V(−k₁, k₂)], X(k₁, k₂) = Re Z,
-    X(k₁, n − k₂) = −Im Z). Exact inverse: :func:`inverse_cosine_transform2`."""
+    X(k₁, n − k₂) = −Im Z). Exact inverse: :func:`inverse_cosine_transform2`.
+
+    Parameters
+    ----------
+    field : array_like (..., ny, nx)
+        Real samples at the cell centres, ny and nx even.
+
+    Returns
+    -------
+    array_like (..., ny, nx)
+        X(k₁, k₂).
+    """
     xp = array_module(field)
     x = xp.asarray(field)
     if _is_numpy(xp):
@@ -320,7 +502,18 @@ def cosine_transform2(field):
 
 
 def inverse_cosine_transform2(coefficients):
-    """The inverse of :func:`cosine_transform2` (one inverse real 2-D FFT)."""
+    """The inverse of :func:`cosine_transform2` (one inverse real 2-D FFT).
+
+    Parameters
+    ----------
+    coefficients : array_like (..., ny, nx)
+        X(k₁, k₂).
+
+    Returns
+    -------
+    array_like (..., ny, nx)
+        The samples.
+    """
     xp = array_module(coefficients)
     c = xp.asarray(coefficients)
     if _is_numpy(xp):
@@ -361,6 +554,20 @@ def mode_transform(field, walls=(False, False), extent=None):
     (even counts), the rest land: the cosine transform of that block, its (my, mx) coefficients
     first in an ``(n, n)`` array of zeros. :func:`mode_wavenumbers` gives (k_y, k_x) on the same
     layout, and :func:`inverse_mode_transform` undoes it exactly (land comes back as zeros).
+
+    Parameters
+    ----------
+    field : array_like (..., n, n)
+        A real field.
+    walls : tuple of bool
+        (x walled, y walled).
+    extent : tuple of int, optional
+        (my, mx) cells of a centred tank (walls on both axes only).
+
+    Returns
+    -------
+    array_like
+        The spectra, on the layout above.
     """
     xp = array_module(field)
     wx, wy = walls
@@ -379,7 +586,23 @@ def mode_transform(field, walls=(False, False), extent=None):
 
 
 def inverse_mode_transform(spectra, n: int, walls=(False, False), extent=None):
-    """The real fields ``(..., n, n)`` of :func:`mode_transform`'s spectra."""
+    """The real fields ``(..., n, n)`` of :func:`mode_transform`'s spectra.
+
+    Parameters
+    ----------
+    spectra : array_like
+        :func:`mode_transform`'s output.
+    n : int
+        Grid points along a side.
+    walls : tuple of bool
+        (x walled, y walled), as given to :func:`mode_transform`.
+    extent : tuple of int, optional
+        As given to :func:`mode_transform`.
+
+    Returns
+    -------
+    array_like (..., n, n)
+    """
     xp = array_module(spectra)
     wx, wy = walls
     if extent is not None:
@@ -399,7 +622,26 @@ def mode_wavenumbers(n: int, spacing, walls=(False, False), xp=None, extent=None
     """``(ky, kx)``, rad/m, of :func:`mode_transform`'s layout, shaped to broadcast against it:
     2π·fftfreq / 2π·rfftfreq along periodic axes, mπ/L (m = 0 … n − 1, L = n·spacing) along walled ones;
     with a tank ``extent`` = (my, mx), pπ/(my·spacing) and mπ/(mx·spacing) on its coefficients and 0 on
-    the unused rest (their coefficients are always 0)."""
+    the unused rest (their coefficients are always 0).
+
+    Parameters
+    ----------
+    n : int
+        Grid points along a side.
+    spacing : float
+        Grid spacing, m.
+    walls : tuple of bool
+        (x walled, y walled).
+    xp : module, optional
+        ``numpy`` or ``jax.numpy``.
+    extent : tuple of int, optional
+        (my, mx) cells of a centred tank.
+
+    Returns
+    -------
+    (array, array)
+        ky and kx, rad/m.
+    """
     xp = xp or array_module(spacing)
     wx, wy = walls
     if extent is not None:
