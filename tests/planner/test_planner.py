@@ -583,6 +583,8 @@ def test_cli_plan_prints_the_card_and_writes_json_and_chart(tmp_path):
 
 @pytest.mark.parametrize("args,words,status", [
     (["nowhere.toml"], ["nowhere.toml", "does not exist"], 2),
+    (["shore"], ["'shore' is a scene of 'wavephys render'", "plan: ripples", "scene file"], 2),
+    (["wakebeach"], ["'wakebeach' is a scene of 'wavephys render'"], 2),
     (["lake", "--tolerance", "-1"], ["--tolerance"], 2),
     (["lake", "--tolerance", "1e-15"], ["float32 floor"], 1),
     (["lake", "--json", "/no/such/folder/card.json"], ["--json", "does not exist"], 2),

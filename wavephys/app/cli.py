@@ -324,6 +324,10 @@ def cmd_plan(args, parser) -> int:
     chart_path = _checked(parser, output_file, args.chart, "--chart", (".png",)) if args.chart else None
     from wavephys.planner import BUILTIN_SCENES, Infeasible, Scene, builtin_scene, plan
 
+    if args.scene in SCENES and args.scene not in BUILTIN_SCENES and not Path(args.scene).exists():
+        parser.error(f"{args.scene!r} is a scene of 'wavephys render', not one the planner can plan: the two "
+                     f"commands' built-in scenes are two sets today (plan: {', '.join(BUILTIN_SCENES)}; render: "
+                     f"{', '.join(SCENES)}); describe it as a scene file (docs/planner.md) to plan it")
     try:
         scene = builtin_scene(args.scene) if args.scene in BUILTIN_SCENES else Scene.from_toml(Path(args.scene))
     except FileNotFoundError as exc:
