@@ -92,7 +92,20 @@ def full_surfaces(scene, frames=None) -> tuple:
     texels at ``frames`` (1-based), from its closed form (linear modes at time t, then
     η + ½ Re(η_c Λη_c) on the grid). Needs a periodic scene (no margin). Without ``frames``:
     the first, the last and three evenly between, as the term traced them before its screen
-    (deprecated: pass the frames)."""
+    (deprecated: pass the frames).
+
+    Parameters
+    ----------
+    scene : Scene
+        A periodic scene.
+    frames : sequence of int, optional
+        1-based frame numbers.
+
+    Returns
+    -------
+    (tuple of int, numpy.ndarray (F, n, n))
+        The frames and their heights, m (float64).
+    """
     if frames is None:
         import warnings
 
@@ -137,7 +150,26 @@ class CausticsErrors:
     most points a side the Jacobian gather took on a screened frame (texels × its supersampling;
     0 once a frame folds), what its cost is calibrated by. A trace that is not finite everywhere
     makes its entries ∞ (that choice is never taken); a frame past its first fold makes the
-    Jacobian gather's ∞."""
+    Jacobian gather's ∞.
+
+    Attributes
+    ----------
+    delta, e_max : Mapping
+        Per tracing refinement r: MARGIN × the max relative change of the floor light, and of
+        its largest value, E/E₀.
+    flat : float
+        E₀, the flat floor's irradiance, W/m².
+    frames : tuple of int
+        The frames traced at every option (1-based).
+    seconds : float
+        The first evaluation's time, s.
+    screen : tuple of float
+        The screen's value per frame.
+    traced : Mapping
+        Per r, the largest change on the traced frames alone.
+    gather_points : int
+        The most points a side the Jacobian gather took.
+    """
 
     delta: Mapping
     e_max: Mapping
@@ -150,7 +182,16 @@ class CausticsErrors:
 
 
 def caustics_errors(scene) -> CausticsErrors | None:
-    """:class:`CausticsErrors` of ``scene`` (None if it shows no caustics); cached per scene."""
+    """:class:`CausticsErrors` of ``scene`` (None if it shows no caustics); cached per scene.
+
+    Parameters
+    ----------
+    scene : Scene
+
+    Returns
+    -------
+    CausticsErrors or None
+    """
     if not scene.caustics:
         return None
     return _caustics_errors(scene)

@@ -59,7 +59,14 @@ _PER_NAME = ("fresnel", "absorption", "texture")
 
 @lru_cache(maxsize=1)
 def calibration() -> dict:
-    """The shipped calibration (see module doc)."""
+    """The shipped calibration (see module doc).
+
+    Returns
+    -------
+    dict
+        The cost tables (seconds against size per operation) from the package's data, with
+        ``"source": "shipped"``.
+    """
     text = resources.files("wavephys.planner").joinpath("data", CALIBRATION_FILE).read_text()
     return {**json.loads(text), "source": "shipped"}
 
@@ -180,7 +187,17 @@ def load_calibration(path) -> dict:
 
 
 def describe_calibration(cal: dict) -> str:
-    """One line for the model card: where the costs were measured, and which file holds them."""
+    """One line for the model card: where the costs were measured, and which file holds them.
+
+    Parameters
+    ----------
+    cal : dict
+        A calibration (:func:`calibration` or a file of ``wavephys calibrate``).
+
+    Returns
+    -------
+    str
+    """
     where = ", ".join(str(cal[k]) for k in ("machine", "device") if cal.get(k)) or "an unnamed machine"
     date = f" on {cal['date']}" if cal.get("date") else ""
     return f"{cal.get('source', 'a calibration given as a dict')} ({where}{date})"
@@ -188,7 +205,22 @@ def describe_calibration(cal: dict) -> str:
 
 def interpolate(table: dict, n: float, key: str = "seconds") -> float:
     """Seconds at size ``n`` from a table ``{"n": [...], key: [...]}``: log-log between the
-    measured sizes, n² log₂ n scaling beyond them."""
+    measured sizes, n² log₂ n scaling beyond them.
+
+    Parameters
+    ----------
+    table : dict
+        ``{"n": sizes, key: values}``.
+    n : float
+        The size asked for.
+    key : str
+        The column read.
+
+    Returns
+    -------
+    float
+        Seconds.
+    """
     ns, ts = np.asarray(table["n"], float), np.asarray(table[key], float)
     if n <= ns[0] or n >= ns[-1]:
         ref_n, ref_t = (ns[0], ts[0]) if n <= ns[0] else (ns[-1], ts[-1])
@@ -199,7 +231,20 @@ def interpolate(table: dict, n: float, key: str = "seconds") -> float:
 def height_cost(model: SceneModel, cal: dict | None = None) -> dict:
     """Predicted seconds of the height output of ``model``: steps, ships, output frames, blends
     between steps, refinement onto the output texels, and their sum ``total`` (a surface model
-    other than the spectral step: its frames alone)."""
+    other than the spectral step: its frames alone).
+
+    Parameters
+    ----------
+    model : SceneModel
+        A scene and the height model's choices.
+    cal : dict, optional
+        A calibration (default: :func:`calibration`).
+
+    Returns
+    -------
+    dict of str to float
+        Seconds per part, and ``total``.
+    """
     cal = cal or calibration()
     scene, c = model.scene, model.choices
     if c.surface != "spectral":  # evaluated at every frame on the output texels
@@ -239,7 +284,23 @@ def height_cost(model: SceneModel, cal: dict | None = None) -> dict:
 
 def colour_cost(scene, fresnel: str, absorption: str, cal: dict | None = None) -> float:
     """Predicted seconds of shading every output frame with these optics forms (the caustics
-    apart: :func:`caustics_cost`)."""
+    apart: :func:`caustics_cost`).
+
+    Parameters
+    ----------
+    scene : Scene
+    fresnel : str
+        A Fresnel form (:data:`optics.light.fresnel.REFLECTANCE_METHODS`).
+    absorption : str
+        An absorption method (:data:`optics.light.attenuation.WATER_TRANSMITTANCE_METHODS`).
+    cal : dict, optional
+        A calibration (default: :func:`calibration`).
+
+    Returns
+    -------
+    float
+        Seconds for the whole clip.
+    """
     cal = cal or calibration()
     pixels = scene.texels**2 / 1e6
     per_frame = interpolate(cal["shade"], scene.texels) + pixels * (cal["fresnel"][fresnel] + cal["absorption"][absorption])
@@ -252,7 +313,23 @@ def caustics_cost(scene, refine, cal: dict | None = None, gather_points: int | N
     ``gather_points``: the points a side the gather takes on the scene's frames (texels × its
     supersampling; :class:`~wavephys.planner.caustics.CausticsErrors`), which a table measured
     ``by`` points is read at; without it, or with a table by texels (a calibration written before
-    2026-12-05), the scene's texels."""
+    2026-12-05), the scene's texels.
+
+    Parameters
+    ----------
+    scene : Scene
+    refine : int or str
+        0 (off), a tracing refinement ≥ 1, or ``"jacobian"``.
+    cal : dict, optional
+        A calibration (default: :func:`calibration`).
+    gather_points : int, optional
+        Points a side of the Jacobian gather.
+
+    Returns
+    -------
+    float
+        Seconds for the whole clip.
+    """
     if not refine or not scene.caustics:
         return 0.0
     cal = cal or calibration()
@@ -268,7 +345,21 @@ def caustics_cost(scene, refine, cal: dict | None = None, gather_points: int | N
 
 def texture_cost(scene, fmt: str, cal: dict | None = None) -> float:
     """Predicted seconds of encoding every output frame into the height texture format ``fmt``
-    (:data:`wavephys.planner.model.TEXTURES`; the renderer decodes on the GPU, for free)."""
+    (:data:`wavephys.planner.model.TEXTURES`; the renderer decodes on the GPU, for free).
+
+    Parameters
+    ----------
+    scene : Scene
+    fmt : str
+        A height texture format.
+    cal : dict, optional
+        A calibration (default: :func:`calibration`).
+
+    Returns
+    -------
+    float
+        Seconds for the whole clip.
+    """
     from wavephys.core.inputs import check_choice
     from wavephys.planner.model import TEXTURES
 

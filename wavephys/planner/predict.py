@@ -74,7 +74,18 @@ def hermite_blend_error(theta) -> np.ndarray:
     """max over s ∈ [0, 1] and θ' ≤ θ of |h00 + h01·e^{−iθ'} − e^{−iθ's}|: the frame error of
     modes of phase step up to θ whose rate is not supplied (the second-order term's case);
     at most 2 (h00 + h01 = 1, both ≥ 0). Vectorized over θ (evaluated on a grid of 4096
-    steps up to the largest θ, taking the grid value at or above each θ)."""
+    steps up to the largest θ, taking the grid value at or above each θ).
+
+    Parameters
+    ----------
+    theta : array_like
+        Phase steps ω·Δt, rad, ≥ 0.
+
+    Returns
+    -------
+    numpy.ndarray
+        The error bound per θ, relative to the mode's amplitude, shape of ``theta``.
+    """
     theta = np.asarray(theta, np.float64)
     top = float(np.max(theta, initial=0.0))
     if top <= 0.0:
@@ -107,6 +118,21 @@ def patch_bound(scene: Scene, coarsen: int, steps_per_frame: int, method: str) -
     (1/n²) Σ_k |m_k| |Δ̂_k| min(N, 1/|sin(a_kΔt/2)|), ×(1 + 0.3 ω_kΔt) where frames are
     blended between steps (the Hermite weights' rate terms). Evaluated, not bounded: the patch
     window's placement snaps to the grid, so Δ is a translate only up to a sub-texel shift.
+
+    Parameters
+    ----------
+    scene : Scene
+    coarsen : int
+        The grid's coarsening.
+    steps_per_frame : int
+        Simulation steps a frame.
+    method : str
+        The ship method.
+
+    Returns
+    -------
+    (float, float, float)
+        m.
     """
     return _patch_bound(scene, coarsen, steps_per_frame, method)
 
@@ -160,7 +186,17 @@ def margin_errors(scene: Scene) -> dict:
 
     Evaluated, not bounded: the planner runs the scene's linear model three times (why a bound
     does not serve: docs/planner.md §2, the margin). Scenes larger than :data:`MARGIN_TEXELS`
-    keep n/8 (inf for the others)."""
+    keep n/8 (inf for the others).
+
+    Parameters
+    ----------
+    scene : Scene
+
+    Returns
+    -------
+    dict
+        Margin choice → error, m.
+    """
     return dict(_margin_errors(scene))  # a copy: the cached result stays as measured
 
 
@@ -178,7 +214,17 @@ def margin_step_errors(scene: Scene) -> dict:
     frame between the full model's linear heights on a grid c× coarser (a step per frame) and
     on the texels, and likewise with s steps per frame; a pair's error is the sum of its two
     (each holds that term's own error again: a conservative double count). Scenes larger than
-    :data:`MARGIN_TEXELS`: inf for all but the full model's (1, 1)."""
+    :data:`MARGIN_TEXELS`: inf for all but the full model's (1, 1).
+
+    Parameters
+    ----------
+    scene : Scene
+
+    Returns
+    -------
+    dict
+        (coarsen, steps per frame) → error, m.
+    """
     return dict(_margin_step_errors(scene))
 
 
@@ -193,7 +239,21 @@ def _margin_step_errors(scene: Scene) -> dict:
 def margin_step_error(scene: Scene, coarsen: int, steps_per_frame: int) -> float:
     """One entry of :func:`margin_step_errors` (m; 0 for a periodic scene and for (1, 1)): the
     evaluated change of coarsening ``coarsen`` plus that of ``steps_per_frame``, each run once per
-    scene (cached), so a plan runs only the ones its candidates within the tolerance need."""
+    scene (cached), so a plan runs only the ones its candidates within the tolerance need.
+
+    Parameters
+    ----------
+    scene : Scene
+    coarsen : int
+        The grid's coarsening.
+    steps_per_frame : int
+        Simulation steps a frame.
+
+    Returns
+    -------
+    float
+        m.
+    """
     if not scene.margin or (coarsen, steps_per_frame) == (1, 1):
         return 0.0
     if scene.texels > MARGIN_TEXELS:
@@ -265,7 +325,17 @@ def boundary_errors(scene: Scene) -> dict:
     × 1.25 (:data:`MARGIN_SAFETY`: the other terms change it a little).
 
     Evaluated, not bounded, as the margin is: the planner runs the scene's linear model three
-    times. Scenes larger than :data:`MARGIN_TEXELS` keep the walls (inf for the others)."""
+    times. Scenes larger than :data:`MARGIN_TEXELS` keep the walls (inf for the others).
+
+    Parameters
+    ----------
+    scene : Scene
+
+    Returns
+    -------
+    dict
+        Boundary choice → error, m.
+    """
     return dict(_boundary_errors(scene))  # a copy: the cached result stays as measured
 
 
@@ -293,7 +363,17 @@ def depth_errors(scene: Scene) -> dict:
 
     Evaluated, not bounded, as the margin is: the planner runs the scene's linear model over the
     floor and at constant depth (docs/planner.md, the depth model). Scenes larger than
-    :data:`MARGIN_TEXELS` keep the floor (inf for constant depth)."""
+    :data:`MARGIN_TEXELS` keep the floor (inf for constant depth).
+
+    Parameters
+    ----------
+    scene : Scene
+
+    Returns
+    -------
+    dict
+        Depth model → error, m.
+    """
     return dict(_depth_errors(scene))  # a copy: the cached result stays as measured
 
 
@@ -320,6 +400,19 @@ class HeightBounds:
     add in the max norm). ``rms``: a bound on the RMS over the visible square: the linear RMS
     over the simulated square (exact, by Parseval) times sqrt(simulated/visible area), plus
     the second-order and float32 max-norm bounds.
+
+    Attributes
+    ----------
+    linear : float
+        Max-norm bound of the first-order surface's error, m.
+    second_order : float
+        Of the η₂ term's, m.
+    rounding : float
+        The float32 floor, m.
+    rms : float
+        Bound on the RMS error over the visible square, m.
+    total : float
+        linear + second_order + rounding, m (a property).
     """
 
     linear: float
@@ -359,7 +452,17 @@ def default_height_options(scene: Scene) -> dict:
     method and the single patch only where there are ships (the latter where the full model
     takes the doubled patch), the narrower margins only for open water; over a sloping floor the
     linear model only (the depth stepper, the full model, is linear) and both depth models, the boundaries other than
-    walls only for a walled scene."""
+    walls only for a walled scene.
+
+    Parameters
+    ----------
+    scene : Scene
+
+    Returns
+    -------
+    dict
+        Term name → tuple of values, the full model's first.
+    """
     full_patch = full_choices(scene).ship_patch
     return dict(surface_tension=(True, False), finite_depth=(True, False), coarsen=COARSEN,
                 steps_per_frame=tuple(s for s in STEPS_PER_FRAME if s <= scene.frames),
@@ -471,6 +574,21 @@ def height_bounds(scene: Scene, kappa: float, options=None, defer_steps: bool = 
     surface); the wind sea by z × its RMS (:func:`wavephys.planner.spectrum.gaussian_factor`).
     ``kappa``: the float32 rounding coefficient (calibrated). The full configuration's own
     bound is the float32 floor alone.
+
+    Parameters
+    ----------
+    scene : Scene
+    kappa : float
+        The calibrated factor of the second-order bound.
+    options : dict, optional
+        Term name → values (default :func:`default_height_options`).
+    defer_steps : bool
+        Leave the cutoff's change with the grid and Δt to later (:func:`margin_step_error`).
+
+    Returns
+    -------
+    dict
+        :class:`~wavephys.planner.model.Choices` → :class:`HeightBounds`.
     """
     opts = default_height_options(scene) if options is None else options
     spfs = tuple(s for s in opts["steps_per_frame"] if s <= scene.frames)
@@ -533,7 +651,19 @@ def height_bounds(scene: Scene, kappa: float, options=None, defer_steps: bool = 
 
 def height_peak(scene: Scene, bounds: HeightBounds) -> float:
     """A bound on max |η| of a configuration's heights, m: the full model's (|η_c| ≤ s0, |η₂| ≤
-    ½·s0·s1) plus that configuration's error bound ``bounds``."""
+    ½·s0·s1) plus that configuration's error bound ``bounds``.
+
+    Parameters
+    ----------
+    scene : Scene
+    bounds : HeightBounds
+        The configuration's error bounds.
+
+    Returns
+    -------
+    float
+        m.
+    """
     spec = scene_spectrum(scene)
     return spec.s0 + 0.5 * spec.s0 * spec.s1 + bounds.total
 
@@ -553,6 +683,18 @@ def texture_error(fmt: str, peak: float) -> float:
       half float, 65504;
     * ``u16`` / ``u8``: each frame is mapped from its own minimum to its maximum (a span of at
       most 2·peak) onto 2^b codes and rounded to the nearest: half a code, peak / (2^b − 1).
+
+    Parameters
+    ----------
+    fmt : str
+        A height texture format.
+    peak : float
+        The heights' largest magnitude, m.
+
+    Returns
+    -------
+    float
+        m (inf where the format cannot hold the heights).
     """
     from wavephys.core.inputs import check_choice, check_scalar
     from wavephys.planner.model import TEXTURES
@@ -598,6 +740,17 @@ def surface_bounds(scene: Scene, kappa: float) -> dict:
       :data:`RESAMPLE_ERROR` × the range 2·s0. Unavailable from 2λ·s1 ≥ 0.9 (where it may fold,
       beyond the range the resampling error was measured on);
     * ``noise``: an unrelated field: |η_full| + |η_noise| ≤ s0 + ½·s0·s1 + a·Σ 2^{−Hi}.
+
+    Parameters
+    ----------
+    scene : Scene
+    kappa : float
+        The calibrated factor of the second-order bound.
+
+    Returns
+    -------
+    dict
+        Surface model → :class:`HeightBounds`.
     """
     if scene.stones or scene.ships or scene.wind is None:
         return {}

@@ -50,7 +50,19 @@ MAX_EVALUATED_FRAMES = 24
 def mode_dispersion(k, water: Water):
     """(ω, m = K/ω) in float64 on a numpy wavenumber array: the library's own formulas
     (:func:`wavephys.physics.dispersion.angular_frequency`,
-    :func:`wavephys.physics.heights.height_multiplier`)."""
+    :func:`wavephys.physics.heights.height_multiplier`).
+
+    Parameters
+    ----------
+    k : numpy.ndarray
+        Wavenumbers, rad/m.
+    water : Water
+
+    Returns
+    -------
+    (numpy.ndarray, numpy.ndarray)
+        ω (rad/s) and m = K/ω (s/m), shape of ``k``.
+    """
     from wavephys.physics.dispersion import angular_frequency
     from wavephys.physics.heights import height_multiplier
 
@@ -70,7 +82,39 @@ def _phi1(z):
 
 @dataclass(frozen=True)
 class SceneSpectrum:
-    """The scene's modes on the full grid, restricted to where they matter."""
+    """The scene's modes on the full grid, restricted to where they matter.
+
+    Attributes
+    ----------
+    n : int
+        The full grid's points a side.
+    k, kx, ky : numpy.ndarray (M,)
+        The support's wavenumbers, rad/m.
+    mirror : numpy.ndarray (M,)
+        Index in the support of −k.
+    index : tuple
+        (rows, cols) of the support in the full spectrum.
+    A, W : numpy.ndarray (M,)
+        Complex heights at t = 0 of the impulses (stones) and of the wind sea.
+    ships : tuple
+        Per ship: its spectrum B (M,) and velocity (Ux, Uy), m/s.
+    dropped : float
+        What the dropped modes carry at most, m.
+    z : float
+        The Gaussian union-bound factor of the wind sea's maxima.
+    s0, s1 : float
+        Bounds on max |η_c| (m) and on max |Λη_c| (also on |∇η|).
+    s0_hi, s1_hi : dict
+        Per coarsening, the same for the modes past half its Nyquist wavenumber.
+    omega_top : float
+        The largest ω of the support, rad/s.
+    omega_edges : numpy.ndarray
+        Upper edges of the ω bins, rad/s.
+    omega_bins : tuple
+        Per bin, the amplitude sums and variances its bounds use.
+    alias : dict
+        Per coarsening, the bound on the η₂ products the coarse grid folds back, m.
+    """
 
     n: int
     k: np.ndarray            # |k| on the support (M,)
@@ -101,7 +145,16 @@ class SceneSpectrum:
 def scene_spectrum(scene: Scene) -> SceneSpectrum:
     """The scene's per-mode amplitudes on its full grid (cached per scene); a walled scene's are
     its even extension's (:meth:`wavephys.planner.scene.Scene.even_extension`: the tank's cosine
-    modes)."""
+    modes).
+
+    Parameters
+    ----------
+    scene : Scene
+
+    Returns
+    -------
+    SceneSpectrum
+    """
     return _scene_spectrum(scene.even_extension() if scene.walls else scene)
 
 
@@ -215,7 +268,22 @@ def pair_bound(G, bins, z) -> float:
     Stones and ships (deterministic): ½ Σ G_ab d0_a d1_b (the triangle inequality). The wind
     sea (random phases): each sum over one bin's partner, Σ_b G_ab Λη_c,b, is a Gaussian field
     of variance Σ_b G_ab² v1_b, bounded by √2·z·RMS; sea–sea pairs use ½(√2z)² sqrt(Σ G² v0 v1)
-    (for a constant G this is the product of the two fields' bounds)."""
+    (for a constant G this is the product of the two fields' bounds).
+
+    Parameters
+    ----------
+    G : numpy.ndarray (B, B)
+        The pair weights, ≥ 0.
+    bins : tuple
+        (d0, d1, v0, v1) per bin (:attr:`SceneSpectrum.omega_bins`).
+    z : float
+        The Gaussian factor.
+
+    Returns
+    -------
+    float
+        m.
+    """
     d0, d1, v0, v1 = bins
     r = math.sqrt(2.0) * z
     dd = float(np.sum(G * d0[:, None] * d1[None, :]))
@@ -232,25 +300,67 @@ CONFIDENCE = 1e-3
 def gaussian_factor(scene: Scene) -> float:
     """z = sqrt(2 ln(2N/p)): a Gaussian field of RMS σ exceeds z·σ somewhere among N points with
     probability below p (the union bound), N = texels² × frames, p = :data:`CONFIDENCE`. The
-    wind sea's heights, and every linear change of them, are such fields (random phases)."""
+    wind sea's heights, and every linear change of them, are such fields (random phases).
+
+    Parameters
+    ----------
+    scene : Scene
+
+    Returns
+    -------
+    float
+        z.
+    """
     points = scene.texels**2 * scene.frames
     return math.sqrt(2.0 * math.log(2.0 * points / CONFIDENCE))
 
 
 def dispersion_variants(scene: Scene):
-    """The four dispersion variants, full first: (σ, tanh) on/off."""
+    """The four dispersion variants, full first: (σ, tanh) on/off.
+
+    Parameters
+    ----------
+    scene : Scene
+
+    Returns
+    -------
+    list of Water
+        The waters of the four variants.
+    """
     return [SceneModel(scene, Choices(surface_tension=s, finite_depth=d)).water
             for s, d in ((True, True), (False, True), (True, False), (False, False))]
 
 
 def variant_index(choices: Choices) -> int:
+    """The index in :func:`dispersion_variants` of a configuration's dispersion (σ, tanh) switches.
+
+    Parameters
+    ----------
+    choices : Choices
+
+    Returns
+    -------
+    int
+        0 … 3.
+    """
     return {(True, True): 0, (False, True): 1, (True, False): 2, (False, False): 3}[
         (choices.surface_tension, choices.finite_depth)]
 
 
 def wind_heights(scene: Scene, grid) -> np.ndarray:
     """The wind sea's complex-height DFT ĥ at t = 0 on ``grid`` (full spectrum, m per sample sum;
-    cached per scene and grid: a read-only array)."""
+    cached per scene and grid: a read-only array).
+
+    Parameters
+    ----------
+    scene : Scene
+    grid : Grid
+
+    Returns
+    -------
+    numpy.ndarray (n, n)
+        Complex.
+    """
     return _wind_heights(scene, grid)
 
 
@@ -283,7 +393,17 @@ def hull_dft(ship, grid, spec) -> np.ndarray:
 
 def evaluated_frames(frames: int) -> np.ndarray:
     """Frame numbers (1…F) at which errors are evaluated: all of short scenes; else the last
-    16 (where dispersion errors are largest and every Hermite phase occurs) and 8 spread."""
+    16 (where dispersion errors are largest and every Hermite phase occurs) and 8 spread.
+
+    Parameters
+    ----------
+    frames : int
+        F, the scene's frames.
+
+    Returns
+    -------
+    numpy.ndarray of int
+    """
     if frames <= MAX_EVALUATED_FRAMES:
         return np.arange(1, frames + 1)
     last = np.arange(frames - 15, frames + 1)
@@ -294,7 +414,25 @@ def evaluated_frames(frames: int) -> np.ndarray:
 def mode_heights(spec: SceneSpectrum, omega, m, t, wind: bool = False, impulse_dt=None):
     """C_k(t) on the support for times t (shape (T, 1)): the deterministic sources (stones and
     ships), or with ``wind`` the wind sea alone. ``impulse_dt``: the ships make their waves by
-    impulses with this step (s), and t are step times (:func:`impulse_factor`)."""
+    impulses with this step (s), and t are step times (:func:`impulse_factor`).
+
+    Parameters
+    ----------
+    spec : SceneSpectrum
+    omega, m : numpy.ndarray (M,)
+        ω (rad/s) and K/ω (s/m) of the support's modes.
+    t : numpy.ndarray (T, 1)
+        Times, s.
+    wind : bool
+        The wind sea instead of the deterministic sources.
+    impulse_dt : float, optional
+        The ships' impulse step, s.
+
+    Returns
+    -------
+    numpy.ndarray (T, M)
+        Complex heights, m.
+    """
     phase = np.exp(-1j * omega[None, :] * t)
     if wind:
         return spec.W[None, :] * phase
@@ -330,7 +468,27 @@ def impulse_factor(a, b, t, dt, omega):
 
 def blended_mode_heights(spec, omega, m, t_frames, dt, wind: bool = False, impulses: bool = False):
     """The simulation's frames: C at the steps around each frame, Hermite-blended with η̇ = −iωC
-    (``impulses``: ships by the impulse method at step Δt)."""
+    (``impulses``: ships by the impulse method at step Δt).
+
+    Parameters
+    ----------
+    spec : SceneSpectrum
+    omega, m : numpy.ndarray (M,)
+        ω (rad/s) and K/ω (s/m) of the support's modes.
+    t_frames : numpy.ndarray
+        The frames' times, s.
+    dt : float
+        The simulation's step, s.
+    wind : bool
+        The wind sea instead of the deterministic sources.
+    impulses : bool
+        Ships by the impulse method.
+
+    Returns
+    -------
+    numpy.ndarray (T, M)
+        Complex heights at the frames, m.
+    """
     from wavephys.physics.interpolation import hermite_weights
 
     step = np.floor(t_frames / dt + 1e-9)
@@ -356,7 +514,18 @@ NOISE_OCTAVES, NOISE_HURST = 2, 1.0
 def gerstner_modes(scene: Scene, count: int) -> np.ndarray:
     """Indices into the scene's support (:func:`scene_spectrum`) of the ``count`` strongest modes
     of its wind sea (largest |ĥ_k|; each wavevector one wave) among those the texels resolve
-    (both components below the Nyquist wavenumber)."""
+    (both components below the Nyquist wavenumber).
+
+    Parameters
+    ----------
+    scene : Scene
+    count : int
+        How many.
+
+    Returns
+    -------
+    numpy.ndarray of int
+    """
     spec = scene_spectrum(scene)
     k_nyq = math.pi / scene.pixel
     held = np.maximum(np.abs(spec.kx), np.abs(spec.ky)) < k_nyq * (1 - 1e-9)  # a wave the texels resolve
@@ -366,7 +535,17 @@ def gerstner_modes(scene: Scene, count: int) -> np.ndarray:
 
 def sea_rms(scene: Scene) -> float:
     """RMS height of the scene's wind sea over its square, m (Parseval; constant in time up to
-    the interference of opposed modes, taken at its largest)."""
+    the interference of opposed modes, taken at its largest).
+
+    Parameters
+    ----------
+    scene : Scene
+
+    Returns
+    -------
+    float
+        m.
+    """
     spec = scene_spectrum(scene)
     a = np.abs(spec.W)
     h = 0.5 * (a + a[spec.mirror])
@@ -376,7 +555,16 @@ def sea_rms(scene: Scene) -> float:
 def noise_sea(scene: Scene):
     """The ``noise`` surface model of a wind scene: :class:`wavephys.surfaces.noise.NoiseSea` of
     the sea's RMS amplitude, its first octave at the sea's strongest wavelength (at most a
-    quarter of the texel rate, so the finest octave spans ≥ 2 texels), tiling the square."""
+    quarter of the texel rate, so the finest octave spans ≥ 2 texels), tiling the square.
+
+    Parameters
+    ----------
+    scene : Scene
+
+    Returns
+    -------
+    wavephys.surfaces.noise.NoiseSea
+    """
     from wavephys.surfaces.noise import NoiseSea
 
     spec = scene_spectrum(scene)

@@ -113,7 +113,22 @@ class PlanContext:
     caller passes its own), ``candidates`` every height configuration with its bounds and cost,
     ``full`` the full model's candidate, ``colour`` the colour error bounds of each optics
     option (:func:`wavephys.planner.plan.colour_errors`), ``caustics`` the traced caustics
-    errors (None: the scene shows none)."""
+    errors (None: the scene shows none).
+
+    Attributes
+    ----------
+    scene : Scene
+    calibration : dict
+        The cost calibration.
+    candidates : tuple of Candidate
+        Every height configuration.
+    full : Candidate
+        The full model's.
+    colour : dict
+        The colour error bounds of each optics option.
+    caustics : CausticsErrors or None
+        The traced caustics errors.
+    """
 
     scene: Scene
     calibration: dict
@@ -169,7 +184,17 @@ class PlanContext:
 class PlanTerm:
     """One switchable term of the planner (module doc). Subclasses set :attr:`name` (the
     :class:`~wavephys.planner.model.Choices` field), :attr:`kind` and :attr:`unit`, and
-    implement :meth:`options` and :meth:`reason`; the defaults suit a height term."""
+    implement :meth:`options` and :meth:`reason`; the defaults suit a height term.
+
+    Attributes
+    ----------
+    name : str
+        The :class:`~wavephys.planner.model.Choices` field the term sets (class attribute).
+    kind : str
+        ``"height"`` or ``"colour"`` (class attribute).
+    unit : str
+        The unit of its error: ``"m"`` or ``"colour"`` (class attribute).
+    """
 
     name: ClassVar[str]
     kind: ClassVar[str] = "height"
@@ -447,7 +472,18 @@ class Texture(PlanTerm):
 def caustics_delta(caustics, refine: int) -> tuple:
     """(|E_plan − E_full|/E₀, largest E/E₀) of tracing at ``refine`` (evaluated on the full
     model's surface, :mod:`wavephys.planner.caustics`); (0, 1) for a scene without caustics.
-    Scenes with caustics keep the full model's heights, so this is the whole change."""
+    Scenes with caustics keep the full model's heights, so this is the whole change.
+
+    Parameters
+    ----------
+    caustics : CausticsErrors or None
+    refine : int
+        The tracing refinement (0: off).
+
+    Returns
+    -------
+    (float, float)
+    """
     if caustics is None:
         return 0.0, 1.0
     return caustics.delta[refine], max(caustics.e_max[FULL_REFINE], caustics.e_max[refine])
@@ -456,7 +492,24 @@ def caustics_delta(caustics, refine: int) -> tuple:
 def colour_total(colour: dict, fresnel: str, absorption: str, delta: float, e_max: float) -> float:
     """ΔC ≤ ΔR·max(1, T·albedo·E_max) + albedo·ΔT·E_max + T·albedo·ΔE: the colour error of a
     Fresnel form, an absorption method and a caustics change together (the shading of
-    :func:`wavephys.planner.runner.shade`)."""
+    :func:`wavephys.planner.runner.shade`).
+
+    Parameters
+    ----------
+    colour : dict
+        The colour error bounds (:func:`wavephys.planner.colour.colour_errors`).
+    fresnel, absorption : str
+        The optics forms.
+    delta : float
+        The caustics change, relative to E₀.
+    e_max : float
+        The largest E/E₀.
+
+    Returns
+    -------
+    float
+        ΔC on the [0, 1] colour scale.
+    """
     dr, dt = colour["fresnel"][fresnel], colour["absorption"][absorption]
     floor = colour["floor"]  # the largest T·albedo
     out = dr * max(1.0, floor * e_max) if dr else 0.0
@@ -467,7 +520,16 @@ def colour_total(colour: dict, fresnel: str, absorption: str, delta: float, e_ma
 def fresnel_forms(calibration: dict) -> tuple:
     """The Fresnel forms the planner offers: every entry of the family
     (:data:`optics.light.fresnel.REFLECTANCE_METHODS`) that the calibration has a cost for,
-    exact first. The others are listed by :func:`uncalibrated_fresnel_forms`."""
+    exact first. The others are listed by :func:`uncalibrated_fresnel_forms`.
+
+    Parameters
+    ----------
+    calibration : dict
+
+    Returns
+    -------
+    tuple of str
+    """
     from optics.light.fresnel import REFLECTANCE_METHODS
 
     forms = [f for f in REFLECTANCE_METHODS if f in calibration.get("fresnel", {})]
@@ -484,7 +546,16 @@ def uncalibrated_fresnel_forms(calibration: dict) -> tuple:
 def absorption_methods(calibration: dict) -> tuple:
     """The absorption methods the planner offers: every entry of the family
     (:data:`optics.light.attenuation.WATER_TRANSMITTANCE_METHODS`) the calibration has a cost
-    for, spectral first."""
+    for, spectral first.
+
+    Parameters
+    ----------
+    calibration : dict
+
+    Returns
+    -------
+    tuple of str
+    """
     from optics.light.attenuation import WATER_TRANSMITTANCE_METHODS
 
     methods = [m for m in WATER_TRANSMITTANCE_METHODS if m in calibration.get("absorption", {})]
