@@ -1,7 +1,7 @@
 """Public API docs in numpydoc form: every public function and class (a name in a module's
-``__all__``, ``__internal__`` modules included) of the packages and modules listed in NUMPYDOC (all of them) has a
-Parameters section (classes: Parameters or Attributes) and, where it returns a value, a Returns section; the
-modules still short of it are listed by name (UNDOCUMENTED), and what their package exports is checked anyway."""
+``__all__``, ``__internal__`` modules included: being left out of the fuzz exempts nothing here) of the packages
+and modules listed in NUMPYDOC (all of them) has a Parameters section (classes: Parameters or Attributes) and,
+where it returns a value, a Returns section."""
 
 import ast
 from pathlib import Path
@@ -16,15 +16,6 @@ NUMPYDOC = ("wavephys/core", "wavephys/physics", "wavephys/surfaces", "wavephys/
 """Every package and module of the public API (a new one is added here)."""
 
 
-UNDOCUMENTED = (
-    "optics/caustics/common.py", "optics/shaders/absorption.py", "optics/shaders/domain.py",
-    "optics/shaders/glsl.py", "optics/shaders/hlsl.py", "optics/shaders/models.py", "optics/shaders/normals.py",
-    "optics/shaders/rays.py", "optics/shaders/roles.py", "optics/shaders/source.py")
-"""Modules whose own public names (their ``__all__``) still lack numpydoc (issue 53, item 4): this list only
-shrinks (:func:`test_the_undocumented_list_only_shrinks`). Even in them, every name their package exports is
-checked. Being ``__internal__`` (not fuzzed) no longer exempts a module."""
-
-
 def _all(tree) -> set:
     for n in tree.body:
         if isinstance(n, ast.Assign) and any(isinstance(t, ast.Name) and t.id == "__all__" for t in n.targets):
@@ -35,21 +26,11 @@ def _all(tree) -> set:
     return set()
 
 
-def _exported(path) -> set:
-    """The names the package of ``path`` exports (its ``__all__``, imported: some are built from tables)."""
-    import importlib
-
-    package = ".".join(path.relative_to(ROOT).with_suffix("").parts[:-1])
-    return set(getattr(importlib.import_module(package), "__all__", ()))
-
-
-def _public(folder, skip=UNDOCUMENTED):
+def _public(folder):
     place = ROOT / folder
     for path in ([place] if place.is_file() else sorted(place.rglob("*.py"))):
         tree = ast.parse(path.read_text())
         names = _all(tree)
-        if str(path.relative_to(ROOT)) in skip:
-            names &= _exported(path)
         for node in tree.body:
             if isinstance(node, (ast.FunctionDef, ast.ClassDef)) and node.name in names:
                 yield f"{path.relative_to(ROOT)}:{node.name}", node
@@ -89,14 +70,6 @@ def test_the_docs_check_can_fail():
     good = ast.parse('def f(x):\n    """Does f.\n\n    Parameters\n    ----------\n    x : float\n\n'
                      '    Returns\n    -------\n    float\n    """\n    return x\n').body[0]
     assert _problems(good) == []
-
-
-def test_the_undocumented_list_only_shrinks():
-    """Each module of UNDOCUMENTED still has a public name without numpydoc: a module documented in full
-    leaves the list (and the test then holds it to the rule)."""
-    done = [m for m in UNDOCUMENTED if not any(_problems(node) for _, node in _public(m, skip=()))]
-    assert not done, f"documented in full: remove from UNDOCUMENTED: {done}"
-    assert len(UNDOCUMENTED) <= 10
 
 
 def test_every_public_module_is_in_numpydoc():

@@ -32,7 +32,25 @@ m: the deepest floor and as much again for the waves (a crest over a floor at MA
 
 
 class Lighting(NamedTuple):
-    """Checked inputs of a caustics method."""
+    """Checked inputs of a caustics method.
+
+    Attributes
+    ----------
+    eta : jax.Array (n, n)
+        Surface heights, float32, m.
+    grid : Grid
+        The surface's grid.
+    floor : float or jax.Array (n, n)
+        A flat floor's depth, m, or the ground's heights, m.
+    ground : bool
+        True for a ground height field.
+    direction : numpy.ndarray (3,)
+        Unit direction of travel of the sunlight, pointing down.
+    resolution : int
+        The floor map's side, texels.
+    n_water : float
+        Refractive index of the water.
+    """
 
     eta: jnp.ndarray        # surface heights (n, n), float32, m
     grid: Grid              # the surface's grid
@@ -44,7 +62,30 @@ class Lighting(NamedTuple):
 
 
 def prepare(eta, grid: Grid, depth, sun, resolution, n_water, fresnel, check_values: bool = True) -> Lighting:
-    """Check a caustics call's common arguments (before any work) and normalize them."""
+    """Check a caustics call's common arguments (before any work) and normalize them.
+
+    Parameters
+    ----------
+    eta : array_like (n, n)
+        Surface heights, m.
+    grid : Grid
+    depth : float or array_like (n, n)
+        A flat floor's depth, m, or the ground's heights, m.
+    sun : array_like (3,)
+        Direction towards the sun.
+    resolution : int or None
+        The floor map's side (None: the grid's).
+    n_water : float
+        Refractive index of the water.
+    fresnel : bool
+        Weigh the light by the Fresnel transmittance.
+    check_values : bool
+        Check the heights' values too (not only their shape).
+
+    Returns
+    -------
+    Lighting
+    """
     check_instance("grid", grid, Grid, "wavephys.Grid")
     n = grid.n
     if check_values:
@@ -102,6 +143,17 @@ class Tank(NamedTuple):
     The surface (and a ground) mirrored across each walled axis and repeated across each periodic one,
     on ``Grid(2n, 2L)``: periodic there, with the derivatives of the tank's cosine modes. The tank is the
     first n samples (and the first m floor texels) along each axis.
+
+    Attributes
+    ----------
+    light : Lighting
+        The extended problem (2n samples, a 2m floor map).
+    walls : tuple of bool
+        (x walled, y walled).
+    n : int
+        The tank's samples a side.
+    m : int
+        The tank's floor texels a side.
     """
 
     light: Lighting         # the extended problem (2n samples, a 2m floor map)
@@ -115,7 +167,19 @@ def walled_tank(light: Lighting, walls) -> Tank | None:
     ``walls`` (``None``/``"none"``: no walls, returns None). An axis is walled on both ends or not at
     all (``"x"``, ``"y"``, ``"all"``, or both side names of an axis). Refused where the sun stands lower
     than the steepest slope (a crest's shadow across a wall is not modelled) and where 2·n·refine would
-    pass 8192 (checked by the methods)."""
+    pass 8192 (checked by the methods).
+
+    Parameters
+    ----------
+    light : Lighting
+        A checked problem.
+    walls : str or None
+        The walled sides.
+
+    Returns
+    -------
+    Tank or None
+    """
     if walls is None:
         return None
     from wavephys.physics.walls import check_walls, wall_axes
@@ -142,7 +206,18 @@ def walled_tank(light: Lighting, walls) -> Tank | None:
 
 def tank_clip(tank: Tank | None, samples: int):
     """What the beam's :func:`_vertices` needs to trace a tank on its extension traced with ``samples``
-    a side: ``(x walled, y walled, the tank's samples a side)`` (static), or None without a tank."""
+    a side: ``(x walled, y walled, the tank's samples a side)`` (static), or None without a tank.
+
+    Parameters
+    ----------
+    tank : Tank or None
+    samples : int
+        Samples a side traced on the extension.
+
+    Returns
+    -------
+    tuple or None
+    """
     if tank is None:
         return None
     return (bool(tank.walls[0]), bool(tank.walls[1]), samples // (2 * tank.n) * tank.n)
@@ -151,7 +226,20 @@ def tank_clip(tank: Tank | None, samples: int):
 def tank_cells(clip, samples: int):
     """1 for the traced cells that carry the tank's light, 0 for its mirror image's, ``(samples,
     samples)``: along a walled axis the cells between the tank's samples and the two that straddle its
-    walls (cut at the wall by :func:`clip_cells`); every cell along a periodic axis (its copy is real)."""
+    walls (cut at the wall by :func:`clip_cells`); every cell along a periodic axis (its copy is real).
+
+    Parameters
+    ----------
+    clip : tuple
+        :func:`tank_clip`'s answer.
+    samples : int
+        Samples a side traced.
+
+    Returns
+    -------
+    jax.Array (samples, samples)
+        float32 weights, 0 or 1.
+    """
     wx, wy, inside = clip
     line = np.zeros(samples)
     line[:inside] = 1.0
@@ -165,7 +253,21 @@ def clip_cells(corners, clip, samples: int):
     """Cut the cells that straddle a tank's walls at the wall: ``corners`` is a list over the cell's
     corners (:data:`CELL` order, (row offset a, column offset b)) of per-cell fields (landed positions,
     crossing points); the corner past the wall moves to the midpoint of the cell's edge, which is where
-    the beam's linear map puts the wall. Returns the new list."""
+    the beam's linear map puts the wall. Returns the new list.
+
+    Parameters
+    ----------
+    corners : list
+        Per corner of a cell, per-cell fields.
+    clip : tuple
+        :func:`tank_clip`'s answer.
+    samples : int
+        Samples a side traced.
+
+    Returns
+    -------
+    list
+    """
     wx, wy, inside = clip
     out = list(corners)
     for walled, axis in ((wx, 1), (wy, 0)):
@@ -193,7 +295,21 @@ CELL = ((0, 0), (0, 1), (1, 1), (1, 0))
 
 def surface_fields(eta, grid: Grid, oversample: int = 1):
     """η, ∂η/∂x, ∂η/∂y on ``Grid(n·oversample, L)`` (Fourier interpolation, exact for a
-    band-limited periodic field): shapes (n·o, n·o); slopes dimensionless."""
+    band-limited periodic field): shapes (n·o, n·o); slopes dimensionless.
+
+    Parameters
+    ----------
+    eta : array_like (n, n)
+        Heights, m.
+    grid : Grid
+    oversample : int
+        o, the refinement.
+
+    Returns
+    -------
+    (jax.Array, jax.Array, jax.Array)
+        η (m), ∂η/∂x and ∂η/∂y.
+    """
     fine = Grid(grid.n * oversample, grid.length)
     eta = grid.refine(eta, oversample)
     return (eta, *fine.gradient(eta))
@@ -247,6 +363,28 @@ def land(xs, ys, eta, gx, gy, d, floor, n_water, fresnel, iterations: int = 5):
     depth (m, flat floor at z = −depth) or a callable z_g(x, y) (ground height field,
     intersected by fixed-point iteration). Returns landing X, Y (m) and the Fresnel
     transmittance (1 with ``fresnel=False``).
+
+    Parameters
+    ----------
+    xs, ys : jax.Array
+        Surface points, m.
+    eta, gx, gy : jax.Array
+        Their heights (m) and slopes.
+    d : array_like (3,)
+        The sunlight's direction of travel.
+    floor : float or Callable
+        Depth (m) or z_g(x, y).
+    n_water : float
+        Refractive index of the water.
+    fresnel : bool
+        Weigh by the Fresnel transmittance.
+    iterations : int
+        Fixed-point iterations on a ground.
+
+    Returns
+    -------
+    (jax.Array, jax.Array, jax.Array)
+        X, Y (m) and the transmittance.
     """
     d = jnp.asarray(d, gx.dtype)
     if d.shape != (3,):

@@ -37,7 +37,28 @@ def _scale_words(s: float) -> str:
 def transmittance_domain(*, max_distance=20.0, samples=4096, bits=8, radiance=1.0, tolerance=None, seed=0):
     """Beer–Lambert e^{−a d} over path lengths 0 to ``max_distance`` m and coefficients 0.005–5 1/m (a
     different one per channel when the function takes ``coefficients``). The tolerance is half a level
-    of a ``bits``-bit display relative to ``radiance`` (``tolerance`` overrides)."""
+    of a ``bits``-bit display relative to ``radiance`` (``tolerance`` overrides).
+
+    Parameters
+    ----------
+    max_distance : float, keyword-only
+        Longest path, m.
+    samples : int, keyword-only
+        Inputs checked.
+    bits : int, keyword-only
+        The display's bits a channel.
+    radiance : float, keyword-only
+        The light the transmittance scales.
+    tolerance : float, optional, keyword-only
+        Overrides the display's half level.
+    seed : int, keyword-only
+        Of the random coefficients.
+
+    Returns
+    -------
+    Domain
+        The inputs, the tolerance, and the correct and faulty models.
+    """
     from wavephys.core.inputs import check_scalar
 
     check_scalar("max_distance", max_distance, lo=0.0, lo_open=True, hi=1e4)
@@ -75,7 +96,22 @@ def transmittance_domain(*, max_distance=20.0, samples=4096, bits=8, radiance=1.
 
 
 def transmittance_late(values, domain, errors):
-    """A transmittance above 1 or below 0 that no fitted model explained."""
+    """A transmittance above 1 or below 0 that no fitted model explained.
+
+    Parameters
+    ----------
+    values : numpy.ndarray (n, c)
+        The function's outputs over the domain.
+    domain : Domain
+        The check's domain.
+    errors : numpy.ndarray (n,)
+        Each row's error against the correct answer.
+
+    Returns
+    -------
+    str
+        The cause in words ("" when this does not explain it).
+    """
     if values.min() < -1e-6 or values.max() > 1.0 + 1e-6:
         return (f"gives T outside [0, 1] ({values.min():.4g} to {values.max():.4g}): a wrong sign in the exponent, "
                 f"or an offset that makes the path negative?")
@@ -86,7 +122,28 @@ def rgb_absorption_domain(*, max_distance=5.0, illuminant="D65", samples=256, bi
     """The linear-sRGB transmittance of pure water over path lengths 0 to ``max_distance`` m,
     against the spectral answer :func:`optics.light.attenuation.water_srgb`; the default
     tolerance is the larger of 1.25 × the error of the best RGB exponential over the same path
-    lengths and half a level of a ``bits``-bit display relative to ``radiance``."""
+    lengths and half a level of a ``bits``-bit display relative to ``radiance``.
+
+    Parameters
+    ----------
+    max_distance : float, keyword-only
+        Longest path, m.
+    illuminant : str, keyword-only
+        The light's spectrum (a colour-science illuminant name).
+    samples : int, keyword-only
+        Inputs checked.
+    bits : int, keyword-only
+        The display's bits a channel.
+    radiance : float, keyword-only
+        The light the transmittance scales.
+    tolerance : float, optional, keyword-only
+        Overrides the default.
+
+    Returns
+    -------
+    Domain
+        The inputs, the tolerance, and the correct and faulty models.
+    """
     from optics.light.attenuation import fit_rgb_coefficients, rgb_error, water_srgb
     from wavephys.core.inputs import check_scalar
 
@@ -121,7 +178,22 @@ def rgb_absorption_domain(*, max_distance=5.0, illuminant="D65", samples=256, bi
 
 
 def rgb_absorption_late(values, domain, errors):
-    """The function's coefficients, fitted per channel, against water's."""
+    """The function's coefficients, fitted per channel, against water's.
+
+    Parameters
+    ----------
+    values : numpy.ndarray (n, c)
+        The function's outputs over the domain.
+    domain : Domain
+        The check's domain.
+    errors : numpy.ndarray (n,)
+        Each row's error against the correct answer.
+
+    Returns
+    -------
+    str
+        The cause in words ("" when this does not explain it).
+    """
     d = domain.context["distance"]
     use = (d > 0.05) & np.all((values > 1e-6) & (values < 1.0), axis=1)
     if use.sum() < 4:

@@ -77,7 +77,21 @@ class Domain:
 
 def display_tolerance(bits: int = 8, radiance: float = 1.0, tolerance=None) -> tuple:
     """(tolerance, words): half a level of a ``bits``-bit display relative to ``radiance`` (the largest
-    radiance the term multiplies, in units of display white), or ``tolerance`` when given."""
+    radiance the term multiplies, in units of display white), or ``tolerance`` when given.
+
+    Parameters
+    ----------
+    bits : int
+        The display's bits a channel.
+    radiance : float
+        The largest radiance the term multiplies, in display white.
+    tolerance : float, optional
+        Given: used as it is.
+
+    Returns
+    -------
+    (float, str)
+    """
     if tolerance is not None:
         t = tolerance_option(tolerance)
         return t, f"tolerance {t:.3g} as given"
@@ -90,34 +104,98 @@ def display_tolerance(bits: int = 8, radiance: float = 1.0, tolerance=None) -> t
 
 
 def f32(a):
-    """The float32 value a shader receives, back in float64."""
+    """The float32 value a shader receives, back in float64.
+
+    Parameters
+    ----------
+    a : array_like
+
+    Returns
+    -------
+    numpy.ndarray
+        float64.
+    """
     return np.asarray(a, np.float64).astype(np.float32).astype(np.float64)
 
 
 def unit(v):
-    """Vectors (…, 3) scaled to unit length."""
+    """Vectors (…, 3) scaled to unit length.
+
+    Parameters
+    ----------
+    v : numpy.ndarray (..., 3)
+
+    Returns
+    -------
+    numpy.ndarray (..., 3)
+    """
     return v / np.linalg.norm(v, axis=-1, keepdims=True)
 
 
 def vector_error(values, expected, domain=None):
-    """|v − v_ref| per row."""
+    """|v − v_ref| per row.
+
+    Parameters
+    ----------
+    values, expected : numpy.ndarray (n, c)
+        Outputs and the answer.
+    domain : Domain, optional
+        Not used.
+
+    Returns
+    -------
+    numpy.ndarray (n,)
+    """
     return np.linalg.norm(np.asarray(values, np.float64) - expected, axis=-1)
 
 
 def scalar_error(values, expected, domain=None):
-    """max over components |v − v_ref| per row."""
+    """max over components |v − v_ref| per row.
+
+    Parameters
+    ----------
+    values, expected : numpy.ndarray (n, c)
+        Outputs and the answer.
+    domain : Domain, optional
+        Not used.
+
+    Returns
+    -------
+    numpy.ndarray (n,)
+    """
     return np.max(np.abs(np.asarray(values, np.float64) - expected), axis=-1)
 
 
 def degrees(a, b):
-    """Angle between (n, 3) vectors, degrees (NaN where either is zero)."""
+    """Angle between (n, 3) vectors, degrees (NaN where either is zero).
+
+    Parameters
+    ----------
+    a, b : numpy.ndarray (n, 3)
+
+    Returns
+    -------
+    numpy.ndarray (n,)
+    """
     with np.errstate(invalid="ignore", divide="ignore"):
         c = np.sum(a * b, -1) / (np.linalg.norm(a, axis=-1) * np.linalg.norm(b, axis=-1))
     return np.degrees(np.arccos(np.clip(c, -1.0, 1.0)))
 
 
 def finite_cause(values, domain):
-    """"returns NaN or inf at …" when some outputs are not finite, else ""."""
+    """"returns NaN or inf at …" when some outputs are not finite, else "".
+
+    Parameters
+    ----------
+    values : numpy.ndarray (n, c)
+        A function's outputs.
+    domain : Domain
+        Where they were computed (the worst input is named).
+
+    Returns
+    -------
+    str
+    """
     bad = ~np.isfinite(values).all(axis=-1)
     if not bad.any():
         return ""
@@ -128,7 +206,19 @@ def finite_cause(values, domain):
 
 
 def length_cause(values, mask=None):
-    """"returns vectors of length … : not normalized" when the output vectors are not unit, else ""."""
+    """"returns vectors of length … : not normalized" when the output vectors are not unit, else "".
+
+    Parameters
+    ----------
+    values : numpy.ndarray (n, 3)
+        A function's output vectors.
+    mask : numpy.ndarray (n,), optional
+        The rows to look at.
+
+    Returns
+    -------
+    str
+    """
     length = np.linalg.norm(np.asarray(values, np.float64), axis=-1)
     if mask is not None:
         length = length[mask]
@@ -153,7 +243,16 @@ def _tilted_normals(n, rng, max_slope=0.5):
 
 
 def check_sides(sides):
-    """``sides`` as a tuple drawn from ("above", "below") (a single name is allowed)."""
+    """``sides`` as a tuple drawn from ("above", "below") (a single name is allowed).
+
+    Parameters
+    ----------
+    sides : str or iterable of str
+
+    Returns
+    -------
+    tuple of str
+    """
     if isinstance(sides, str):
         sides = (sides,)
     if not isinstance(sides, (tuple, list)) or not sides or any(s not in SIDES for s in sides):
@@ -163,13 +262,42 @@ def check_sides(sides):
 
 def to_up(v, up):
     """Vectors of the z-up domain in the caller's frame: unchanged for ``up="z"``, (x, z, y) for ``"y"``
-    (a y-up engine whose texture v runs along world z)."""
+    (a y-up engine whose texture v runs along world z).
+
+    Parameters
+    ----------
+    v : numpy.ndarray (..., 3)
+    up : str
+        ``"z"`` or ``"y"``.
+
+    Returns
+    -------
+    numpy.ndarray (..., 3)
+    """
     return v if up == "z" else v[..., [0, 2, 1]]
 
 
 def rays(samples: int, sides: tuple, indices: dict, *, tilt: float = 0.5, seed: int = 0):
     """Rays at every incidence angle 0–90° from each side: angle, side, n1, n2, the up normal, the
-    facing normal and the incident direction (float32-rounded float64 arrays; z up)."""
+    facing normal and the incident direction (float32-rounded float64 arrays; z up).
+
+    Parameters
+    ----------
+    samples : int
+        Angles a side.
+    sides : tuple of str
+        ``"above"``, ``"below"``.
+    indices : dict
+        The refractive indices fed (``n_air``, ``n_water``).
+    tilt : float, keyword-only
+        The normals' tilt from up, rad.
+    seed : int, keyword-only
+        Of the random normals.
+
+    Returns
+    -------
+    dict of str to numpy.ndarray
+    """
     rng = np.random.default_rng(seed)
     theta = np.tile(np.linspace(0.0, 90.0, samples), len(sides))
     side = np.repeat(np.array(sides), samples)
@@ -185,7 +313,20 @@ def rays(samples: int, sides: tuple, indices: dict, *, tilt: float = 0.5, seed: 
 
 
 def ray_inputs(r, up="z"):
-    """Every ray role (the float32 values) of the rays ``r``, vectors in the ``up`` frame."""
+    """Every ray role (the float32 values) of the rays ``r``, vectors in the ``up`` frame.
+
+    Parameters
+    ----------
+    r : dict
+        :func:`rays`' answer.
+    up : str
+        ``"z"`` or ``"y"``.
+
+    Returns
+    -------
+    dict of str to numpy.ndarray
+        Role → (n, c) values.
+    """
     from optics.light.fresnel import normal_reflectance
 
     d, nf = r["incident"], r["facing"]
@@ -203,12 +344,30 @@ def ray_inputs(r, up="z"):
 
 
 def samples_option(samples):
-    """``samples`` checked: an int in [16, 2²⁰]."""
+    """``samples`` checked: an int in [16, 2²⁰].
+
+    Parameters
+    ----------
+    samples : int
+
+    Returns
+    -------
+    int
+    """
     return check_int("samples", samples, lo=16, hi=1 << 20)
 
 
 def tolerance_option(tolerance):
-    """``tolerance`` checked: a float > 0."""
+    """``tolerance`` checked: a float > 0.
+
+    Parameters
+    ----------
+    tolerance : float
+
+    Returns
+    -------
+    float
+    """
     check_scalar("tolerance", tolerance, lo=0.0, lo_open=True)
     return float(tolerance)
 
@@ -217,7 +376,17 @@ def water_models_range(n_air=None, n_water=None):
     """(the range of m = n_water/n_air a correct function may hold, the fed indices (n_air, n_water), words).
 
     Default: water's whole range (:func:`optics.light.fresnel.water_index_range`), fed at the library's
-    nominal indices; with ``n_air`` and/or ``n_water`` given, those exactly."""
+    nominal indices; with ``n_air`` and/or ``n_water`` given, those exactly.
+
+    Parameters
+    ----------
+    n_air, n_water : float, optional
+        Indices the function must use.
+
+    Returns
+    -------
+    ((float, float), (float, float), str)
+    """
     from optics.light.fresnel import N_AIR, N_WATER, water_index_range
 
     if n_air is None and n_water is None:

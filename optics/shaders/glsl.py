@@ -37,7 +37,16 @@ _WRAPPER_LINE = 1_000_000  # the #line of the generated main(): a message there 
 
 @dataclass(frozen=True)
 class Parameter:
-    """One declared parameter: its GLSL type, name and direction ("in", "out" or "inout")."""
+    """One declared parameter: its GLSL type, name and direction ("in", "out" or "inout").
+
+    Attributes
+    ----------
+    type : str
+        GLSL type.
+    name : str
+    direction : str
+        ``"in"``, ``"out"`` or ``"inout"``.
+    """
 
     type: str
     name: str
@@ -51,7 +60,17 @@ class Parameter:
 
 @dataclass(frozen=True)
 class Declaration:
-    """A function defined in a GLSL source: return type, name, parameters, and the line it starts on."""
+    """A function defined in a GLSL source: return type, name, parameters, and the line it starts on.
+
+    Attributes
+    ----------
+    returns : str
+        The return type.
+    name : str
+    parameters : tuple of Parameter
+    line : int
+        Where the definition starts (1-based).
+    """
 
     returns: str
     name: str
@@ -106,7 +125,17 @@ class Declaration:
 @dataclass(frozen=True)
 class Sampler:
     """A texture argument: ``data`` (h, w) or (h, w, c ≤ 4) float values, row 0 at v = 0;
-    ``wrap`` "repeat" or "clamp"; ``filter`` "linear" or "nearest"."""
+    ``wrap`` "repeat" or "clamp"; ``filter`` "linear" or "nearest".
+
+    Attributes
+    ----------
+    data : numpy.ndarray (h, w) or (h, w, c)
+        The texels.
+    wrap : str
+        ``"repeat"`` or ``"clamp"``.
+    filter : str
+        ``"linear"`` or ``"nearest"``.
+    """
 
     data: np.ndarray
     wrap: str = "repeat"
@@ -138,7 +167,17 @@ def _parameter(text: str) -> Parameter | None:
 
 
 def declarations(source: str) -> list:
-    """Every function *defined* (with a body) in ``source``, in order (comments ignored)."""
+    """Every function *defined* (with a body) in ``source``, in order (comments ignored).
+
+    Parameters
+    ----------
+    source : str
+        GLSL source.
+
+    Returns
+    -------
+    list of Declaration
+    """
     if not isinstance(source, str):
         raise TypeError(f"source must be GLSL text (str), got {describe(source)}")
     code = strip_comments(source)
@@ -157,7 +196,21 @@ def find_function(source: str, function: str, types: tuple | None = None) -> Dec
     (any overload, if None; the first).
 
     GLSLError when the function is not defined, or no overload takes ``types``, or a parameter's
-    type cannot be fed."""
+    type cannot be fed.
+
+    Parameters
+    ----------
+    source : str
+        GLSL source.
+    function : str
+        The function's name.
+    types : tuple of str, optional
+        The types of its value-taking parameters.
+
+    Returns
+    -------
+    Declaration
+    """
     if not isinstance(function, str):
         raise TypeError(f"function must be the name of a GLSL function (str), got {describe(function)}")
     if not re.fullmatch(r"[A-Za-z_]\w*", function):
@@ -304,6 +357,25 @@ def evaluate(source, decl: Declaration, arguments: list, uniforms: dict | None =
     refused by name. ``result``: ``"return"`` or an out/inout parameter (default
     :meth:`Declaration.default_result`). ``front_facing``: (n,) booleans, when the source reads
     ``gl_FrontFacing``.
+
+    Parameters
+    ----------
+    source : str or Prepared
+    decl : Declaration
+        The function called.
+    arguments : list
+        One per value-taking parameter.
+    uniforms : dict, optional
+        Values of the source's own uniforms.
+    result : str, optional, keyword-only
+        ``"return"`` or an out parameter's name.
+    front_facing : numpy.ndarray (n,), optional, keyword-only
+        Fed to ``gl_FrontFacing``.
+
+    Returns
+    -------
+    numpy.ndarray (n, components)
+        float32.
     """
     import moderngl
 

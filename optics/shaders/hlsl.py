@@ -100,7 +100,20 @@ def _hlsl_parameter(text: str):
 def hlsl_declaration(source: str, function: str):
     """The HLSL function's parameters as (type, name, direction) and its return type, and the line it is on.
 
-    GLSLError when it is not defined (the message lists the functions that are)."""
+    GLSLError when it is not defined (the message lists the functions that are).
+
+    Parameters
+    ----------
+    source : str
+        HLSL source.
+    function : str
+        The function's name.
+
+    Returns
+    -------
+    (str, list of tuple, int)
+        The return type, the parameters, the line.
+    """
     code = strip_comments(source)
     pattern = re.compile(r"(?m)(?:^|[;}\s])(\w+)\s+(\w+)\s*\(([^()]*)\)\s*(?::\s*\w+\s*)?\{")
     found = [(m.group(1), m.group(2), m.group(3), code.count("\n", 0, m.start(2)) + 1) for m in pattern.finditer(code)

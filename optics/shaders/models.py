@@ -140,7 +140,21 @@ class Fit:
 
 
 def errors_against(values: np.ndarray, answer, error: Callable) -> np.ndarray:
-    """(n,) errors of ``values`` against an answer (an array, or a tuple of alternatives: the smallest)."""
+    """(n,) errors of ``values`` against an answer (an array, or a tuple of alternatives: the smallest).
+
+    Parameters
+    ----------
+    values : numpy.ndarray (n, c)
+        The function's outputs.
+    answer : numpy.ndarray or tuple of numpy.ndarray
+        The answer, or alternatives.
+    error : Callable
+        ``error(values, answer) -> (n,)``.
+
+    Returns
+    -------
+    numpy.ndarray (n,)
+    """
     options = answer if isinstance(answer, tuple) else (answer,)
     best = None
     if callable(answer):
@@ -255,7 +269,23 @@ def fit(model: Model, values: np.ndarray, error: Callable, rows: np.ndarray, *, 
 def best_correct(models, values, error, groups) -> tuple:
     """The verdict's fits: for each group, the correct model that fits best within the physical ranges.
 
-    Returns (the fits by group, the per-row errors under them)."""
+    Returns (the fits by group, the per-row errors under them).
+
+    Parameters
+    ----------
+    models : list of Model
+        The correct models.
+    values : numpy.ndarray (n, c)
+        The function's outputs.
+    error : Callable
+        ``error(values, answer) -> (n,)``.
+    groups : numpy.ndarray (n,)
+        Each row's group.
+
+    Returns
+    -------
+    (dict, numpy.ndarray)
+    """
     fits, errors = {}, np.zeros(len(values))
     for g in dict.fromkeys(groups.tolist()):
         rows = groups == g
@@ -272,6 +302,25 @@ def explain(correct, faults, values, error, groups, tolerance: float, worst: flo
     The whole domain first (every fault, and the correct forms with constants outside their physical
     ranges: one entry, group None); then each group alone, so that a fault on one side or in one channel is
     named with what the other groups compute ("right (…)" for those that are).
+
+    Parameters
+    ----------
+    correct, faults : list of Model
+        The correct and faulty models.
+    values : numpy.ndarray (n, c)
+        The function's outputs.
+    error : Callable
+        ``error(values, answer) -> (n,)``.
+    groups : numpy.ndarray (n,)
+        Each row's group.
+    tolerance : float
+        The largest error allowed.
+    worst : float
+        The largest error seen.
+
+    Returns
+    -------
+    list of tuple
     """
     accept = max(2.0 * tolerance, min(0.1 * worst, 0.05))
     everywhere = np.ones(len(values), bool)
@@ -297,7 +346,25 @@ def explain(correct, faults, values, error, groups, tolerance: float, worst: flo
 
 
 def explain_rows(correct, faults, values, error, rows, tolerance: float) -> str:
-    """The cause for some rows alone (a side or a channel), in words ("" when no model explains them)."""
+    """The cause for some rows alone (a side or a channel), in words ("" when no model explains them).
+
+    Parameters
+    ----------
+    correct, faults : list of Model
+        The correct and faulty models.
+    values : numpy.ndarray (n, c)
+        The function's outputs.
+    error : Callable
+        ``error(values, answer) -> (n,)``.
+    rows : numpy.ndarray
+        The rows explained (a boolean mask or indices).
+    tolerance : float
+        The largest error allowed.
+
+    Returns
+    -------
+    str
+    """
     ok = min((fit(m, values, error, rows, physical=True) for m in correct), key=lambda f: f.error)
     worst = float(ok.errors[rows].max()) if rows.any() else 0.0
     accept = max(2.0 * tolerance, min(0.1 * worst, 0.05))

@@ -60,7 +60,30 @@ def normal_decode_domain(*, convention="opengl", packed=True, bits=8, channels=3
     rgb = 0.5 + 0.5 n, else n itself; ``bits``: 8, 10, 16 or None (float); ``channels`` 3 or 2,
     z reconstructed). The decoded normal must be the tangent-space normal, z up (``up="z"``), or
     the world normal of a y-up engine whose texture v runs along world z (``up="y"``: n.xzy).
-    Default tolerance: 1.5 × an exact decoder's error on the same quantized texels."""
+    Default tolerance: 1.5 × an exact decoder's error on the same quantized texels.
+
+    Parameters
+    ----------
+    convention : str, keyword-only
+        ``"opengl"`` or ``"directx"``.
+    packed : bool, keyword-only
+        rgb = 0.5 + 0.5 n.
+    bits : int or None, keyword-only
+        8, 10, 16 or None (float).
+    channels : int, keyword-only
+        3, or 2 (z reconstructed).
+    samples : int, keyword-only
+        Normals checked.
+    up : str, keyword-only
+        ``"z"`` or ``"y"``.
+    tolerance : float, optional, keyword-only
+        Overrides the default.
+
+    Returns
+    -------
+    Domain
+        The inputs, the tolerance, and the correct and faulty models.
+    """
     from wavephys.core.inputs import check_bool, check_choice
 
     check_choice("convention", convention, ("opengl", "directx"))
@@ -114,7 +137,22 @@ def normal_decode_domain(*, convention="opengl", packed=True, bits=8, channels=3
 
 
 def normal_decode_late(values, domain, errors):
-    """Vectors that are not unit length."""
+    """Vectors that are not unit length.
+
+    Parameters
+    ----------
+    values : numpy.ndarray (n, c)
+        The function's outputs over the domain.
+    domain : Domain
+        The check's domain.
+    errors : numpy.ndarray (n,)
+        Each row's error against the correct answer.
+
+    Returns
+    -------
+    str
+        The cause in words ("" when this does not explain it).
+    """
     return length_cause(values)
 
 
@@ -173,7 +211,32 @@ def height_normal_domain(*, n=128, texel_size=0.05, max_slope=0.35, up="z", seed
     normalize(−∂η/∂x, −∂η/∂y, 1) for ``up`` = "z", normalize(−∂η/∂x, 1, −∂η/∂v) for "y"
     (texture v along world z). When the function takes a ``displacement`` texture, the surface is
     choppy (Tessendorf's horizontal displacement times ``choppiness``) and the reference is the
-    normal of the displaced surface at each texel. Default tolerance: 1° (2 sin 0.5°)."""
+    normal of the displaced surface at each texel. Default tolerance: 1° (2 sin 0.5°).
+
+    Parameters
+    ----------
+    n : int, keyword-only
+        Texels a side.
+    texel_size : float, keyword-only
+        m.
+    max_slope : float, keyword-only
+        The steepest slope.
+    up : str, keyword-only
+        ``"z"`` or ``"y"``.
+    seed : int, keyword-only
+        Of the random heights.
+    choppiness : float, keyword-only
+        λ of a displacement texture.
+    roles : tuple, keyword-only
+        The roles the function takes.
+    tolerance : float, optional, keyword-only
+        Overrides the default.
+
+    Returns
+    -------
+    Domain
+        The inputs, the tolerance, and the correct and faulty models.
+    """
     from wavephys.core.grid import Grid
     from wavephys.core.inputs import check_choice, check_int, check_scalar
 
@@ -250,7 +313,22 @@ def _scale_words(s: float) -> str:
 
 
 def height_normal_late(values, domain, errors):
-    """Errors only at the border (a clamped sampler on a tiling texture), or vectors not normalized."""
+    """Errors only at the border (a clamped sampler on a tiling texture), or vectors not normalized.
+
+    Parameters
+    ----------
+    values : numpy.ndarray (n, c)
+        The function's outputs over the domain.
+    domain : Domain
+        The check's domain.
+    errors : numpy.ndarray (n,)
+        Each row's error against the correct answer.
+
+    Returns
+    -------
+    str
+        The cause in words ("" when this does not explain it).
+    """
     border = domain.context["texels_from_border"]
     inside = errors[border >= 2]
     if errors.max() > domain.tolerance and inside.size and inside.max() <= domain.tolerance:

@@ -229,7 +229,36 @@ def fresnel_domain(*, form="auto", sides=None, n_air=None, n_water=None, samples
     viewing from air: their default ``sides`` is above only). The index a correct function may hold is
     water's range unless ``n_air``/``n_water`` state one; the tolerance is half a level of a ``bits``-bit
     display relative to ``radiance`` (``tolerance`` overrides). ``up``: the frame of vector inputs ("z"
-    or "y"); ``tilt``: the largest slope of the normals; ``size``: the table size of form "lut"."""
+    or "y"); ``tilt``: the largest slope of the normals; ``size``: the table size of form "lut".
+
+    Parameters
+    ----------
+    form : str, keyword-only
+        ``"auto"`` or a Fresnel method's name.
+    sides : tuple of str, optional, keyword-only
+        ``"above"``, ``"below"``.
+    n_air, n_water : float, optional, keyword-only
+        Indices a function must use (default: water's range).
+    samples : int, keyword-only
+        Angles checked.
+    bits : int, keyword-only
+        The display's bits a channel.
+    radiance : float, keyword-only
+        The light R scales.
+    tolerance : float, optional, keyword-only
+        Overrides the default.
+    up : str, keyword-only
+        ``"z"`` or ``"y"``.
+    tilt : float, keyword-only
+        The normals' tilt from up, rad.
+    size : int, keyword-only
+        Entries of a LUT form.
+
+    Returns
+    -------
+    Domain
+        The inputs, the tolerance, and the correct and faulty models.
+    """
     from wavephys.core.inputs import check_choice, check_int, check_scalar
 
     check_choice("form", form, FRESNEL_FORMS)
@@ -253,7 +282,22 @@ def fresnel_domain(*, form="auto", sides=None, n_air=None, n_water=None, samples
 
 
 def fresnel_early(values, domain, errors):
-    """A cause that comes before any fit: a constant output on one side."""
+    """A cause that comes before any fit: a constant output on one side.
+
+    Parameters
+    ----------
+    values : numpy.ndarray (n, c)
+        The function's outputs over the domain.
+    domain : Domain
+        The check's domain.
+    errors : numpy.ndarray (n,)
+        Each row's error against the correct answer.
+
+    Returns
+    -------
+    str or tuple
+        "" when this does not explain it; else the cause (with the group it is on).
+    """
     v = values[:, 0]
     for side in np.unique(domain.groups):
         on = domain.groups == side
@@ -267,7 +311,22 @@ def fresnel_early(values, domain, errors):
 
 def fresnel_late(values, domain, errors):
     """A cause when no model explains the output: R outside [0, 1], or what it gives at normal incidence
-    against water's f0."""
+    against water's f0.
+
+    Parameters
+    ----------
+    values : numpy.ndarray (n, c)
+        The function's outputs over the domain.
+    domain : Domain
+        The check's domain.
+    errors : numpy.ndarray (n,)
+        Each row's error against the correct answer.
+
+    Returns
+    -------
+    str
+        The cause in words ("" when this does not explain it).
+    """
     from optics.light.fresnel import water_index_range
 
     v = values[:, 0]
@@ -302,7 +361,30 @@ def refract_domain(*, sides=("above", "below"), n_air=None, n_water=None, sample
     ``refract`` with the facing normal) for water's index (any in its range, found from the output,
     unless ``n_air``/``n_water`` state one); under total internal reflection the function may return
     ``tir``: "zero" (vec3(0), as GLSL's refract), "reflect" (the mirror ray) or "either".
-    ``tolerance`` (default 1e-4) is float32 arithmetic on a unit vector; ``up``: the frame of the vectors."""
+    ``tolerance`` (default 1e-4) is float32 arithmetic on a unit vector; ``up``: the frame of the vectors.
+
+    Parameters
+    ----------
+    sides : tuple of str, keyword-only
+        ``"above"``, ``"below"``.
+    n_air, n_water : float, optional, keyword-only
+        Indices a function must use (default: found from its output).
+    samples : int, keyword-only
+        Angles checked.
+    tir : str, keyword-only
+        ``"zero"``, ``"reflect"`` or ``"either"``.
+    tolerance : float, keyword-only
+        The largest error.
+    up : str, keyword-only
+        ``"z"`` or ``"y"``.
+    tilt : float, keyword-only
+        The normals' tilt from up, rad.
+
+    Returns
+    -------
+    Domain
+        The inputs, the tolerance, and the correct and faulty models.
+    """
     from wavephys.core.inputs import check_choice, check_scalar
 
     check_choice("tir", tir, ("zero", "reflect", "either"))
@@ -360,12 +442,39 @@ def refract_domain(*, sides=("above", "below"), n_air=None, n_water=None, sample
 
 
 def refract_error(values, expected, domain=None):
-    """|t − t_ref| per row."""
+    """|t − t_ref| per row.
+
+    Parameters
+    ----------
+    values, expected : numpy.ndarray (n, 3)
+        Directions.
+    domain : Domain, optional
+        Not used.
+
+    Returns
+    -------
+    numpy.ndarray (n,)
+    """
     return vector_error(values, expected)
 
 
 def refract_early(values, domain, errors):
-    """NaN past the critical angle (a hand-written refract without a TIR test)."""
+    """NaN past the critical angle (a hand-written refract without a TIR test).
+
+    Parameters
+    ----------
+    values : numpy.ndarray (n, c)
+        The function's outputs over the domain.
+    domain : Domain
+        The check's domain.
+    errors : numpy.ndarray (n,)
+        Each row's error against the correct answer.
+
+    Returns
+    -------
+    str or tuple
+        "" when this does not explain it; else the cause (with the group it is on).
+    """
     tir = domain.extra["tir"]
     if tir.any() and not np.isfinite(values[tir]).all() and np.isfinite(values[~tir]).all():
         return ("NaN past the critical angle: sqrt of a negative k (1 − eta²(1 − cos²θ)) without a total "
@@ -374,13 +483,47 @@ def refract_early(values, domain, errors):
 
 
 def refract_late(values, domain, errors):
-    """Vectors that are not unit length outside total internal reflection."""
+    """Vectors that are not unit length outside total internal reflection.
+
+    Parameters
+    ----------
+    values : numpy.ndarray (n, c)
+        The function's outputs over the domain.
+    domain : Domain
+        The check's domain.
+    errors : numpy.ndarray (n,)
+        Each row's error against the correct answer.
+
+    Returns
+    -------
+    str
+        The cause in words ("" when this does not explain it).
+    """
     return length_cause(values, ~domain.extra["tir"])
 
 
 def reflect_domain(*, sides=("above", "below"), samples=1024, tolerance=1e-4, up="z", tilt=0.5):
     """Mirror directions at every incidence angle from each side, against r = d − 2(d·n)n.
-    ``tolerance`` (default 1e-4) is float32 arithmetic on a unit vector."""
+    ``tolerance`` (default 1e-4) is float32 arithmetic on a unit vector.
+
+    Parameters
+    ----------
+    sides : tuple of str, keyword-only
+        ``"above"``, ``"below"``.
+    samples : int, keyword-only
+        Angles checked.
+    tolerance : float, keyword-only
+        The largest error.
+    up : str, keyword-only
+        ``"z"`` or ``"y"``.
+    tilt : float, keyword-only
+        The normals' tilt from up, rad.
+
+    Returns
+    -------
+    Domain
+        The inputs, the tolerance, and the correct and faulty models.
+    """
     from optics.light.fresnel import N_AIR, N_WATER
     from wavephys.core.inputs import check_scalar
 
@@ -403,6 +546,21 @@ def reflect_domain(*, sides=("above", "below"), samples=1024, tolerance=1e-4, up
 
 
 def reflect_late(values, domain, errors):
-    """Vectors that are not unit length."""
+    """Vectors that are not unit length.
+
+    Parameters
+    ----------
+    values : numpy.ndarray (n, c)
+        The function's outputs over the domain.
+    domain : Domain
+        The check's domain.
+    errors : numpy.ndarray (n,)
+        Each row's error against the correct answer.
+
+    Returns
+    -------
+    str
+        The cause in words ("" when this does not explain it).
+    """
     return length_cause(values)
 

@@ -107,12 +107,32 @@ NAMES = {
 
 
 def is_constant(role) -> bool:
-    """Whether a ``takes`` entry is a number: a parameter held at that value rather than fed by a role."""
+    """Whether a ``takes`` entry is a number: a parameter held at that value rather than fed by a role.
+
+    Parameters
+    ----------
+    role : str or float
+        A ``takes`` entry.
+
+    Returns
+    -------
+    bool
+    """
     return isinstance(role, (int, float)) and not isinstance(role, bool)
 
 
 def role_type(role) -> str:
-    """The GLSL type a ``takes`` entry feeds (a constant is a float)."""
+    """The GLSL type a ``takes`` entry feeds (a constant is a float).
+
+    Parameters
+    ----------
+    role : str or float
+        A ``takes`` entry.
+
+    Returns
+    -------
+    str
+    """
     return "float" if is_constant(role) else ROLES[role][0]
 
 

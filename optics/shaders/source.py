@@ -89,7 +89,16 @@ class Prepared:
 
 
 def strip_comments(source: str) -> str:
-    """The source with comments blanked out (newlines kept, so line numbers stay)."""
+    """The source with comments blanked out (newlines kept, so line numbers stay).
+
+    Parameters
+    ----------
+    source : str
+
+    Returns
+    -------
+    str
+    """
     def blank(match):
         return re.sub(r"[^\n]", " ", match.group(0))
 
@@ -101,7 +110,19 @@ def _blank(text: str, start: int, end: int) -> str:
 
 
 def function_span(code: str, name: str):
-    """(start, end) of every definition of function ``name`` (header to closing brace) in comment-free code."""
+    """(start, end) of every definition of function ``name`` (header to closing brace) in comment-free code.
+
+    Parameters
+    ----------
+    code : str
+        Source without comments.
+    name : str
+        The function's name.
+
+    Returns
+    -------
+    list of (int, int)
+    """
     spans = []
     for m in re.finditer(rf"(?m)(?:^|[;}}\s])(\w+)\s+{re.escape(name)}\s*\(([^()]*)\)\s*\{{", code):
         depth, i = 0, m.end() - 1
@@ -115,7 +136,19 @@ def function_span(code: str, name: str):
 
 
 def blank_function(code: str, name: str) -> tuple:
-    """``code`` with every definition of ``name`` blanked (lines kept); and how many there were."""
+    """``code`` with every definition of ``name`` blanked (lines kept); and how many there were.
+
+    Parameters
+    ----------
+    code : str
+        Source without comments.
+    name : str
+        The function's name.
+
+    Returns
+    -------
+    (str, int)
+    """
     spans = function_span(code, name)
     for start, end in reversed(spans):
         code = _blank(code, start, end)
@@ -130,7 +163,16 @@ _GLSL_MARKERS = re.compile(r"\b(vec[234]|mat[234]|sampler2D|texture2D|mix|fract|
 def detect_language(source: str) -> str:
     """The language of a source, told from its text: ``godot`` (a ``shader_type`` line), ``hlsl`` (HLSL's
     types and intrinsics and no GLSL ones), ``webgl`` (``#version 100`` or ``texture2D``), ``glsl_es``
-    (``#version 300 es``), ``shadertoy`` (a ``mainImage`` function), else ``glsl``."""
+    (``#version 300 es``), ``shadertoy`` (a ``mainImage`` function), else ``glsl``.
+
+    Parameters
+    ----------
+    source : str
+
+    Returns
+    -------
+    str
+    """
     code = strip_comments(source)
     if re.search(r"(?m)^\s*shader_type\s+\w+\s*;", code):
         return "godot"
@@ -146,7 +188,16 @@ def detect_language(source: str) -> str:
 
 
 def check_defines(defines) -> dict:
-    """``defines`` (name → value, or an iterable of ``NAME`` / ``NAME=VALUE``) as a dict of strings."""
+    """``defines`` (name → value, or an iterable of ``NAME`` / ``NAME=VALUE``) as a dict of strings.
+
+    Parameters
+    ----------
+    defines : dict or iterable of str or None
+
+    Returns
+    -------
+    dict of str to str
+    """
     if defines is None:
         return {}
     if isinstance(defines, dict):
@@ -169,7 +220,16 @@ def check_defines(defines) -> dict:
 
 
 def check_include_dirs(include_dirs) -> tuple:
-    """``include_dirs`` as a tuple of folders: one path, or a sequence of them, each an existing folder."""
+    """``include_dirs`` as a tuple of folders: one path, or a sequence of them, each an existing folder.
+
+    Parameters
+    ----------
+    include_dirs : path or sequence of paths
+
+    Returns
+    -------
+    tuple
+    """
     import os
 
     if isinstance(include_dirs, (str, os.PathLike)):
