@@ -27,8 +27,8 @@ With ``scene.surroundings`` "extend" or "tile" the march runs over the slab betw
 lowest and highest surface, out to ``FAR_TILES`` scene sides from the eye, with steps
 growing quadratically from the eye; tiled water wraps and fades to its mean level between
 ``NEAR_TILES`` and ``FAR_TILES`` sides (distance filtering); a primary ray that reaches the
-far distance going down meets flat water and ground planes at the levels found there
-(:func:`far_field`).
+far distance going down meets flat water and ground planes at the levels where it crosses the
+water's level (:func:`far_field`).
 """
 
 from __future__ import annotations
@@ -168,8 +168,9 @@ def _slab(scene: Scene, o, d):
 
 def far_field(scene: Scene, o, d):
     """Colour of primary rays (o, d) (n, 3) that left the marched region: beyond FAR_TILES sides
-    the world is flat water and ground planes at the levels under the ray's last marched point
-    (land where the ground is above the water); rays going up, or not reaching it, see the sky."""
+    the world is flat water and ground planes at the levels where the ray meets the water's level (that
+    under its last marched point): land where the ground there is above the water; rays going up, or not
+    reaching it, see the sky."""
     out = environment(scene, d)
     _, t1 = _slab(scene, o, d)
     zlo, zhi = scene.bounds()
@@ -180,8 +181,13 @@ def far_field(scene: Scene, o, d):
     go = np.nonzero((d[:, 2] < 0) & (horizontal > 0) & (p1[:, 2] >= zlo))[0]
     if go.size == 0:
         return out
-    q = p1[go]
     dd = d[go]
+    # land or water is decided where the ray meets the water's level (a straight shore extended to the horizon
+    # converges there, as it does); decided at the far point itself, a fixed distance from the eye, a shore
+    # crossing it drew a vertical edge down the frame (the beach scene showed one)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        t_level = (water_level(scene, p1[go][:, :2]) - o[go][:, 2]) / dd[:, 2]
+    q = o[go] + np.maximum(t_level, t_far[go])[:, None] * dd
     level_w = water_level(scene, q[:, :2])
     level_g = sample(scene.ground, scene.length, q[:, :2])
     albedo = scene.albedo if scene.albedo is not None else scene.default_albedo

@@ -249,8 +249,11 @@ vec3 secondary(vec3 p, vec3 d, bool in_water) {
 vec3 far_field(vec3 o, vec3 d) {  // primary rays past the marched region: flat planes to the horizon
     float h = length(d.xy);
     if (d.z >= 0.0 || h == 0.0) return environment(d);
-    vec3 q = o + far_distance(d) * d;
-    if (q.z < zlo) return environment(d);
+    vec3 q0 = o + far_distance(d) * d;
+    if (q0.z < zlo) return environment(d);
+    // land or water where the ray meets the water's level (a straight shore converges to the horizon, as
+    // it does; decided at q0, a fixed distance from the eye, a shore crossing it drew a vertical edge)
+    vec3 q = o + max((water_h(q0.xy) - o.z) / d.z, far_distance(d)) * d;
     float lw = water_h(q.xy), lg = ground_h(q.xy);
     vec3 alb = bilerp(albedo_tex, albedo_size, q.xy).rgb;
     if (lg >= lw) return alb * (ambient + sun_color * max(sun.z, 0.0));

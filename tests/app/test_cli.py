@@ -136,7 +136,9 @@ def test_render_writes_a_png(tmp_path, capsys):
                      "--n", "64"]) == 0
     img = np.asarray(Image.open(out))
     assert img.shape == (60, 80, 3) and img.std() > 5  # not a blank frame
-    assert "rendered pool" in capsys.readouterr().out
+    said = capsys.readouterr()
+    assert "rendered pool" in said.out and "drawn" in said.out  # each phase timed
+    assert "building its water" in said.err and "built in" in said.err and "drawing" in said.err
 
 
 def test_render_frames_and_effects(tmp_path):

@@ -239,13 +239,17 @@ def cmd_render(args, parser) -> int:
     except ValueError as exc:  # e.g. an image larger than the context allows
         parser.error(str(exc))
     with renderer:
-        if args.frames == 1:
-            print(f"rendering {args.scene} ({args.width}x{args.height}) ...", file=sys.stderr, flush=True)
+        if args.frames == 1:  # two phases, each said as it starts and timed (docs/performance.md: each scene's)
+            print(f"rendering {args.scene} ({args.width}x{args.height}): building its water, ground and caustics ...",
+                  file=sys.stderr, flush=True)
             scene = builtin_scene(args.scene, n=args.n, time=args.time, caustics="caustics" not in off
                                   ).with_effects(**off)  # caustics off: the map is not computed either
+            built = time.perf_counter()
+            print(f"built in {built - start:.1f} s; drawing ...", file=sys.stderr, flush=True)
             path = save_png(renderer.render(scene), out)
             print(f"rendered {args.scene} ({args.width}x{args.height}, {renderer.renderer_name}) in "
-                  f"{time.perf_counter() - start:.1f} s; wrote {path}")
+                  f"{time.perf_counter() - start:.1f} s (built {built - start:.1f} s, drawn "
+                  f"{time.perf_counter() - built:.1f} s); wrote {path}")
             return 0
         scenes = (s.with_effects(**off) for s in scene_frames(args.scene, args.frames, fps=args.fps, n=args.n,
                                                                   start=args.time, caustics="caustics" not in off))

@@ -495,7 +495,8 @@ def _beach_bed(n):
     X, Y = _mesh("beach", n)
     bed = -BEACH_DEPTH + 1.6 * (X + BEACH_LENGTH / 2) / BEACH_LENGTH  # the still shoreline at x = 4 m
     bed += 0.18 * np.exp(-((X + 1.0) / 1.3) ** 2) * (1 + 0.6 * np.cos(2 * np.pi * Y / 8.0))  # a bar, rip gaps
-    bed += 0.05 * _smoothstep(2.0, 4.0, X) * np.cos(2 * np.pi * Y / 4.0)  # beach cusps
+    bed += 0.05 * _smoothstep(2.0, 4.0, X) * _smoothstep(8.0, 6.0, X) * np.cos(2 * np.pi * Y / 4.0)  # beach
+    # cusps, gone by the square's dry edge (the sand extended past it would draw them out as ridges)
     bed += 0.25 * _smoothstep(4.0, 8.0, X)  # the dry beach steepens: the run-up stays on the sand
     return bed
 
@@ -574,7 +575,9 @@ def _beach_ground(n):
     wet = _smoothstep(0.3, -0.2, bed)
     X, Y = _mesh("beach", n)
     sand = np.array([0.82, 0.74, 0.55]) * (1 - 0.3 * wet[..., None])
-    ripple = 1 + 0.05 * (1 - wet) * np.sin(8.0 * X + 2.0 * np.sin(1.1 * Y))  # wind ripples on the dry sand
+    fade = _border_window("beach", n, 0.7)  # the sand extended past the square (surroundings) continues plain:
+    # ripples at the border, drawn out of the border texels, made stripes to the horizon
+    ripple = 1 + 0.05 * fade * (1 - wet) * np.sin(8.0 * X + 2.0 * np.sin(1.1 * Y))  # wind ripples on the dry sand
     return bed.astype(np.float32), (sand * ripple[..., None]).astype(np.float32)
 
 
@@ -609,7 +612,8 @@ def _cameras():
                 beach=look_at((-3.0, -7.5, 2.2), (3.5, 2.0, -0.2), 60.0),
                 dambreak=look_at((8.0, -9.5, 6.5), (-1.0, 0.5, 0.0), 55.0),
                 wakebeach=look_at((13.0, -12.0, 4.0), (-6.0, 2.0, -0.5), 60.0),
-                harbour=look_at((-6.0, -10.0, 4.5), (2.0, 8.0, -0.5), 60.0))
+                harbour=look_at((0.0, -5.0, 4.5), (0.0, 8.0, -0.5), 60.0))  # the quay in view is the square's
+    # own (its blocks are drawn there; extended past it the quay is plain: seen from the side, they stopped)
 
 
 def scene_water(name: str, n: int = 256, time: float = 0.0, ship: bool = True) -> np.ndarray:
