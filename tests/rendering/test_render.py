@@ -390,6 +390,27 @@ class TestHorizon:
             assert bool(same.any()) == expect_backdrop, (scene.surroundings, int(same.sum()))
             assert psnr(img, trace(scene, W, H)) >= 100.0
 
+    def test_a_shore_extended_to_the_horizon_is_land_and_water_where_the_rays_meet_them(self):
+        """A straight shore (dry for x > 0) extended past the square, seen obliquely: every ray past the
+        marched region is sand or water as the ground is where it meets the water's level (its line
+        converges to the horizon). Decided at the far point itself (a fixed distance from the eye), a wedge
+        of rays got the other answer: 5 of these 248, a vertical edge down the beach scene's frame."""
+        from optics.rendering.scene import FAR_TILES
+
+        L, n = 16.0, 32
+        X, _ = (np.asarray(a, np.float64) for a in Grid(n, L).mesh())
+        ground = (-1.0 + 2.0 * (X + L / 2) / L).astype(np.float32)
+        eye = (-3.0, -6.0, 1.5)
+        s = Scene(ground, np.zeros((n, n), np.float32), L, look_at(eye, (12.0, 40.0, -2.0), 60.0),
+                  surroundings="extend")
+        img = trace(s, 120, 90)
+        d = ray_directions(s.camera, 120, 90)
+        t = -eye[2] / np.minimum(d[..., 2], -1e-9)  # where each ray meets the water's level, z = 0
+        x = eye[0] + t * d[..., 0]
+        far = (d[..., 2] < 0) & (t * np.hypot(d[..., 0], d[..., 1]) > 1.05 * FAR_TILES * L) & (np.abs(x) > 1.0)
+        sand = img[..., 0] > img[..., 2]  # dry sand is yellow; water shows the blue sky
+        assert far.sum() >= 200 and np.array_equal(sand[far], x[far] > 0), int((sand[far] != (x[far] > 0)).sum())
+
     @pytest.mark.slow
     @pytest.mark.parametrize("sun", [(0.35, -0.45, 0.82), (0.9, 0.1, 0.15), (-0.2, 0.6, 0.4)])
     def test_horizon_modes_match_the_reference_for_any_sun(self, sun):
