@@ -242,8 +242,8 @@ def cmd_render(args, parser) -> int:
         if args.frames == 1:  # two phases, each said as it starts and timed (docs/performance.md: each scene's)
             print(f"rendering {args.scene} ({args.width}x{args.height}): building its water, ground and caustics ...",
                   file=sys.stderr, flush=True)
-            scene = builtin_scene(args.scene, n=args.n, time=args.time, caustics="caustics" not in off
-                                  ).with_effects(**off)  # caustics off: the map is not computed either
+            scene = builtin_scene(args.scene, n=args.n, time=args.time, caustics="caustics" not in off,
+                                  progress=True).with_effects(**off)  # caustics off: the map is not computed
             built = time.perf_counter()
             print(f"built in {built - start:.1f} s; drawing ...", file=sys.stderr, flush=True)
             path = save_png(renderer.render(scene), out)
