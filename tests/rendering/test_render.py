@@ -1,5 +1,6 @@
 """The moderngl renderer against the CPU reference tracer, and the physics it must show."""
 
+import functools
 import math
 
 import numpy as np
@@ -18,9 +19,16 @@ W, H = 160, 120
 
 
 @__import__("functools").lru_cache(maxsize=None)
+@functools.lru_cache(maxsize=None)
 def _scene(name, n=128, caustics=True):
-    """A built-in scene, built once per test session (the storm builds 1.5 s of foam history)."""
-    return builtin_scene(name, n=n, caustics=caustics)
+    """A built-in scene, built once per test session (the storm builds 1.5 s of foam history; the shore at 128²
+    was built four times): its arrays read-only, so no test can change another's."""
+    scene = builtin_scene(name, n=n, caustics=caustics)
+    for field in ("ground", "water", "albedo", "caustics", "foam"):
+        value = getattr(scene, field, None)
+        if isinstance(value, np.ndarray):
+            value.flags.writeable = False
+    return scene
 EFFECTS = ("refraction", "reflection", "fresnel", "absorption", "caustics")
 
 
@@ -97,7 +105,7 @@ def test_every_absorption_form_of_the_family_can_be_drawn():
 @pytest.mark.slow
 def test_each_effect_changes_the_pool(renderer):
     """Every switch does something measurable on the pool (so the PSNR tests compare real effects)."""
-    s = builtin_scene("pool", n=128)
+    s = _scene("pool", 128)
     full = renderer.render(s)
     for off in EFFECTS:
         assert psnr(renderer.render(s.with_effects(**{off: False})), full) < 60.0, off
@@ -130,7 +138,7 @@ def test_march_is_converged(renderer):
     1024-step reference, 4 against 4096 steps; the reference's own 1024 steps miss 1: the test below)."""
     from dataclasses import replace
 
-    shore = replace(builtin_scene("shore", n=128), surroundings="none")
+    shore = replace(_scene("shore", 128), surroundings="none")
     grid = Grid(128, 16.0)
     x, y = (np.asarray(a) for a in grid.mesh())
     swell = (0.05 * np.cos(2 * np.pi * 4 * x / 16.0) + 0.03 * np.cos(2 * np.pi * (5 * x + y) / 16.0 + 1.3))
@@ -148,7 +156,7 @@ def test_the_march_reference_is_converged_on_the_shore():
     leapfrog, which moved a crest)."""
     from dataclasses import replace
 
-    shore = replace(builtin_scene("shore", n=128), surroundings="none")
+    shore = replace(_scene("shore", 128), surroundings="none")
     fine = trace(shore, W, H, steps=4096)
     assert np.abs(fine - trace(shore, W, H, steps=16384)).max() < 1 / 255
     assert int((np.abs(trace(shore, W, H, steps=1024) - fine).max(-1) > 1 / 255).sum()) <= 2
@@ -315,11 +323,11 @@ def test_environment_map_matches_reference(renderer):
     h, w = 32, 64
     v, u = np.meshgrid(np.linspace(0, 1, h), np.linspace(0, 1, w), indexing="ij")
     env = np.stack([0.5 + 0.4 * np.cos(2 * np.pi * u), 0.6 * (1 - v), 0.3 + 0.5 * v * u], axis=-1)
-    s = builtin_scene("shore", n=128)
+    s = _scene("shore", 128)
     s = Scene(s.ground, s.water, s.length, s.camera, albedo=s.albedo, caustics=s.caustics, environment=env)
     img = renderer.render(s)
     assert psnr(img, trace(s, W, H)) >= 100.0
-    assert psnr(img, renderer.render(builtin_scene("shore", n=128))) < 30.0  # the map is really used
+    assert psnr(img, renderer.render(_scene("shore", 128))) < 30.0  # the map is really used
 
 
 def test_uniform_environment_equals_uniform_sky(renderer):
@@ -352,7 +360,7 @@ def test_video_without_imageio_keeps_the_frames(tmp_path, capsys, monkeypatch):
 
 
 def test_two_renderers_do_not_disturb_each_other(renderer):
-    s = builtin_scene("shore", n=64)
+    s = _scene("shore", 64, False)
     before = renderer.render(s)
     with Renderer(16, 12) as other:
         other.render(s)
@@ -428,7 +436,7 @@ class TestHorizon:
         from optics.rendering.reference import water_level
         from optics.rendering.scene import FAR_TILES, NEAR_TILES
 
-        s = builtin_scene("shore", n=64, caustics=False)
+        s = _scene("shore", 64, False)
         L, eye = s.length, np.asarray(s.camera.eye)
         rng = np.random.default_rng(2)
         xy = eye[:2] + rng.uniform(-0.5, 0.5, (200, 2)) * L * NEAR_TILES
