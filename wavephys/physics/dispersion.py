@@ -53,8 +53,8 @@ _OMEGA = Array(lo=0.0, hi=OMEGA_MAX)
 
 
 def _compiled(fn=None, *, static=()):
-    """``fn(k, water, *static)`` as one compiled program per dtype of ``k`` and power-of-two bucket of its size
-    (:func:`_by_bucket`; per shape where it is traced, a scalar, or on a GPU).
+    """``fn(k, water, *static)`` as one compiled program per power-of-two bucket of the size of a float32 ``k``
+    (:func:`_by_bucket`; per shape and dtype where it is float64, traced, a scalar, or on a GPU).
 
     The water's four numbers are traced arguments (its checks pass tracers), so one program
     serves every water, fitted ones included; ``static`` names arguments that select a program
@@ -86,9 +86,12 @@ _BUCKET_MIN = 64
 
 
 def _bucketed(k, numbers) -> bool:
-    """Whether a call runs through a power-of-two bucket (:func:`_by_bucket`): concrete arrays of one or more
-    dimensions on a CPU (a scalar keeps its weak type; a GPU keeps its arrays on the device)."""
+    """Whether a call runs through a power-of-two bucket (:func:`_by_bucket`): concrete float32 arrays of one or
+    more dimensions on a CPU (a scalar keeps its weak type; a GPU keeps its arrays on the device; float64 keeps
+    its own program per shape, bit for bit what it was: the split's tables are float64)."""
     if is_traced(k) or is_traced(numbers) or k.ndim == 0 or k.size == 0 or getattr(k, "weak_type", False):
+        return False
+    if k.dtype != np.float32:
         return False
     return all(d.platform == "cpu" for d in k.devices())
 
