@@ -348,7 +348,11 @@ def test_a_lake_at_rest_stays_at_rest_over_an_uneven_bed(name, sides):
     assert sides.startswith(stepper.sides[0][:4]) or sides == "inflow"
     run = stepper.run(state, steps=400, every=200)
     wet = np.maximum(-bed, 0.0) > 0
-    assert np.abs(run.frames[:, wet]).max() <= 4e-15, (name, sides, np.abs(run.frames[:, wet]).max())
+    # rounding, as ulps of the deepest water: the bed is drawn anew in each process (str hashes are salted),
+    # and the split measured up to 28 ulps (5.2e-15 m) over 40 beds (median 13); 4e-15 m, set from one bed,
+    # failed on some (4.3e-15 m, twice in a day's full runs). Growth, the failure this catches, is 1e-7 m and up
+    bound = 48 * np.finfo(np.float64).eps * float(np.max(-bed))
+    assert np.abs(run.frames[:, wet]).max() <= bound, (name, sides, np.abs(run.frames[:, wet]).max(), bound)
 
 
 @pytest.mark.parametrize("name,sides", [("SplitStepper", "open"), ("PipesStepper", "open"),
