@@ -1,4 +1,4 @@
-"""``python -m bench {propagation,boundaries,walls,shallow,optics,jacobian,ship,wake,harness,halffloat,render,surfaces,scale,calibrate,planner,savings} [--json PATH] [--quick]``.
+"""``python -m bench {propagation,boundaries,walls,shallow,optics,jacobian,ship,wake,harness,halffloat,render,filtering,surfaces,scale,calibrate,planner,savings} [--json PATH] [--quick]``.
 
 Each writes its rows as JSON and its charts as PNG next to it (default
 ``bench/results/``) and prints a table.
@@ -256,6 +256,22 @@ def run_render(args) -> None:
     _write(rows, render.figures(rows), Path(args.json or "bench/results/render.json"))
 
 
+def run_filtering(args) -> None:
+    from bench import filtering
+
+    if args.quick:
+        rows = filtering.filtering_rows(160, 120, 4, ("storm", "shore"), 3, _say)
+    else:
+        rows = filtering.filtering_rows(progress=_say)
+    print(f"{'scene':<10}{'band (sides)':>14}{'texels/px':>10}{'method':>12}{'max':>9}{'RMS':>9}{'PSNR dB':>9}"
+          f"{'cost':>7}")
+    for r in rows:
+        band = f"{r['band'][0]:g}–{r['band'][1]:g}"
+        print(f"{r['scene']:<10}{band:>14}{r['footprint_texels']:>10.2f}{r['method']:>12}{r['max']:>9.4f}"
+              f"{r['rms']:>9.4f}{r['psnr']:>9.1f}{r['cost_ratio']:>7.2f}")
+    _write(rows, filtering.figures(rows), Path(args.json or "bench/results/filtering.json"))
+
+
 def run_surfaces(args) -> None:
     from bench import surfaces
 
@@ -374,6 +390,7 @@ def main(argv=None) -> int:
                             ("harness", run_harness, "every check of a record: time on 128^2 x 256, floor, smallest fault"),
                             ("halffloat", run_halffloat, "16-bit float encoding: numpy against to_float16, heights of every size"),
                             ("render", run_render, "renderer: frame times, texture cost, GPU vs reference"),
+                            ("filtering", run_filtering, "distance filtering of normals against a supersampled truth, per distance band"),
                             ("surfaces", run_surfaces, "noise, Gerstner, choppy: cost per frame vs physics error"),
                             ("scale", run_scale, "sharded step: overhead, memory per device, bytes per step"),
                             ("calibrate", run_calibrate, "measure the planner's cost model (writes its calibration)"),

@@ -15,8 +15,9 @@ from wavephys.core.methods import glsl_family
 __all__ = ["GLSL_SAMPLING", "GLSL_OPTICS", "GLSL_FRESNEL_FORMS"]
 
 GLSL_SAMPLING = """
-vec4 bilinear_texel(sampler2D t, ivec2 size, vec2 u, bvec2 wrap) {
-    // u: texel coordinates (texel (i, j)'s centre at (i, j)); per axis periodic (wrap) or clamped
+vec4 bilinear_texel_lod(sampler2D t, ivec2 size, vec2 u, bvec2 wrap, int lod) {
+    // u: texel coordinates (texel (i, j)'s centre at (i, j)) of mip level lod, whose size is size;
+    // per axis periodic (wrap) or clamped
     vec2 f = floor(u);
     vec2 w = u - f;
     vec2 s = vec2(size);
@@ -25,19 +26,21 @@ vec4 bilinear_texel(sampler2D t, ivec2 size, vec2 u, bvec2 wrap) {
     ivec2 i0 = ivec2(wrap.x ? iw.x : clamp(i.x, 0, size.x - 1), wrap.y ? iw.y : clamp(i.y, 0, size.y - 1));
     ivec2 i1 = ivec2(wrap.x ? (iw.x + 1) % size.x : clamp(i.x + 1, 0, size.x - 1),
                      wrap.y ? (iw.y + 1) % size.y : clamp(i.y + 1, 0, size.y - 1));
-    vec4 a = texelFetch(t, ivec2(i0.x, i0.y), 0);
-    vec4 b = texelFetch(t, ivec2(i1.x, i0.y), 0);
-    vec4 c = texelFetch(t, ivec2(i0.x, i1.y), 0);
-    vec4 d = texelFetch(t, ivec2(i1.x, i1.y), 0);
+    vec4 a = texelFetch(t, ivec2(i0.x, i0.y), lod);
+    vec4 b = texelFetch(t, ivec2(i1.x, i0.y), lod);
+    vec4 c = texelFetch(t, ivec2(i0.x, i1.y), lod);
+    vec4 d = texelFetch(t, ivec2(i1.x, i1.y), lod);
     return (a * (1.0 - w.x) + b * w.x) * (1.0 - w.y) + (c * (1.0 - w.x) + d * w.x) * w.y;
 }
+vec4 bilinear_texel(sampler2D t, ivec2 size, vec2 u, bvec2 wrap) { return bilinear_texel_lod(t, size, u, wrap, 0); }
 vec4 bilinear_at(sampler2D t, ivec2 size, vec2 xy, float extent, bool wrap) {
     // xy: metres on a square of side extent centred on the origin (the Grid convention)
     return bilinear_texel(t, size, (xy / extent + 0.5) * vec2(size) - 0.5, bvec2(wrap));
 }
 """
 """GLSL: ``bilinear_texel(t, size, u, wrap)`` samples texture ``t`` bilinearly at texel
-coordinates ``u`` (periodic or clamped per axis of ``wrap``) with ``texelFetch``;
+coordinates ``u`` (periodic or clamped per axis of ``wrap``) with ``texelFetch``
+(``bilinear_texel_lod(t, size, u, wrap, lod)`` at a mip level, ``size`` that level's);
 ``bilinear_at(t, size, xy, extent, wrap)`` at a point ``xy`` (m) of a square of side
 ``extent`` centred on the origin, the library's :class:`wavephys.core.grid.Grid` convention."""
 

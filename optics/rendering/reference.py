@@ -40,9 +40,12 @@ import numpy as np
 from optics.light.directions import reflect, refract
 from optics.light.fresnel import normal_reflectance, reflectance
 from optics.light.sky import preetham_sky
+from optics.rendering.filtering import (VARIANCE_FLOOR, covariance_of, facing_normal, fade_moments, footprint,
+                                       sigma_slopes,
+                                       slope_covariance, slope_moments)
 from optics.rendering.scene import FAR_TILES, NEAR_TILES, Camera, Scene, sun_in_water, texture_sample
 from wavephys.core.inputs import check_array, check_instance, check_int, check_scalar
-from wavephys.core.sampling import bilinear
+from wavephys.core.sampling import bilinear, texel_coordinates
 
 __all__ = ["trace", "psnr", "ray_directions", "effect_change"]  # sample, environment, march, shade_ground: the tracer's own steps
 
@@ -86,15 +89,122 @@ def _smoothstep(e0, e1, x):
     return t * t * (3 - 2 * t)
 
 
-def _water_normal(scene: Scene, xy):
-    """Unit normal of the water as drawn (clamped or tiled and faded), central differences one texel apart."""
+def _water_slope(scene: Scene, xy):
+    """Slopes (gx, gy) (..., 2) of the water as drawn (clamped or tiled and faded), central differences one
+    texel apart."""
     ny, nx = scene.water.shape
     hx, hy = scene.length / nx, scene.length / ny
     ex, ey = np.array([hx, 0.0]), np.array([0.0, hy])
     gx = (water_level(scene, xy + ex) - water_level(scene, xy - ex)) / (2 * hx)
     gy = (water_level(scene, xy + ey) - water_level(scene, xy - ey)) / (2 * hy)
-    n = np.stack([-gx, -gy, np.ones_like(gx)], axis=-1)
+    return np.stack([gx, gy], axis=-1)
+
+
+def _unit_normal(g):
+    """Unit normals (..., 3) of slopes g (..., 2)."""
+    n = np.concatenate([-g, np.ones(g.shape[:-1] + (1,))], axis=-1)
     return n / np.linalg.norm(n, axis=-1, keepdims=True)
+
+
+def _water_normal(scene: Scene, xy):
+    """Unit normal of the water as drawn (clamped or tiled and faded), central differences one texel apart."""
+    return _unit_normal(_water_slope(scene, xy))
+
+
+def _fade(scene: Scene, xy):
+    """The waves' weight at xy: 1, fading to 0 between NEAR_TILES and FAR_TILES sides from the eye."""
+    if scene.surroundings == "none":
+        return np.ones(np.shape(xy)[:-1])
+    r = np.hypot(xy[..., 0] - scene.camera.eye[0], xy[..., 1] - scene.camera.eye[1]) / scene.length
+    return 1 - _smoothstep(NEAR_TILES, FAR_TILES, r)
+
+
+class _Slopes:
+    """The scene's slope pyramid and whole-square covariance (the distance filtering's data)."""
+
+    def __init__(self, scene: Scene):
+        wrap = scene.surroundings == "tile"
+        self.levels = slope_moments(scene.water, scene.length, wrap)
+        self.cov_all = slope_covariance(scene.water, scene.length, wrap)
+        self.mode = "wrap" if wrap else "clamp"
+        self.texel = scene.length / min(scene.water.shape)
+
+    def exact(self, scene, xy):
+        """The point's own slope, with the variance the fade removed given back."""
+        m = _water_slope(scene, xy)
+        f = _fade(scene, xy)[..., None]
+        second = np.stack([m[..., 0] ** 2, m[..., 1] ** 2, m[..., 0] * m[..., 1]], axis=-1)
+        return m, second + (1 - f * f) * self.cov_all
+
+    def level(self, scene, k, xy):
+        """Faded moments of pyramid level k ≥ 1 at xy."""
+        field = self.levels[k].astype(np.float64)
+        ny, nx = field.shape[:2]
+        v = bilinear(field, texel_coordinates(xy[..., 0], scene.length, nx),
+                     texel_coordinates(xy[..., 1], scene.length, ny), self.mode)
+        return fade_moments(v[..., :2], v[..., 2:], _fade(scene, xy), self.cov_all)
+
+    def tap(self, scene, xy, lod):
+        """Trilinear moments at xy (n, 2) and levels lod (n,); below level 1 the exact slope."""
+        top = len(self.levels) - 1
+        m, s = self.exact(scene, xy)
+        if top < 1:
+            return m, s
+        lod = np.minimum(np.maximum(lod, 0.0), top)
+        k = np.minimum(np.floor(lod).astype(np.int64), top - 1)
+        a = np.where(lod >= top, 1.0, lod - k)[:, None]
+        out_m, out_s = np.empty_like(m), np.empty_like(s)
+        for level in np.unique(k):
+            i = np.nonzero(k == level)[0]
+            m0, s0 = (m[i], s[i]) if level == 0 else self.level(scene, level, xy[i])
+            m1, s1 = self.level(scene, level + 1, xy[i])
+            out_m[i] = m0 + (m1 - m0) * a[i]
+            out_s[i] = s0 + (s1 - s0) * a[i]
+        exact = lod <= 0
+        out_m[exact], out_s[exact] = m[exact], s[exact]
+        return out_m, out_s
+
+    def filtered(self, scene, p, d, t, pixel_angle):
+        """Mean slope (n, 2) and covariance (n, 3) over the footprints of pixels hitting p at distance t."""
+        lod, along, taps = footprint(t, d, pixel_angle, self.texel)
+        exact = (taps == 1) & (lod <= 0)  # the exact slope: its covariance is the faded variance alone
+        h = np.hypot(d[:, 0], d[:, 1])
+        axis = np.where(h[:, None] > 0, d[:, :2] / np.where(h > 0, h, 1.0)[:, None], 0.0)
+        m, s = np.zeros((len(p), 2)), np.zeros((len(p), 3))
+        for i in range(int(taps.max(initial=1))):
+            live = np.nonzero(taps > i)[0]
+            offset = ((i + 0.5) / taps[live] - 0.5) * along[live]
+            mi, si = self.tap(scene, p[live, :2] + offset[:, None] * axis[live], lod[live])
+            m[live] += mi
+            s[live] += si
+        m /= taps[:, None]
+        s /= taps[:, None]
+        cov = covariance_of(np.concatenate([m, s], axis=-1))
+        f = _fade(scene, p[exact, :2])
+        cov[exact] = (1 - f * f)[:, None] * self.cov_all
+        return m, cov
+
+
+def _over_slopes(scene, p, d, m, cov, trans, traced, steps, refine):
+    """R·reflected + (1 − R)·trans averaged over the slopes at four sigma points, weighted by each facet's
+    area seen from the eye; returns (colour (n, 3), whether any facet faces the eye (n,))."""
+    g = sigma_slopes(m, cov)
+    total, weight = np.zeros(p.shape), np.zeros(len(p))
+    for gi in g:
+        n = _unit_normal(gi)
+        cos_i = -np.sum(d * n, axis=-1)
+        w = np.maximum(cos_i, 0.0) / n[:, 2]
+        live = np.nonzero(w > 0)[0]
+        if live.size == 0:
+            continue
+        r = _reflectance(scene, cos_i[live], scene.n_air, scene.n_water)[:, None]
+        rdir = reflect(d[live], n[live])
+        refl = (_secondary(scene, p[live], rdir, "air", steps, refine) if traced
+                else environment(scene, rdir))
+        total[live] += w[live, None] * (r * refl + (1 - r) * trans[live])
+        weight[live] += w[live]
+    seen = weight > 0
+    return np.where(seen[:, None], total / np.where(seen, weight, 1.0)[:, None], 0.0), seen
 
 
 def _normal(field, length, xy):
@@ -205,7 +315,14 @@ def far_field(scene: Scene, o, d):
     wet = alb * (scene.ambient * _transmittance(scene, depth)
                  + scene.sun_color * (sun_t * max(float(lw[2]), 0.0)) * _transmittance(scene, depth / lw[2]))
     trans = wet * _transmittance(scene, depth / np.maximum(-tdir[:, 2], 1e-6))
-    out[go] = np.where(land[:, None], dry, r * refl + (1 - r) * trans)
+    water = r * refl + (1 - r) * trans
+    if scene.effects.filtering:  # the waves' roughness, averaged (optics.rendering.filtering)
+        cov = slope_covariance(scene.water, scene.length, scene.surroundings == "tile")
+        if cov[0] + cov[1] > VARIANCE_FLOOR:
+            rough, seen = _over_slopes(scene, q, dd, np.zeros((len(dd), 2)), np.broadcast_to(cov, (len(dd), 3)),
+                                       trans, False, 1, 0)
+            water = np.where(seen[:, None], rough, water)
+    out[go] = np.where(land[:, None], dry, water)
     return out
 
 
@@ -395,6 +512,10 @@ def trace(scene: Scene, width: int = 160, height: int = 120, *, steps: int = 256
         n = _water_normal(scene, p[:, :2])
         ds = d[s]
         if not under:
+            if eff.filtering:
+                m, cov = _Slopes(scene).filtered(scene, p, ds, t[s], 2 * math.tan(math.radians(scene.camera.fov) / 2)
+                                                 / height)
+                n = facing_normal(_unit_normal(m), ds)
             cos_i = np.maximum(-np.sum(ds * n, axis=-1), 0.0)
             r = _reflectance(scene, cos_i, scene.n_air, scene.n_water)
             tdir = refract(ds, n, scene.n_air, scene.n_water)[0] if eff.refraction else ds
@@ -402,6 +523,12 @@ def trace(scene: Scene, width: int = 160, height: int = 120, *, steps: int = 256
             rdir = reflect(ds, n)
             refl = _secondary(scene, p, rdir, "air", steps, refine) if eff.reflection else environment(scene, rdir)
             out[s] = r[:, None] * refl + (1 - r[:, None]) * trans
+            if eff.filtering:
+                rough = np.nonzero(cov[:, 0] + cov[:, 1] > VARIANCE_FLOOR)[0]
+                if rough.size:
+                    c, seen = _over_slopes(scene, p[rough], ds[rough], m[rough], cov[rough], trans[rough],
+                                           eff.reflection, steps, refine)
+                    out[s[rough[seen]]] = c[seen]
             if eff.foam and scene.foam is not None:
                 f = _surface_sample(scene, scene.foam, p[:, :2])[:, None]
                 white = scene.foam_albedo * (scene.ambient + scene.sun_color * np.maximum(n @ scene.sun, 0.0)[:, None])

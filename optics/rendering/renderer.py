@@ -35,6 +35,7 @@ TABLE_ROW = 1024
 """Entries a row of the absorption texture holds (GL 3.3 guarantees textures 1024 texels a side)."""
 from optics.light.fresnel import normal_reflectance, reflectance
 from optics.gpu import EGL_PACKAGES, GLSL_FRESNEL_FORMS, GLSL_OPTICS, GLSL_SAMPLING, RendererUnavailable, gl_context
+from optics.rendering.filtering import FACING, MAX_TAPS, VARIANCE_FLOOR, slope_covariance, slope_moments
 from optics.rendering.scene import FAR_TILES, NEAR_TILES, SURROUNDINGS, Scene, sun_in_water, texture_sample
 from wavephys.core.files import atomic_path, output_file, output_folder
 from wavephys.core.progress import Progress
@@ -85,6 +86,14 @@ uniform bool sky_preetham;
 uniform float water_mean, foam_mean, near_tiles, far_tiles;
 uniform float perez_Y[5], perez_x[5], perez_y[5];  // Perez coefficients (host, float64: optics.light.sky)
 uniform vec3 sky_scale;
+uniform bool e_filtering;  // distance filtering of the normals (optics.rendering.filtering)
+uniform sampler2D slope_tex; uniform ivec2 slope_size; uniform int slope_levels;  // mip k: (gx, gy, gx², gy²)
+uniform sampler2D slope2_tex;  // mip k: gx·gy
+uniform vec3 slope_cov_all;  // the whole square's slope covariance (cxx, cyy, cxy)
+uniform float pixel_angle;  // rad per pixel
+const int MAX_TAPS = %MAX_TAPS%;
+const float VARIANCE_FLOOR = %VARIANCE_FLOOR%;
+const float FACING = %FACING%;
 out vec4 frag;
 %OPTICS%
 float eps;
@@ -107,11 +116,69 @@ float foam_at(vec2 xy) {
     float f = surroundings == 2 ? bilerp_wrap(foam_tex, foam_size, xy).r : bilerp(foam_tex, foam_size, xy).r;
     return foam_mean + (f - foam_mean) * fade(xy);
 }
-vec3 water_normal(vec2 xy) {
+vec2 water_slope(vec2 xy) {
     float hx = extent / float(water_size.x), hy = extent / float(water_size.y);
     float gx = (water_h(xy + vec2(hx, 0.0)) - water_h(xy - vec2(hx, 0.0))) / (2.0 * hx);
     float gy = (water_h(xy + vec2(0.0, hy)) - water_h(xy - vec2(0.0, hy))) / (2.0 * hy);
-    return normalize(vec3(-gx, -gy, 1.0));
+    return vec2(gx, gy);
+}
+vec3 water_normal(vec2 xy) {
+    vec2 g = water_slope(xy);
+    return normalize(vec3(-g.x, -g.y, 1.0));
+}
+
+// -- distance filtering: the slopes' distribution over a pixel's footprint (optics/rendering/filtering.py)
+float fade_at(vec2 xy) { return surroundings == 0 ? 1.0 : fade(xy); }
+void exact_moments(vec2 xy, out vec2 m, out vec3 s) {  // the point's own slope; the faded variance given back
+    m = water_slope(xy);
+    float f = fade_at(xy);
+    s = vec3(m.x * m.x, m.y * m.y, m.x * m.y) + (1.0 - f * f) * slope_cov_all;
+}
+void level_moments(int k, vec2 xy, out vec2 m, out vec3 s) {  // pyramid level k >= 1, faded
+    ivec2 size = max(ivec2(slope_size.x >> k, slope_size.y >> k), ivec2(1));
+    vec2 u = (xy / extent + 0.5) * vec2(size) - 0.5;
+    bvec2 wrap = bvec2(surroundings == 2);
+    vec4 a = bilinear_texel_lod(slope_tex, size, u, wrap, k);
+    float c = bilinear_texel_lod(slope2_tex, size, u, wrap, k).r;
+    float f = fade_at(xy);
+    m = f * a.xy;
+    s = f * f * vec3(a.z, a.w, c) + (1.0 - f * f) * slope_cov_all;
+}
+void tap_moments(vec2 xy, float lod, out vec2 m, out vec3 s) {  // trilinear; below level 1 the exact slope
+    int top = slope_levels - 1;
+    if (lod <= 0.0 || top < 1) { exact_moments(xy, m, s); return; }
+    if (lod >= float(top)) { level_moments(top, xy, m, s); return; }
+    int k = int(floor(lod));
+    float a = lod - float(k);
+    vec2 m0, m1; vec3 s0, s1;
+    if (k == 0) exact_moments(xy, m0, s0); else level_moments(k, xy, m0, s0);
+    level_moments(k + 1, xy, m1, s1);
+    m = mix(m0, m1, a);
+    s = mix(s0, s1, a);
+}
+void filtered_slopes(vec3 p, vec3 d, float t, out vec2 m, out vec3 cov) {
+    float width = t * pixel_angle;
+    float texel = extent / float(min(slope_size.x, slope_size.y));
+    float along = width / max(abs(d.z), 1.0 / float(MAX_TAPS));
+    float hl = length(d.xy);
+    int taps = hl > 0.0 ? clamp(int(ceil(along / max(width, texel) - 1e-6)), 1, MAX_TAPS) : 1;
+    float lod = log2(max(width, 1e-30) / texel);
+    vec2 axis = hl > 0.0 ? d.xy / hl : vec2(0.0);
+    if (taps == 1 && lod <= 0.0) {  // the exact slope: its covariance is the faded variance alone, exactly
+        m = water_slope(p.xy);
+        float f = fade_at(p.xy);
+        cov = (1.0 - f * f) * slope_cov_all;
+        return;
+    }
+    vec3 s = vec3(0.0);
+    m = vec2(0.0);
+    for (int i = 0; i < taps; ++i) {
+        vec2 mi; vec3 si;
+        tap_moments(p.xy + ((float(i) + 0.5) / float(taps) - 0.5) * along * axis, lod, mi, si);
+        m += mi; s += si;
+    }
+    m /= float(taps); s /= float(taps);
+    cov = vec3(max(s.x - m.x * m.x, 0.0), max(s.y - m.y * m.y, 0.0), s.z - m.x * m.y);
 }
 
 vec3 normal_of(sampler2D t, ivec2 size, vec2 xy) {
@@ -246,6 +313,29 @@ vec3 secondary(vec3 p, vec3 d, bool in_water) {
     return in_water ? c * transmittance(t + eps) : c;
 }
 
+// R·reflected + (1 − R)·trans averaged over the slopes (mean m, covariance cov) at four sigma points, each
+// weighted by its facet's area seen from the eye; w = 0 when every facet faces away
+vec4 over_slopes(vec3 p, vec3 d, vec2 m, vec3 cov, vec3 trans, bool traced) {
+    float l11 = sqrt(max(cov.x, 0.0));
+    float l21 = l11 > 0.0 ? cov.z / l11 : 0.0;
+    float l22 = sqrt(max(cov.y - l21 * l21, 0.0));
+    vec2 c1 = 1.4142135623730951 * vec2(l11, l21), c2 = vec2(0.0, 1.4142135623730951 * l22);
+    vec3 sum = vec3(0.0);
+    float wsum = 0.0;
+    for (int i = 0; i < 4; ++i) {
+        vec2 g = m + (i == 0 ? c1 : (i == 1 ? -c1 : (i == 2 ? c2 : -c2)));
+        vec3 n = normalize(vec3(-g.x, -g.y, 1.0));
+        float w = max(-dot(d, n), 0.0) / n.z;
+        if (w <= 0.0) continue;
+        float r = reflectance(-dot(d, n), n_air, n_water);
+        vec3 rdir = reflect(d, n);
+        vec3 refl = traced ? secondary(p, rdir, false) : environment(rdir);
+        sum += w * (r * refl + (1.0 - r) * trans);
+        wsum += w;
+    }
+    return wsum > 0.0 ? vec4(sum / wsum, 1.0) : vec4(0.0);
+}
+
 vec3 far_field(vec3 o, vec3 d) {  // primary rays past the marched region: flat planes to the horizon
     float h = length(d.xy);
     if (d.z >= 0.0 || h == 0.0) return environment(d);
@@ -265,6 +355,10 @@ vec3 far_field(vec3 o, vec3 d) {  // primary rays past the marched region: flat 
     vec3 wet = alb * (ambient * transmittance(depth)
                       + sun_color * (sun_t * max(sun_w.z, 0.0)) * transmittance(depth / sun_w.z));
     vec3 trans = wet * transmittance(depth / max(-tdir.z, 1e-6));
+    if (e_filtering && slope_cov_all.x + slope_cov_all.y > VARIANCE_FLOOR) {  // the waves' roughness, averaged
+        vec4 o = over_slopes(q, d, vec2(0.0), slope_cov_all, trans, false);
+        if (o.w > 0.0) return o.rgb;
+    }
     return r * refl + (1.0 - r) * trans;
 }
 
@@ -284,12 +378,25 @@ void main() {
         vec3 p = eye + t * d;
         vec3 n = water_normal(p.xy);
         if (!under) {
+            vec2 m = vec2(0.0);
+            vec3 cov = vec3(0.0);
+            if (e_filtering) {
+                filtered_slopes(p, d, t, m, cov);
+                n = normalize(vec3(-m.x, -m.y, 1.0));
+                float tip = dot(d, n) + FACING;
+                if (tip > 0.0) n = normalize(n - tip * d);  // a mean normal facing away: tipped
+            }
             float r = reflectance(max(-dot(d, n), 0.0), n_air, n_water);
             vec3 tdir = e_refraction ? refract_dir(d, n, n_air / n_water) : d;
             vec3 trans = secondary(p, tdir, true);
-            vec3 rdir = reflect(d, n);
-            vec3 refl = e_reflection ? secondary(p, rdir, false) : environment(rdir);
-            c = r * refl + (1.0 - r) * trans;
+            vec4 o = cov.x + cov.y > VARIANCE_FLOOR ? over_slopes(p, d, m, cov, trans, e_reflection) : vec4(0.0);
+            if (o.w > 0.0) {
+                c = o.rgb;
+            } else {
+                vec3 rdir = reflect(d, n);
+                vec3 refl = e_reflection ? secondary(p, rdir, false) : environment(rdir);
+                c = r * refl + (1.0 - r) * trans;
+            }
             if (e_foam && use_foam) {
                 float f = foam_at(p.xy);
                 c = mix(c, foam_albedo * (ambient + sun_color * max(dot(n, sun), 0.0)), f);
@@ -309,7 +416,8 @@ void main() {
     frag = vec4(c, 1.0);
 }
 """
-FRAGMENT = FRAGMENT.replace("%OPTICS%", GLSL_SAMPLING + GLSL_OPTICS)
+FRAGMENT = (FRAGMENT.replace("%OPTICS%", GLSL_SAMPLING + GLSL_OPTICS).replace("%MAX_TAPS%", str(MAX_TAPS))
+            .replace("%VARIANCE_FLOOR%", repr(VARIANCE_FLOOR)).replace("%FACING%", repr(FACING)))
 
 
 class Renderer:
@@ -417,8 +525,39 @@ class Renderer:
                                             ("absorption", table))):
             tex = self._upload(name, arr)
             tex.use(unit)
-            self.program[f"{name}_tex"] = unit
-            self.program[f"{name}_size"] = tex.size
+            if f"{name}_tex" in self.program:  # else optimized away by the compiler
+                self.program[f"{name}_tex"] = unit
+                self.program[f"{name}_size"] = tex.size
+        levels = (slope_moments(scene.water, scene.length, wrap=scene.surroundings == "tile")
+                  if scene.effects.filtering else [np.zeros((1, 1, 5), np.float32)])
+        unit += 1
+        for name, channels in (("slope", slice(0, 4)), ("slope2", slice(4, 5))):
+            tex = self._upload_levels(name, [level[..., channels] for level in levels])
+            tex.use(unit)
+            if f"{name}_tex" in self.program:
+                self.program[f"{name}_tex"] = unit
+            unit += 1
+        if "slope_size" in self.program:
+            self.program["slope_size"] = (levels[0].shape[1], levels[0].shape[0])
+            self.program["slope_levels"] = len(levels)
+
+    def _upload_levels(self, name, levels):
+        """Upload a mip pyramid (level k: (ny >> k, nx >> k, c) float32), reusing the slot ``name``."""
+        ny, nx, c = levels[0].shape
+        old = self._textures.get(name)
+        if old is not None and (old.size != (nx, ny) or old.components != c or old.extra != len(levels)):
+            old.release()
+            old = None
+        if old is None:
+            old = self.ctx.texture((nx, ny), c, np.ascontiguousarray(levels[0]).tobytes(), dtype="f4")
+            old.filter = (self.ctx.NEAREST, self.ctx.NEAREST)
+            old.repeat_x = old.repeat_y = False
+            old.build_mipmaps(0, len(levels) - 1)  # allocates the levels; each is written below
+            old.extra = len(levels)
+            self._textures[name] = old
+        for k, level in enumerate(levels):
+            old.write(np.ascontiguousarray(level, np.float32).tobytes(), level=k)
+        return old
 
     def _uniforms(self, scene: Scene):
         p, eff, cam = self.program, scene.effects, scene.camera
@@ -452,7 +591,10 @@ class Renderer:
                       steps=self.steps, refine=self.refine, e_refraction=eff.refraction,
                       e_reflection=eff.reflection, e_fresnel=eff.fresnel, e_absorption=eff.absorption,
                       e_caustics=eff.caustics, under=under, fresnel_id=GLSL_FRESNEL_FORMS.index(eff.fresnel_form),
-                      absorption_table=eff.absorption_form != "rgb", absorption_scale=TABLE_SCALE)
+                      absorption_table=eff.absorption_form != "rgb", absorption_scale=TABLE_SCALE,
+                      e_filtering=eff.filtering, pixel_angle=2.0 * math.tan(math.radians(cam.fov) / 2) / self.height,
+                      slope_cov_all=(slope_covariance(scene.water, scene.length, scene.surroundings == "tile")
+                                     if eff.filtering else (0.0, 0.0, 0.0)))
         for name, v in values.items():
             if name not in p:
                 continue  # optimized away by the compiler

@@ -210,6 +210,12 @@ class Effects:
         spectrum integrated against the eye) is drawn through its
         :func:`~optics.light.attenuation.transmittance_table`, and the scene's coefficients are not
         used. So an absorption method a plan chooses can be seen.
+    filtering : bool
+        Distance filtering of the water's normals (:mod:`optics.rendering.filtering`): a pixel is
+        shaded with the distribution of slopes its footprint covers, read from a pyramid of slope
+        moments (off: the one normal at its centre, which aliases far away). Near the eye, where a
+        pixel covers less than a texel, the picture is the same either way. Last of the fields, so
+        that positional calls written before it keep their meaning.
     """
 
     refraction: bool = True
@@ -220,8 +226,9 @@ class Effects:
     foam: bool = True
     fresnel_form: str = "exact"
     absorption_form: str = "rgb"
+    filtering: bool = True
 
-    SWITCHES = ("refraction", "reflection", "fresnel", "absorption", "caustics", "foam")
+    SWITCHES = ("refraction", "reflection", "fresnel", "absorption", "caustics", "foam", "filtering")
 
     def __post_init__(self):
         for name in self.SWITCHES:

@@ -312,7 +312,7 @@ def test_png_is_srgb_encoded(tmp_path):
 
 
 def test_effects_only():
-    assert Effects().only("caustics") == Effects(False, False, False, False, True, False)
+    assert Effects().only("caustics") == Effects(False, False, False, False, True, False, filtering=False)
     with pytest.raises(ValueError, match="unknown effect"):
         Effects().only("bloom")
 

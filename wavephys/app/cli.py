@@ -37,7 +37,7 @@ def _subcommand(sub, name: str, fmt, description: str | None = None):
                           epilog=c.epilog(), formatter_class=fmt)
 
 
-EFFECTS = ("refraction", "reflection", "fresnel", "absorption", "caustics")
+EFFECTS = ("refraction", "reflection", "fresnel", "absorption", "caustics", "filtering")
 from wavephys.app import SCENES  # light: --help answers at once
 
 
