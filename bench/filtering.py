@@ -1,7 +1,7 @@
 """Distance filtering of the normals against a supersampled reference, per distance band.
 
-For each scene that reaches the horizon, three frames at one sample per pixel — the normals
-unfiltered (as drawn before filtering), filtered (:mod:`optics.rendering.filtering`) — are compared
+For each scene whose water is tiled to the horizon, two frames at one sample per pixel — the normals
+unfiltered (as drawn before filtering) and filtered (:mod:`optics.rendering.filtering`) — are compared
 with the *truth*: the same world drawn unfiltered at ``ss × ss`` samples per pixel and averaged,
 its waves never faded (the water tiled into a square ``TILES`` scene sides wide, so the fade and the
 flat far field start beyond the bands measured) and marched with ``TRUTH_STEPS`` steps. Errors are

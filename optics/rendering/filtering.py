@@ -12,9 +12,13 @@ with the *distribution* of slopes its footprint covers (docs/physics.md §2.6).
   the view (:func:`footprint`); it is read at the level whose texels match the footprint's width,
   trilinearly (the level below 1 is the exact per-point slope, so near the eye the picture is
   unchanged), with up to :data:`MAX_TAPS` taps along the view (one: see there why).
-- Beyond the square, where the waves fade to their mean level with distance, the slope
+- Beyond a tiled square, where the waves fade to their mean level with distance, the slope
   variance they lose is given back as the whole square's slope covariance (:func:`fade_moments`),
-  and the flat far field carries that covariance too: distant water keeps its average look.
+  and the flat far field carries that covariance too: distant water keeps its average roughness.
+  Extended water (its border continued) gets none back (:func:`covariance_given_back`).
+- The pyramid halves while both sides are even: water of odd side (129²) has level 0 alone and is
+  not filtered beyond the fade; 100² stops at 25² (4 × 4 texels), beyond which far pixels still
+  alias. Power-of-two water, as every built-in scene has, is filtered to one texel.
 - The shading is averaged over the slope distribution at four sigma points (the unscented
   transform, which keeps its mean and covariance: :func:`sigma_slopes`), each weighted by the
   facet's projected area towards the eye (Smith's visible normals, without shadowing): the
@@ -35,7 +39,7 @@ from wavephys.core.inputs import check_array, check_bool, check_scalar
 
 __internal__ = True  # the renderer's and the reference's pieces: users switch Effects(filtering=...)
 
-__all__ = ["MAX_TAPS", "FACING", "facing_normal", "slope_moments", "slope_covariance", "footprint", "fade_moments", "sigma_slopes",
+__all__ = ["MAX_TAPS", "FACING", "facing_normal", "covariance_given_back", "slope_moments", "slope_covariance", "footprint", "fade_moments", "sigma_slopes",
            "covariance_of"]
 
 MAX_TAPS = 1
@@ -214,7 +218,7 @@ def sigma_slopes(mean, covariance):
     mean : array_like (..., 2)
         Mean slope (gx, gy).
     covariance : array_like (..., 3)
-        (cxx, cyy, cxy); the variances clipped at 0 and the matrix made positive semidefinite.
+        (cxx, cyy, cxy); the variances clipped at 0 and |cxy| at √(cxx·cyy) (positive semidefinite).
 
     Returns
     -------
@@ -229,9 +233,10 @@ def sigma_slopes(mean, covariance):
     m = np.asarray(mean, np.float64)
     c = np.asarray(covariance, np.float64)
     a, b = np.maximum(c[..., 0], 0.0), np.maximum(c[..., 1], 0.0)
+    cxy = np.clip(c[..., 2], -np.sqrt(a * b), np.sqrt(a * b))  # |cxy| ≤ √(cxx·cyy): positive semidefinite
     l11 = np.sqrt(a)
     with np.errstate(divide="ignore", invalid="ignore"):
-        l21 = np.where(l11 > 0, c[..., 2] / np.where(l11 > 0, l11, 1.0), 0.0)
+        l21 = np.where(l11 > 0, cxy / np.where(l11 > 0, l11, 1.0), 0.0)
     l22 = np.sqrt(np.maximum(b - l21 * l21, 0.0))
     s = math.sqrt(2.0)
     c1 = np.stack([l11, l21], axis=-1) * s
@@ -261,3 +266,26 @@ def facing_normal(normal, direction):
     k = np.maximum(np.sum(d * n, axis=-1, keepdims=True) + FACING, 0.0)
     out = n - k * d
     return np.where(k > 0, out / np.linalg.norm(out, axis=-1, keepdims=True), n)
+
+
+def covariance_given_back(water, length: float, surroundings: str):
+    """The slope covariance given back where the waves fade, and carried by the flat far field.
+
+    Parameters
+    ----------
+    water : array_like (ny, nx)
+        Water heights, m.
+    length : float
+        The square's side, m, > 0.
+    surroundings : str
+        ``"tile"``: the square's waves repeat, and their whole covariance (:func:`slope_covariance`) is given
+        back; ``"extend"`` or ``"none"``: nothing (past the square is its border continued, not its waves).
+
+    Returns
+    -------
+    numpy.ndarray (3,)
+        (cxx, cyy, cxy), dimensionless.
+    """
+    if surroundings == "tile":
+        return slope_covariance(water, length, True)
+    return np.zeros(3)

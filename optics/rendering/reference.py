@@ -40,9 +40,9 @@ import numpy as np
 from optics.light.directions import reflect, refract
 from optics.light.fresnel import normal_reflectance, reflectance
 from optics.light.sky import preetham_sky
-from optics.rendering.filtering import (VARIANCE_FLOOR, covariance_of, facing_normal, fade_moments, footprint,
-                                       sigma_slopes,
-                                       slope_covariance, slope_moments)
+from optics.rendering.filtering import (VARIANCE_FLOOR, covariance_given_back, covariance_of, facing_normal,
+                                       fade_moments, footprint, sigma_slopes,
+                                       slope_moments)
 from optics.rendering.scene import FAR_TILES, NEAR_TILES, Camera, Scene, sun_in_water, texture_sample
 from wavephys.core.inputs import check_array, check_instance, check_int, check_scalar
 from wavephys.core.sampling import bilinear, texel_coordinates
@@ -125,7 +125,7 @@ class _Slopes:
     def __init__(self, scene: Scene):
         wrap = scene.surroundings == "tile"
         self.levels = slope_moments(scene.water, scene.length, wrap)
-        self.cov_all = slope_covariance(scene.water, scene.length, wrap)
+        self.cov_all = covariance_given_back(scene.water, scene.length, scene.surroundings)
         self.mode = "wrap" if wrap else "clamp"
         self.texel = scene.length / min(scene.water.shape)
 
@@ -317,7 +317,7 @@ def far_field(scene: Scene, o, d):
     trans = wet * _transmittance(scene, depth / np.maximum(-tdir[:, 2], 1e-6))
     water = r * refl + (1 - r) * trans
     if scene.effects.filtering:  # the waves' roughness, averaged (optics.rendering.filtering)
-        cov = slope_covariance(scene.water, scene.length, scene.surroundings == "tile")
+        cov = covariance_given_back(scene.water, scene.length, scene.surroundings)
         if cov[0] + cov[1] > VARIANCE_FLOOR:
             rough, seen = _over_slopes(scene, q, dd, np.zeros((len(dd), 2)), np.broadcast_to(cov, (len(dd), 3)),
                                        trans, False, 1, 0)

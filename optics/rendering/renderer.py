@@ -35,7 +35,7 @@ TABLE_ROW = 1024
 """Entries a row of the absorption texture holds (GL 3.3 guarantees textures 1024 texels a side)."""
 from optics.light.fresnel import normal_reflectance, reflectance
 from optics.gpu import EGL_PACKAGES, GLSL_FRESNEL_FORMS, GLSL_OPTICS, GLSL_SAMPLING, RendererUnavailable, gl_context
-from optics.rendering.filtering import FACING, MAX_TAPS, VARIANCE_FLOOR, slope_covariance, slope_moments
+from optics.rendering.filtering import FACING, MAX_TAPS, VARIANCE_FLOOR, covariance_given_back, slope_moments
 from optics.rendering.scene import FAR_TILES, NEAR_TILES, SURROUNDINGS, Scene, sun_in_water, texture_sample
 from wavephys.core.files import atomic_path, output_file, output_folder
 from wavephys.core.progress import Progress
@@ -317,7 +317,8 @@ vec3 secondary(vec3 p, vec3 d, bool in_water) {
 // weighted by its facet's area seen from the eye; w = 0 when every facet faces away
 vec4 over_slopes(vec3 p, vec3 d, vec2 m, vec3 cov, vec3 trans, bool traced) {
     float l11 = sqrt(max(cov.x, 0.0));
-    float l21 = l11 > 0.0 ? cov.z / l11 : 0.0;
+    float cxy = clamp(cov.z, -sqrt(max(cov.x * cov.y, 0.0)), sqrt(max(cov.x * cov.y, 0.0)));  // |cxy| ≤ √(cxx·cyy)
+    float l21 = l11 > 0.0 ? cxy / l11 : 0.0;
     float l22 = sqrt(max(cov.y - l21 * l21, 0.0));
     vec2 c1 = 1.4142135623730951 * vec2(l11, l21), c2 = vec2(0.0, 1.4142135623730951 * l22);
     vec3 sum = vec3(0.0);
@@ -593,7 +594,7 @@ class Renderer:
                       e_caustics=eff.caustics, under=under, fresnel_id=GLSL_FRESNEL_FORMS.index(eff.fresnel_form),
                       absorption_table=eff.absorption_form != "rgb", absorption_scale=TABLE_SCALE,
                       e_filtering=eff.filtering, pixel_angle=2.0 * math.tan(math.radians(cam.fov) / 2) / self.height,
-                      slope_cov_all=(slope_covariance(scene.water, scene.length, scene.surroundings == "tile")
+                      slope_cov_all=(covariance_given_back(scene.water, scene.length, scene.surroundings)
                                      if eff.filtering else (0.0, 0.0, 0.0)))
         for name, v in values.items():
             if name not in p:

@@ -213,8 +213,9 @@ class Effects:
     filtering : bool
         Distance filtering of the water's normals (:mod:`optics.rendering.filtering`): a pixel is
         shaded with the distribution of slopes its footprint covers, read from a pyramid of slope
-        moments (off: the one normal at its centre, which aliases far away). Near the eye, where a
-        pixel covers less than a texel, the picture is the same either way. Last of the fields, so
+        moments (off: the one normal at its centre, which aliases far away). Where a pixel covers less
+        than a texel inside the waves' fade (``NEAR_TILES``) and its normal faces the eye, the picture
+        is the same either way. Last of the fields, so
         that positional calls written before it keep their meaning.
     """
 

@@ -110,9 +110,10 @@ def test_near_pixels_are_drawn_as_without_filtering():
     t, hit, which = march(s, o, d, 0, 256, 10)
     lod, _, taps = footprint(np.where(hit, t, 0.0), d, 2 * math.tan(math.radians(s.camera.fov) / 2) / H,
                              s.length / 128)
-    near = (hit & (lod <= -0.1) & (taps == 1)).reshape(H, W)
-    far = (hit & (lod > 1)).reshape(H, W)
-    assert near.sum() > 1000 and far.sum() > 300
+    water = hit & (which == 1)
+    near = (water & (lod <= -0.1) & (taps == 1)).reshape(H, W)
+    far = (water & (lod > 0.5)).reshape(H, W)
+    assert near.sum() > 1000 and far.sum() > 80
     on_ref, off_ref = trace(s, W, H), trace(off, W, H)
     np.testing.assert_array_equal(on_ref[near], off_ref[near])
     assert np.abs(on_ref[far] - off_ref[far]).max() > 0.02  # and it does act far away

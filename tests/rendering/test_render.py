@@ -43,7 +43,7 @@ def renderer():
 
 
 @pytest.mark.parametrize("name", ["pool", "storm"])  # a walled pool and an open sea to the horizon
-@pytest.mark.parametrize("off", EFFECTS + ("foam",))
+@pytest.mark.parametrize("off", EFFECTS + ("foam", "filtering"))  # filtering off: the unfiltered path
 def test_gpu_matches_reference_with_each_effect_off(renderer, name, off):
     s = _scene(name, 64).with_effects(**{off: False})
     with Renderer(W // 2, H // 2) as small:
