@@ -16,9 +16,9 @@ with the *distribution* of slopes its footprint covers (docs/physics.md §2.6).
   variance they lose is given back as the whole square's slope covariance (:func:`fade_moments`),
   and the flat far field carries that covariance too: distant water keeps its average roughness.
   Extended water (its border continued) gets none back (:func:`covariance_given_back`).
-- The pyramid halves while both sides are even: water of odd side (129²) has level 0 alone and is
-  not filtered beyond the fade; 100² stops at 25² (4 × 4 texels), beyond which far pixels still
-  alias. Power-of-two water, as every built-in scene has, is filtered to one texel.
+- The pyramid halves each side to ⌊n/2⌋ down to one texel, as GL's mip maps do: an odd side's
+  last texel averages three, so the levels of odd-sized water (129², a node-centred grid) sit up to
+  a texel of their level off the level-0 texels they average.
 - The shading is averaged over the slope distribution at four sigma points (the unscented
   transform, which keeps its mean and covariance: :func:`sigma_slopes`), each weighted by the
   facet's projected area towards the eye (Smith's visible normals, without shadowing): the
@@ -87,8 +87,9 @@ def slope_moments(water, length: float, wrap: bool = False) -> list:
     Returns
     -------
     list of numpy.ndarray
-        Level k: float32 (ny / 2^k, nx / 2^k, 5) holding the means of gx, gy, gx², gy², gx·gy
-        (slopes dimensionless) over its texels; levels while both sides stay even (level 0 always).
+        Level k: float32 (max(1, ⌊ny / 2^k⌋), max(1, ⌊nx / 2^k⌋), 5) holding the means of gx, gy, gx², gy²,
+        gx·gy (slopes dimensionless) over its texels, down to one texel (the sides of GL's mip maps; an odd
+        side's last texel averages three of the level below).
 
     References
     ----------
@@ -101,10 +102,23 @@ def slope_moments(water, length: float, wrap: bool = False) -> list:
     gx, gy = _slopes(water, float(length), wrap)
     level = np.stack([gx, gy, gx * gx, gy * gy, gx * gy], axis=-1)
     levels = [level]
-    while level.shape[0] % 2 == 0 and level.shape[1] % 2 == 0 and min(level.shape[:2]) > 1:
-        level = 0.25 * (level[0::2, 0::2] + level[1::2, 0::2] + level[0::2, 1::2] + level[1::2, 1::2])
+    while max(level.shape[:2]) > 1:
+        level = _halve(_halve(level, 0), 1)
         levels.append(level)
     return [np.ascontiguousarray(v, np.float32) for v in levels]
+
+
+def _halve(level, axis):
+    """One level coarser along ``axis``: n → ⌊n/2⌋ texels, each the mean of two, the last of an odd side the
+    mean of three (as GL's mip maps of odd sizes); a side of one texel stays."""
+    n = level.shape[axis]
+    if n == 1:
+        return level
+    a = np.moveaxis(level, axis, 0)
+    half = 0.5 * (a[0:n - 1:2] + a[1:n:2])[: n // 2]
+    if n % 2:
+        half[-1] = (a[n - 3] + a[n - 2] + a[n - 1]) / 3.0
+    return np.moveaxis(half, 0, axis)
 
 
 def covariance_of(moments):

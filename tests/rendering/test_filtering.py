@@ -9,7 +9,7 @@ import pytest
 
 from optics.rendering.filtering import (FACING, MAX_TAPS, covariance_of, facing_normal, footprint, sigma_slopes,
                                         slope_covariance, slope_moments)
-from optics.rendering.reference import _water_slope, march, ray_directions, trace
+from optics.rendering.reference import _water_slope, march, psnr, ray_directions, trace
 from optics.rendering.renderer import Renderer
 from optics.rendering.scene import Scene, look_at
 
@@ -19,19 +19,29 @@ from test_render import _scene  # the built-in scenes, built once per session
 @pytest.mark.parametrize("seed", range(4))
 @pytest.mark.parametrize("wrap", [False, True])
 def test_each_level_holds_the_mean_moments_of_its_texels(seed, wrap):
+    """Level k averages the 2^k × 2^k texels under it where the sides divide; odd sides halve to ⌊n/2⌋ as GL's
+    mip maps do, down to one texel, every level a mean (inside the range of level 0, second moments at least
+    the squares of the means)."""
     rng = np.random.default_rng(seed)
-    ny, nx = rng.choice([16, 32, 48], 2)
+    ny, nx = rng.choice([16, 32, 48, 33, 47, 100, 129], 2)
     L = float(rng.uniform(2.0, 50.0))
     h = rng.normal(0, rng.uniform(0.01, 1.0), (ny, nx))
     levels = slope_moments(h, L, wrap)
     base = levels[0].astype(np.float64)
     gx, gy = base[..., 0], base[..., 1]
     np.testing.assert_allclose(base[..., 2:], np.stack([gx * gx, gy * gy, gx * gy], -1), rtol=1e-6, atol=1e-12)
-    assert len(levels) == 1 + min(int(math.log2(ny & -ny)), int(math.log2(nx & -nx)))  # while both sides are even
+    assert len(levels) == 1 + int(math.log2(max(ny, nx)))  # down to one texel
+    lo, hi = base.reshape(-1, 5).min(0), base.reshape(-1, 5).max(0)
+    scale = np.abs(base).max()
     for k, level in enumerate(levels[1:], 1):
+        assert level.shape[:2] == (max(1, ny >> k), max(1, nx >> k))
+        assert (level >= lo - 1e-6 * scale).all() and (level <= hi + 1e-6 * scale).all()
+        assert (level[..., 2] >= level[..., 0] ** 2 * (1 - 1e-5)).all()
+        assert (level[..., 3] >= level[..., 1] ** 2 * (1 - 1e-5)).all()
         b = 2 ** k
-        blocks = base.reshape(ny // b, b, nx // b, b, 5).mean(axis=(1, 3))
-        np.testing.assert_allclose(level, blocks, rtol=1e-5, atol=1e-7 * np.abs(base).max())
+        if ny % b == 0 and nx % b == 0:
+            blocks = base.reshape(ny // b, b, nx // b, b, 5).mean(axis=(1, 3))
+            np.testing.assert_allclose(level, blocks, rtol=1e-5, atol=1e-7 * scale)
     np.testing.assert_allclose(slope_covariance(h, L, wrap), covariance_of(base.reshape(-1, 5).mean(0)), rtol=1e-5)
 
 
@@ -152,3 +162,23 @@ def test_filtered_frames_are_nearer_the_supersampled_truth_in_every_far_band(yaw
         assert rows["on"][band]["rms"] < rows["off"][band]["rms"], band
         if band[0] >= BANDS[4][0]:
             assert rows["on"][band]["rms"] < rows["off"][band]["rms"] / 3, band
+
+
+@pytest.mark.parametrize("shape", [(67, 130)])  # odd and oblong at once
+def test_odd_and_oblong_water_is_filtered_alike_on_the_gpu(shape):
+    """Water of odd and unequal sides (the pyramid's ⌊n/2⌋ levels, rectangular texels) tiled to the horizon: the
+    GPU draws the filtered frame as the reference does, and the filtering acts."""
+    ny, nx = shape
+    L = 20.0
+    y, x = (np.arange(ny) + 0.5) / ny * L - L / 2, (np.arange(nx) + 0.5) / nx * L - L / 2
+    X, Y = np.meshgrid(x, y)
+    rng = np.random.default_rng(ny)
+    water = sum(a * np.sin(2 * np.pi * (kx * X + ky * Y) / L + p) for a, kx, ky, p in
+                zip(rng.uniform(0.05, 0.2, 6), rng.integers(-6, 7, 6), rng.integers(1, 7, 6), rng.uniform(0, 6, 6)))
+    s = Scene(np.full((8, 8), -4.0, np.float32), water.astype(np.float32), L,
+              look_at((0.0, -L / 2, 2.5), (0.0, 2 * L, -1.0), 60.0), surroundings="tile")
+    with Renderer(80, 60) as r:
+        image = r.render(s)
+        unfiltered = r.render(s.with_effects(filtering=False))
+    assert psnr(image, trace(s, 80, 60)) >= 100.0
+    assert psnr(image, unfiltered) < 50.0
