@@ -14,6 +14,29 @@ if "JAX_COMPILATION_CACHE_DIR" not in os.environ:
     os.environ.setdefault("JAX_PERSISTENT_CACHE_MIN_COMPILE_TIME_SECS", "0")
     atexit.register(shutil.rmtree, _cache, ignore_errors=True)
 
+# XLA's CPU code generator: its older per-operation emitters compile each program about twice as fast as
+# the default MLIR fusion emitters (measured with jaxlib 0.10.2: a new shape of a two-operation formula
+# 52 ms against 89; tests/caustics/test_caustics.py and tests/surfaces/test_surfaces.py 92 s against 123
+# on 2 cores), and most of this suite's time is compiling. The programs compute the same formulas (their
+# summation order may differ, within rounding). Set once for the session, and inherited like the cache,
+# where this jaxlib knows the flag (an unknown XLA flag aborts the process, so a child probes it first);
+# WAVEPHYS_TESTS_XLA_DEFAULTS=1 keeps XLA's defaults (.ci/run's slow runs use them).
+_EMITTERS = "--xla_cpu_use_fusion_emitters=false"
+if (os.environ.get("WAVEPHYS_TESTS_XLA_DEFAULTS", "") in ("", "0")
+        and "xla_cpu_use_fusion_emitters" not in os.environ.get("XLA_FLAGS", "")):
+    import subprocess
+    import sys
+
+    _flags = (os.environ.get("XLA_FLAGS", "") + " " + _EMITTERS).strip()
+    try:
+        _probe = subprocess.run([sys.executable, "-c", "import jax.numpy as j; j.ones(1).block_until_ready()"],
+                                env=dict(os.environ, XLA_FLAGS=_flags, JAX_PLATFORMS="cpu"),
+                                capture_output=True, timeout=120)
+        if _probe.returncode == 0:
+            os.environ["XLA_FLAGS"] = _flags
+    except (OSError, subprocess.TimeoutExpired):
+        pass
+
 import jax  # noqa: E402  (after the cache settings, which JAX reads when imported)
 import pytest  # noqa: E402
 

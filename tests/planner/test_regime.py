@@ -56,8 +56,10 @@ def test_shallow_water_is_refused_where_its_dispersion_exceeds_the_tolerance_and
 @pytest.mark.parametrize("amplitude", [0.02, pytest.param(0.05, marks=pytest.mark.slow), 0.1])
 def test_the_linear_models_amplitude_bound_against_the_nonlinear_solver(amplitude):
     """A long hump (kh ≈ 0.03) of amplitude a on 1 m: the nonlinear solver's crest runs ahead of √(gh) by about
-    3a/(2h) (the simple wave), which the linear model neglects: measured within 25 % of 3a/2h and not above it
-    by more than 10 %."""
+    3a/(2h) (the simple wave: 3√(1 + a/h) − 3, 3a/2h − 3a²/8h²), which the linear model neglects: measured
+    within 10 % of 3a/2h and not above it (95–96 % at a = 0.02–0.1). The crest is the vertex of a parabola
+    fitted to the cells within 2 % of the amplitude of the top: the top is flat to float32's rounding over
+    several cells, so its largest cell moved by one cell (0.004 in the speed-up) with XLA's code generator."""
     from wavephys.simulation.shallow_water import ShallowWater, sw_run, sw_state
 
     n, dx = 2000, 0.05
@@ -69,11 +71,14 @@ def test_the_linear_models_amplitude_bound_against_the_nonlinear_solver(amplitud
     state = sw_state(bed, eta[None], u=u[None])
     t = 4.0
     end, _ = sw_run(ShallowWater(dx, sides="open"), bed, state, until=t)
-    crest = x[np.argmax(np.asarray(end.fields[0, 0]))]
+    h = np.asarray(end.fields[0, 0], np.float64) - 1.0
+    top = h > h.max() - 0.02 * amplitude
+    curve, slope, _ = np.polyfit(x[top] - 20, h[top], 2)
+    crest = 20 - slope / (2 * curve)
     speedup = (crest - 20) / t / c - 1
     bound = linear_error(CoastalScene(depth=(1.0, 1.0), wave_height=2 * amplitude, wavelength=(200.0, 200.0),
                                       extent=400.0))
-    assert 0.75 * bound < speedup < 1.1 * bound, (speedup, bound)
+    assert 0.9 * bound < speedup <= bound, (speedup, bound)
 
 
 def test_choices_on_scenes_of_each_kind():

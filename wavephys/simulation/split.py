@@ -64,6 +64,7 @@ import numpy as np
 
 from wavephys.core.aliases import deprecated_function
 from wavephys.core.inputs import check_array, check_instance, check_int, check_scalar, is_traced
+from wavephys.core.pytree import register
 from wavephys.core.water import Water
 from wavephys.physics.depth import depth_weights
 from wavephys.physics.dispersion import angular_frequency
@@ -122,8 +123,14 @@ class MovingPressure:
             if p is not None:
                 check_scalar("period", p, lo=0.0, lo_open=True)
         u, v = self.velocity
-        speed = math.hypot(u, v)
-        cx, cy = (u / speed, v / speed) if speed > 0 else (1.0, 0.0)
+        if is_traced((u, v)):  # the patch's settings traced (a compiled split: one program for every boat)
+            speed = jnp.hypot(u, v)
+            moving = speed > 0
+            cx = jnp.where(moving, u / jnp.where(moving, speed, 1.0), 1.0)
+            cy = jnp.where(moving, v / jnp.where(moving, speed, 1.0), 0.0)
+        else:
+            speed = math.hypot(u, v)
+            cx, cy = (u / speed, v / speed) if speed > 0 else (1.0, 0.0)
         dx = x - (self.start[0] + u * t)
         dy = y - (self.start[1] + v * t)
         if period[0] is not None:
@@ -137,7 +144,8 @@ class MovingPressure:
 
 @dataclass(frozen=True)
 class Split:
-    """The split model's settings (static under ``jit``).
+    """The split model's settings (a pytree: its numbers are leaves, traced under ``jit``, so one compiled
+    program serves every split of one grid shape, side kinds, order and number of levels).
 
     Parameters
     ----------
@@ -216,6 +224,10 @@ class Split:
         return Water(g=self.solver.g, rho=self.rho, sigma=self.sigma, depth=self.levels[-1])
 
 
+register(MovingPressure, ("start", "velocity", "head", "length", "beam"))
+register(Split, ("solver", "levels", "bulk_length", "taper", "sigma", "rho", "pressure"))
+
+
 # -- the spectral side: mirror images for walls, Fourier series for periodic axes --------------
 def _extend(f, axis, odd):
     """f and its mirror image across the wall after the last cell (odd: with the sign flipped)."""
@@ -241,10 +253,19 @@ def _from_spectrum(split, spec, shape):
     return jnp.fft.irfft2(spec, s=full)[..., :ny, :nx]
 
 
-@functools.lru_cache(maxsize=16)
 def _tables(split: Split, shape):
     """On the (extended) grid's half spectrum: |k|, the unit vector k/|k|, the bulk's Gaussian, and the exact ω at
-    each level, (J, my, mx//2 + 1), all as numpy float64."""
+    each level, (J, my, mx//2 + 1); then √ of the levels after a dry one, (J + 1,): all numpy float64, made on
+    the host from a concrete ``split`` and handed to the compiled step as arrays (:class:`SplitStepper`)."""
+    if is_traced(split):
+        raise TypeError("split: the split's spectral tables are made from its concrete numbers, so a Split cannot "
+                        "be traced (an argument of jax.jit or jax.vmap); close over it instead (the step is "
+                        "compiled with its numbers traced all the same: one program serves every split)")
+    return _host_tables(split, tuple(shape))
+
+
+@functools.lru_cache(maxsize=16)
+def _host_tables(split: Split, shape):
     ny, nx = shape
     dx = split.solver.dx
     my = 2 * ny if split.solver.sides[2] == "wall" else ny
@@ -259,7 +280,8 @@ def _tables(split: Split, shape):
         for h in split.levels:
             water = Water(g=split.solver.g, rho=split.rho, sigma=split.sigma, depth=h)
             omegas.append(np.asarray(angular_frequency(jnp.asarray(k, jnp.float64), water)))
-    return k, np.broadcast_to(kx / safe, k.shape), np.broadcast_to(ky / safe, k.shape), gauss, np.stack(omegas)
+    roots = np.sqrt(np.concatenate([[0.0], split.levels]))
+    return k, np.broadcast_to(kx / safe, k.shape), np.broadcast_to(ky / safe, k.shape), gauss, np.stack(omegas), roots
 
 
 def _taper(split, h):
@@ -268,12 +290,12 @@ def _taper(split, h):
     return t * t * (3 - 2 * t)
 
 
-def _separate(split, bed, fields):
+def _separate(split, bed, fields, tables):
     """Step 1: the surface waves x̃ = w (x − x̄), the smoothed x̄ (over the water; x itself where there is none),
-    the taper w and η_ref."""
+    the taper w and η_ref (``tables``: :func:`_tables`)."""
     h = fields[0]
     shape = h.shape
-    _, _, _, gauss, _ = _tables(split, tuple(shape))
+    gauss = tables[3]
     gauss = jnp.asarray(gauss, h.dtype)
     w = _taper(split, h)
     eta = h + bed
@@ -292,13 +314,13 @@ def _separate(split, bed, fields):
     return surf, bar, w, ref
 
 
-def _advance_surface(split, waves, depth, dt):
+def _advance_surface(split, waves, depth, dt, tables):
     """B x: the exact operator Aⱼ of each level, blended by ``depth`` (the bulk's, m) as T⁻¹ E Σⱼ √Wⱼ Aⱼ √Wⱼ E T x
     (3, ny, nx): T turns q into p = q/m (m = √h), the weights Wⱼ are linear in √h (so Σⱼ Wⱼ √hⱼ = m), Aⱼ reads
     p as q/√hⱼ, and E = exp(CΔt/2) puts the blend's long-wave slope terms right (:func:`_slope_turn`)."""
     shape = waves.shape[1:]
     dtype = waves.dtype
-    k, ux, uy, _, omegas = _tables(split, tuple(shape))
+    k, ux, uy, gauss, omegas, level_roots = tables
     k = jnp.asarray(k, dtype)
     ux, uy = jnp.asarray(ux, dtype), jnp.asarray(uy, dtype)
     omegas = jnp.asarray(omegas, dtype)
@@ -315,20 +337,20 @@ def _advance_surface(split, waves, depth, dt):
         ql_n = ql * c - 1j * w_over_k * s * eta
         return eta_n, qx + (ql_n - ql) * ux, qy + (ql_n - ql) * uy
 
-    levels = np.asarray(split.levels)
+    level_roots = jnp.asarray(level_roots, dtype)
     # a dry level first (depth 0, its operator the identity), so that Σⱼ Wⱼ √hⱼ = √h down to no water at all
-    roots = _root(depth_weights(_root(depth), np.sqrt(np.concatenate([[0.0], levels]))).astype(dtype))
-    scale = _root(jnp.clip(depth, 0.0, levels[-1])).astype(dtype)  # m = Σⱼ Wⱼ √hⱼ, exactly
+    roots = _root(depth_weights(_root(depth), level_roots).astype(dtype))
+    scale = _root(jnp.clip(depth, 0.0, split.levels[-1])).astype(dtype)  # m = Σⱼ Wⱼ √hⱼ, exactly
     some = scale > 0
     p = waves.at[1:].set(jnp.where(some, waves[1:] / jnp.where(some, scale, 1.0), 0.0))
     # the correction's slope from m smoothed over the bulk length: from m itself, over beds that change within a
     # cell, it grew a lake at rest with an island from 1e-12 to 1 m in 2000 steps (2-D, float64; measured)
-    gauss = jnp.asarray(_tables(split, tuple(shape))[3], dtype)
+    gauss = jnp.asarray(gauss, dtype)
     turn = _slope_turn(split, _from_spectrum(split, gauss * _to_spectrum(split, scale), shape), dt)
     p = turn(p)
     out = roots[0] ** 2 * p
     for j in range(len(split.levels)):
-        lift = jnp.asarray([1.0, math.sqrt(levels[j]), math.sqrt(levels[j])], dtype)[:, None, None]
+        lift = jnp.stack([jnp.ones((), dtype), level_roots[j + 1], level_roots[j + 1]])[:, None, None]
         root = roots[j + 1]
         spec = evolve([_to_spectrum(split, root * lift[i] * p[i], *odd[i]) for i in range(3)], omegas[j])
         out = out + root * jnp.stack([_from_spectrum(split, spec[i], shape) for i in range(3)]) / lift
@@ -355,7 +377,7 @@ def _slope_turn(split, scale, dt):
     some = size > 0
     ux = jnp.where(some, ax / jnp.where(some, size, 1.0), 0.0)
     uy = jnp.where(some, ay / jnp.where(some, size, 1.0), 0.0)
-    root_g = math.sqrt(split.solver.g)
+    root_g = jnp.sqrt(split.solver.g)
     angle = 0.25 * size * root_g * dt
     c, s = jnp.cos(angle), jnp.sin(angle)
 
@@ -388,7 +410,7 @@ def _central(f, axis, periodic):
 def _force(split, bed, fields, t, dt):
     """The moving pressure's push on the discharges, −h ∇(p/ρ) Δt (central differences)."""
     p = split.pressure
-    if p is None or p.head == 0:
+    if p is None:
         return fields
     ny, nx = fields.shape[1:]
     dx = split.solver.dx
@@ -403,16 +425,17 @@ def _force(split, bed, fields, t, dt):
     return jnp.stack([h, fields[1] - dt * g * h * gx, fields[2] - dt * g * h * gy])
 
 
-def _split_advance(split, bed, fields, t, dt, solver=None):
-    """One step of the split (module doc, steps 1–3); ``solver``: ``split.solver`` as an argument of the compiled
-    program (traced: the bulk solver's constants folded into the program make its step ×27 slower)."""
-    solver = split.solver if solver is None else solver
+def _split_advance(split, bed, fields, t, dt, tables):
+    """One step of the split (module doc, steps 1–3), ``split`` an argument of the compiled program (traced: the
+    bulk solver's constants folded into the program make its step ×27 slower, and every split of one structure
+    shares the program); ``tables``: :func:`_tables`."""
+    solver = split.solver
     fields = _force(split, bed, fields, t, dt)
-    surf, bar, w, ref = _separate(split, bed, fields)
+    surf, bar, w, ref = _separate(split, bed, fields, tables)
     bulk = fields - surf
     bulk_new = advance_fields(solver, bed, bulk, t, dt)
     bulk_depth = jnp.maximum(bar[0] + ref - bed, 0.0)
-    inc = _advance_surface(split, surf + w * bar, bulk_depth, dt) - _bulk_linear(solver, bed, bulk_depth, w * bar, t, dt)
+    inc = _advance_surface(split, surf + w * bar, bulk_depth, dt, tables) - _bulk_linear(solver, bed, bulk_depth, w * bar, t, dt)
     # the increment lands whole on every wet cell: the taper already chose the surface waves in step 1, and
     # weighting the increment by it again took w(1 − w)(x − x̄) from the water each step where it fades, which
     # destroyed Lamb's standing wave on a beach within a period (measured: amplitude left 5e-4 after three;
@@ -471,7 +494,7 @@ def split_parts(split: Split, bed, state: SWState):
     (jax.Array, jax.Array)
     """
     b = _checked(split, bed, state)
-    surf = _separate(split, b, state.fields)[0]
+    surf = _separate(split, b, state.fields, _tables(split, tuple(np.shape(b))))[0]
     return state.fields - surf, surf
 
 
@@ -481,12 +504,12 @@ def _split_dt(split, fields):
     solver = split.solver
     c = 2 * jnp.sqrt(solver.g * jnp.max(fields[0]))
     if split.pressure is not None:
-        c = c + math.hypot(*split.pressure.velocity)
+        c = c + jnp.hypot(*split.pressure.velocity)
     cap = jnp.where(c > 0, solver.cfl * solver.dx / jnp.where(c > 0, c, 1.0), jnp.inf)
     return jnp.minimum(stable_dt_fields(solver, fields), cap)
 
 
-@functools.partial(jax.jit, static_argnums=0)
+@jax.jit
 def _limit_program(split, fields):
     return _split_dt(split, fields) / split.solver.cfl
 
@@ -666,7 +689,7 @@ class SplitStepper(ShallowWaterStepper):
         return state
 
     def _parts(self):
-        return self.split, (self.split.solver, jnp.asarray(self.bed))
+        return None, (self.split, jnp.asarray(self.bed), _tables(self.split, self.bed.shape))
 
     def _limit(self, state):
         return float(_limit_program(self.split, state.fields))
@@ -690,13 +713,13 @@ class SplitStepper(ShallowWaterStepper):
 
     @classmethod
     def _advance(cls, static, dynamic, state, dt):
-        solver, bed = dynamic
-        fields = _split_advance(static, bed.astype(state.fields.dtype), state.fields, state.time, dt, solver)
+        split, bed, tables = dynamic
+        fields = _split_advance(split, bed.astype(state.fields.dtype), state.fields, state.time, dt, tables)
         return type(state)(fields, state.time + dt)
 
     @classmethod
     def _dt(cls, static, dynamic, state):
-        return _split_dt(static, state.fields)
+        return _split_dt(dynamic[0], state.fields)
 
     @classmethod
     def _height(cls, static, dynamic, state):
