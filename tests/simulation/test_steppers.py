@@ -510,6 +510,28 @@ def _bad_input_cases():
     }
 
 
+def test_no_stepper_compiles_its_numbers_into_its_program():
+    """Every stepper's static half (what selects a compiled program) holds no number: its settings are traced,
+    so runs that differ only in numbers share one program (docs/architecture.md, Tests)."""
+    import dataclasses
+
+    def numbers(v):  # every float inside, through containers and dataclasses (a static dataclass is one leaf)
+        if isinstance(v, (float, np.floating)):
+            return [v]
+        if dataclasses.is_dataclass(v) and not isinstance(v, type):
+            return [x for f in dataclasses.fields(v) for x in numbers(getattr(v, f.name))]
+        if isinstance(v, dict):
+            return [x for item in v.values() for x in numbers(item)]
+        if isinstance(v, (tuple, list)):
+            return [x for item in v for x in numbers(item)]
+        return []
+
+    for name, (stepper, _) in _bad_input_cases().items():
+        static, dynamic = stepper._parts()
+        assert not [x for leaf in jax.tree_util.tree_leaves(static) for x in numbers(leaf)], (name, static)
+        assert jax.tree_util.tree_leaves(dynamic), name
+
+
 @pytest.mark.parametrize("name", sorted(STEPPERS))
 def test_bad_inputs_to_the_interface_are_refused_by_name(name):
     """Each method refuses a wrong kind (TypeError) or value (ValueError) naming the parameter, before any
