@@ -252,28 +252,31 @@ def test_split_step_is_pure_under_jit_and_vmap():
 
 
 def test_splits_of_one_structure_share_one_program_and_keep_their_own_numbers():
-    """The split's numbers are traced: splits differing in depth, levels, bulk length, taper and boat (but not in
-    grid, sides, order, number of levels or having a boat) run one compiled loop, and each its own numbers (the
-    second differs from the first, and a new stepper for the first gives the first's frames bit for bit); a Split
-    itself traced is refused by name."""
+    """The split's numbers are traced: splits differing in depth, levels, bulk length, taper, g and ρ (but not in
+    grid, sides, order, number of levels or having a boat) run one compiled loop (here the one the test above
+    compiles), and each its own numbers (the second differs from the first, and a new stepper for the first gives
+    the first's frames bit for bit); a boat's numbers are leaves too, and its pressure is the same traced; a
+    Split itself traced is refused by name."""
     from wavephys.core import stepper as core
 
-    n = 24
-    x = (np.arange(n) + 0.5) * 0.1
-    bed = np.broadcast_to(-0.4 - 0.4 * x / x[-1], (3, n)).copy()  # (3, 24): a shape no other test steps
-    state = sw_state(bed, np.broadcast_to(1e-3 * np.cos(2 * np.pi * x / 1.2), (3, n)).copy())
-    boat = MovingPressure(start=(0.5, 0.15), velocity=(0.4, 0.0), head=0.01, length=0.3, beam=0.1)
-    other = MovingPressure(start=(1.0, 0.15), velocity=(0.0, 0.2), head=0.02, length=0.2, beam=0.2)
-    first = Split(ShallowWater(0.1, sides="wall"), levels=(0.4, 0.8), pressure=boat)
-    second = Split(ShallowWater(0.12, g=9.7, sides="wall"), levels=(0.3, 1.0), bulk_length=1.2,
-                   taper=(0.05, 0.3), rho=1025.0, pressure=other)
+    bed = np.full((1, 64), -1.0)
+    x = (np.arange(64) + 0.5) * 0.1
+    state = sw_state(bed, 1e-3 * np.cos(2 * np.pi * x / 3.2)[None])
+    first = Split(ShallowWater(0.1, sides="periodic"), levels=(1.0,))
+    second = Split(ShallowWater(0.1, g=9.7, sides="periodic"), levels=(1.3,), bulk_length=1.2, taper=(0.3, 1.3),
+                   rho=1025.0)
     a = SplitStepper(first, bed).run(state, steps=6, every=3)
     size = core._loop_program._cache_size()
     b = SplitStepper(second, bed).run(state, steps=6, every=3)
     assert core._loop_program._cache_size() == size  # no new program
-    assert float(np.abs(np.asarray(b.frames) - np.asarray(a.frames)).max()) > 1e-6
+    assert float(np.abs(np.asarray(b.frames) - np.asarray(a.frames)).max()) > 1e-7
     again = SplitStepper(first, bed).run(state, steps=6, every=3)
     np.testing.assert_array_equal(np.asarray(again.frames), np.asarray(a.frames))
+    boat = MovingPressure(start=(0.5, 0.15), velocity=(0.4, -0.3), head=0.01, length=0.3, beam=0.1)
+    assert set(jax.tree_util.tree_leaves(boat)) == {0.5, 0.15, 0.4, -0.3, 0.01, 0.3, 0.1}
+    xs, ys = jnp.meshgrid(jnp.linspace(0.0, 2.0, 9), jnp.linspace(0.0, 1.0, 5))
+    traced = jax.jit(lambda p, t: p.head_at(xs, ys, t))(boat, 0.7)
+    np.testing.assert_allclose(np.asarray(traced), np.asarray(boat.head_at(xs, ys, 0.7)), rtol=1e-6, atol=1e-9)
     with pytest.raises(TypeError, match="split"):
         jax.jit(lambda sp: split_parts(sp, bed, state))(first)
 
