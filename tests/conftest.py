@@ -20,7 +20,8 @@ if "JAX_COMPILATION_CACHE_DIR" not in os.environ:
 # on 2 cores), and most of this suite's time is compiling. The programs compute the same formulas (their
 # summation order may differ, within rounding). Set once for the session, and inherited like the cache,
 # where this jaxlib knows the flag (an unknown XLA flag aborts the process, so a child probes it first);
-# WAVEPHYS_TESTS_XLA_DEFAULTS=1 keeps XLA's defaults (.ci/run's slow runs use them).
+# WAVEPHYS_TESTS_XLA_DEFAULTS=1 keeps XLA's defaults (.ci/run's slow runs use them). The child probes on the
+# CPU (the flag is the CPU generator's; a GPU plugin is released with its jaxlib and parses the same flags).
 _EMITTERS = "--xla_cpu_use_fusion_emitters=false"
 if (os.environ.get("WAVEPHYS_TESTS_XLA_DEFAULTS", "") in ("", "0")
         and "xla_cpu_use_fusion_emitters" not in os.environ.get("XLA_FLAGS", "")):
@@ -34,8 +35,10 @@ if (os.environ.get("WAVEPHYS_TESTS_XLA_DEFAULTS", "") in ("", "0")
                                 capture_output=True, timeout=120)
         if _probe.returncode == 0:
             os.environ["XLA_FLAGS"] = _flags
+        else:
+            os.environ["WAVEPHYS_TESTS_XLA_DEFAULTS"] = "1"  # the workers need not try again
     except (OSError, subprocess.TimeoutExpired):
-        pass
+        os.environ["WAVEPHYS_TESTS_XLA_DEFAULTS"] = "1"
 
 import jax  # noqa: E402  (after the cache settings, which JAX reads when imported)
 import pytest  # noqa: E402

@@ -261,6 +261,8 @@ def _tables(split: Split, shape):
         raise TypeError("split: the split's spectral tables are made from its concrete numbers, so a Split cannot "
                         "be traced (an argument of jax.jit or jax.vmap); close over it instead (the step is "
                         "compiled with its numbers traced all the same: one program serves every split)")
+    # scalars held as arrays (a Split returned by a compiled function) hash as their numbers
+    split = jax.tree_util.tree_map(lambda v: float(v) if np.ndim(v) == 0 else v, split)
     return _host_tables(split, tuple(shape))
 
 
@@ -680,6 +682,7 @@ class SplitStepper(ShallowWaterStepper):
         check_instance("split", split, Split, "wavephys.simulation.split.Split")
         check_array("bed", bed, ndim=2)
         self.split, self.solver, self.bed, self.state_type = split, split.solver, _bed(bed), SWState
+        self._device_tables = {}
 
     def init(self, state):
         state = self._checked_state(state)
@@ -689,7 +692,11 @@ class SplitStepper(ShallowWaterStepper):
         return state
 
     def _parts(self):
-        return None, (self.split, jnp.asarray(self.bed), _tables(self.split, self.bed.shape))
+        # the tables on the device once per precision (a float64 table is float32 with x64 off), not per call
+        precision = jax.dtypes.canonicalize_dtype(np.float64)
+        if precision not in self._device_tables:
+            self._device_tables[precision] = jax.device_put(_tables(self.split, self.bed.shape))
+        return None, (self.split, jnp.asarray(self.bed), self._device_tables[precision])
 
     def _limit(self, state):
         return float(_limit_program(self.split, state.fields))
