@@ -46,6 +46,33 @@ import pytest  # noqa: E402
 pytest_plugins = ["pytester"]
 
 
+def _memory_mappings():
+    """(mappings this process holds, the most Linux allows one: ``vm.max_map_count``), or None off Linux."""
+    try:
+        with open("/proc/self/maps", "rb") as maps, open("/proc/sys/vm/max_map_count") as limit:
+            return maps.read().count(b"\n"), int(limit.read())
+    except (OSError, ValueError):
+        return None
+
+
+@pytest.fixture(autouse=True, scope="module")
+def _compiled_programs_released():
+    """Release JAX's compiled programs after a test module once the worker holds half the mappings it may.
+
+    Every compiled XLA:CPU program that JAX keeps holds memory mappings (3 for a small one, measured), never given
+    back while its jitted function lives, and Linux refuses a process more than ``vm.max_map_count`` (65530 by
+    default). A test worker compiles thousands of programs: in the README's run each worker ended holding about
+    30 000 mappings, and in the slow run one went past the limit, where LLVM cannot map a new program's code
+    ("Cannot allocate memory") and jaxlib 0.10.2 crashed the worker (SIGSEGV, while compiling or while writing the
+    program to the persistent cache; reproduced by filling the mappings by hand). ``jax.clear_caches()`` frees
+    them (1500 small programs: 5000 mappings back to 534); later modules recompile what they share, or read it
+    back from the persistent cache."""
+    yield
+    held = _memory_mappings()
+    if held is not None and held[0] > held[1] // 2:
+        jax.clear_caches()
+
+
 @pytest.fixture
 def x64():
     """Run the test body with float64 enabled (jax.enable_x64 context)."""
