@@ -306,6 +306,10 @@ def _coastal():
 _PIPES = {"pipes": lambda: __import__("wavephys.models.pipes", fromlist=["x"]).Pipes(0.1), "bed": _bed,
           "state": _pipes_state}
 
+_SPRAY = {"positions": lambda: np.zeros((4, 3)), "velocities": lambda: np.array([[1.0, 0.0, 2.0]] * 4),
+          "radius": lambda: 1e-3, "dt": lambda: 0.01, "wind": lambda: np.array([3.0, 0.0, 0.0]),
+          "law": lambda: "schiller_naumann", "air_density": lambda: 1.204, "air_viscosity": lambda: 1.81e-5,
+          "water_density": lambda: 1000.0, "reynolds": lambda: np.array([0.5, 50.0, 5000.0]), "speed": lambda: 2.0}
 OVERRIDES = {
     "wavephys.app.report.read_validation": {"path": _validation_json},
     "wavephys.core.frames.resolve_axes": {"shape": lambda: (24, 16, 16), "axes": lambda: "tyx"},
@@ -319,6 +323,10 @@ OVERRIDES = {
     "wavephys.physics.depth.mild_slope_transmission": {"omega": lambda: 2.0, "x": lambda: np.array([0.0, 5.0]),
                                                         "depth": lambda: np.array([1.0, 0.5])},
     "wavephys.physics.depth.shoaling_coefficient": {"omega": lambda: 2.0},
+    **{f"wavephys.physics.spray.{name}": {k: v for k, v in _SPRAY.items() if k in __import__("inspect").signature(
+        getattr(__import__("wavephys.physics.spray", fromlist=["x"]), name)).parameters} for name in (
+        "drag_coefficient_schiller_naumann", "drag_coefficient_newton", "drag_rate", "terminal_speed", "euler_stable_dt",
+        "drops_ballistic", "advance_drops_exponential", "advance_drops_euler", "advance_drops")},
     "wavephys.physics.depth.refraction_angle": {"omega": lambda: 2.0},
     "wavephys.physics.depth.lamb_beach": {"x": lambda: np.linspace(0.0, 5.0, 6), "omega": lambda: 2.0},
     "wavephys.physics.depth.depth_weights": {"depth": lambda: np.full((4, 4), 1.2)},
@@ -681,13 +689,14 @@ for cls in ("wavephys.physics.disturbances.Stones", "wavephys.physics.wind.WindS
 NONE_OK = {"axes", "wind", "colour_tolerance", "budget", "measured", "mesh", "devices", "resolution", "ship_patch", "damping", "camera", "progress", "limit", "environment", "albedo",
            "caustics", "count", "video", "speed", "columns", "mask", "iterations"}
 CHOICES = {"method", "kind", "mode", "cutoff", "spectrum", "illuminant", "gamut", "norm", "normals", "relation",
-           "name", "ship_method", "dtype", "walls"}
+           "name", "ship_method", "dtype", "walls", "law"}
 POSITIVE = {"dt", "dx", "spacing", "length", "n", "radius", "half", "factor", "size", "steps", "count", "frames",
             "ratio", "steepness", "wind_speed", "fetch", "amplitude", "wavenumber", "near", "far", "epsilon", "n1",
             "n2", "n_air", "n_water", "n_ratio", "width", "height", "bits", "fps", "resolution", "samples",
             "oversample", "photons_per_texel", "exponent", "tolerance", "max_depth", "repeats", "refine_steps",
             "g", "rho", "sigma_space", "sigma_range", "bandwidth", "threshold", "lo", "hi", "growth", "strength_abs",
-            "leak_tolerance", "max_distance", "ship_patch", "fov", "length_x", "length_y", "modes"}
+            "leak_tolerance", "max_distance", "ship_patch", "fov", "length_x", "length_y", "modes", "reynolds",
+            "air_density", "air_viscosity", "water_density"}
 NON_NEGATIVE = {"depth_m", "margin", "s", "omega_dt", "k", "omega", "distance", "coefficient", "coefficients",
                 "absorption", "sigma", "blur", "exclude", "filter_radius", "seed", "cos_theta", "alpha_abs",
                 "refine", "mode"}
@@ -695,7 +704,7 @@ SHAPED = {"eta", "eta_prev", "eta0", "eta1", "eta_dot", "eta_dot0", "eta_dot1", 
           "reference", "sun", "d", "eye", "target", "center", "start", "velocity", "light", "view", "stencil",
           "spectrum", "q", "lam_eta", "lam_q", "phi_hat", "chi_hat", "f0_hat", "f1_hat", "xy", "o", "p", "data",
           "mask", "albedo", "environment", "caustics", "ground", "water", "images", "wavevectors", "amplitudes",
-          "phases", "control", "displacement", "heights", "previous", "coverage", "sea"}
+          "phases", "control", "displacement", "heights", "previous", "coverage", "sea", "positions", "velocities"}
 # parameters whose shape variants are valid input: rectangular grids, RGBA images, single
 # channels, batches of points, elementwise functions
 SHAPE_FREE = {

@@ -10,7 +10,8 @@
 * :mod:`~wavephys.physics.forcing` — surface pressure forcing (a continuous source);
 * :mod:`~wavephys.physics.stokes` — exact Stokes waves (a reference);
 * :mod:`~wavephys.physics.ship_waves` — Loviscach's Φ1/Φ2 ship kernels, hulls, paths, ships;
-* :mod:`~wavephys.physics.wake` — steady wakes of pressure sources, Kelvin's angle, cusp lines.
+* :mod:`~wavephys.physics.wake` — steady wakes of pressure sources, Kelvin's angle, cusp lines;
+* :mod:`~wavephys.physics.spray` — spray drops in flight: gravity and the air's drag, two steps.
 
 Everything here is a pure function of arrays and the :class:`~wavephys.Water`/
 :class:`~wavephys.Grid` pytrees; nothing here steps a simulation (that is
