@@ -5,8 +5,9 @@
 Drops of 0.05, 0.3 and 1.5 mm leave a crest at 6 m/s, up and upwind, into an 8 m/s wind, and fly until they
 fall back to the crest's height (or for 1.5 s). Each size is flown by the exponential step (``advance_drops``,
 the default), by the semi-implicit Euler step engines write, and by the drag ODE solved to 1e-8 (scipy); the
-figure shows the paths and the script prints each method's largest error along the flight. The finest drops turn with the wind within centimetres and Euler, at 60 Hz, cannot
-step them at all (it is refused: past its stable step, ``euler_stable_dt``).
+figure shows the paths and the script prints each method's largest error along the flight. The finest drops
+turn with the wind within centimetres, and Euler at 60 Hz cannot step them at all (it is refused: past its
+stable step, ``euler_stable_dt``).
 """
 
 from __future__ import annotations
@@ -81,6 +82,7 @@ def main(argv=None):
             path, refused = fly(radius, v0, wind, args.seconds, 60, method)
             if path is None:
                 print(f"r = {radius * 1e3:g} mm, {method}: {refused}")
+                ax.plot([], [], style, color=colour, lw=1.2, label=f"{method}, 60 Hz: refused (unstable)")
                 continue
             path = path[:landed]
             error = float(np.linalg.norm(path - truth, axis=1).max())

@@ -18,9 +18,9 @@ Two ways to step it (:data:`ADVANCE_DROPS`, the dispatcher :func:`advance_drops`
 
 * ``"exponential"`` (ours): the rate k frozen over the step and the rest exact — the linear ODE
   v̇ = g − k(v − w) integrated in closed form (φ-functions of z = k·Δt) — with k taken at the step's midpoint,
-  predicted by the same formula over Δt/2. Second order; for any Δt it stays finite and bounded (each step
-  relaxes towards w + g/k, never past it), though a step far longer than 1/k lands near, not on, the terminal
-  velocity.
+  predicted by the same formula over Δt/2. Second order; finite for any Δt (each step relaxes towards w + g/k
+  of its own frozen rate, never past it), though a step far longer than 1/k lands near, not on, the terminal
+  velocity, and one of seconds can overshoot it (docs/physics.md §1.16).
 * ``"euler"``: what engines write, v += Δt·(g − k(s)u), then x += Δt·v (semi-implicit Euler). First order;
   unstable past Δt = 2/λ, λ = d(k(s)s)/ds (:func:`euler_stable_dt`): fine drops (mist) at 30–60 Hz.
 
@@ -52,7 +52,7 @@ AIR_VISCOSITY = 1.81e-5
 NEWTON_DRAG = 0.44
 """A sphere's drag coefficient in the Newton regime (Re 10³–2·10⁵), dimensionless."""
 
-_SERIES_BELOW = 0.1  # z below which φ₁, φ₂ come from their series (the closed forms cancel in float32)
+_SERIES_BELOW = 0.1  # z below which φ₂ comes from its series (its closed form cancels in float32)
 _RE_FLOOR = 1e-30  # Re^0.687 is taken at least here (its derivative at rest is infinite; its limit is 0)
 
 
@@ -245,14 +245,17 @@ def euler_stable_dt(radius, speed=None, *, law="schiller_naumann", g=GRAVITY, ai
     check_array("speed", speed, lo=0.0)
     _check_air(law, air_density, air_viscosity, water_density)
     s, r = jnp.broadcast_arrays(jnp.asarray(speed, float), jnp.asarray(radius, float))
-    return _finite(_euler_limit(s, r, law, (air_density, air_viscosity, water_density)), "steps", radius=radius,
-                   speed=speed, g=g, air_density=air_density, air_viscosity=air_viscosity, water_density=water_density)
+    limit = _euler_limit(s, r, law, (air_density, air_viscosity, water_density))
+    _finite(jnp.where(jnp.isposinf(limit) & (s == 0), 0.0, limit), "steps", radius=radius, speed=speed, g=g,
+            air_density=air_density, air_viscosity=air_viscosity, water_density=water_density)
+    return limit
 
 
 def _euler_limit(s, r, law, air):
     """2/λ, λ = max(d(k(s)s)/ds, k(s)), elementwise (unchecked)."""
-    rate, slope = jax.jvp(lambda q: _rate(q, r, law, *air) * q, (s,), (jnp.ones_like(s),))
-    return 2.0 / jnp.maximum(slope, _rate(s, r, law, *air))
+    _, slope = jax.jvp(lambda q: _rate(q, r, law, *air) * q, (s,), (jnp.ones_like(s),))
+    lam = jnp.maximum(slope, _rate(s, r, law, *air))
+    return jnp.where(lam > 0, 2.0 / jnp.where(lam > 0, lam, 1.0), jnp.inf)  # no drag at all (constant C_d at rest)
 
 
 def _checked(positions, velocities, radius, wind, g, law, air):
@@ -282,11 +285,19 @@ def _checked(positions, velocities, radius, wind, g, law, air):
     if not fits:
         raise ValueError(f"radius must be one number or one per drop (shape {drops}), got shape {r.shape}")
     try:
-        jnp.broadcast_shapes(np.shape(wind), x.shape)
+        fits = jnp.broadcast_shapes(np.shape(wind), x.shape) == x.shape
     except ValueError:
-        raise ValueError(f"wind must be one velocity (3,) or one per drop {x.shape}, got shape {np.shape(wind)}") \
-            from None
+        fits = False
+    if not fits:
+        raise ValueError(f"wind must be one velocity (3,) or one per drop {x.shape}, got shape {np.shape(wind)}")
     return x.astype(dtype), jnp.asarray(velocities, dtype), r[..., None], jnp.asarray(wind, dtype), dtype
+
+
+def _speed(u):
+    """|u| over the last axis, kept (..., 1), with the gradient 0 (not NaN) where u = 0: a drop at rest in the air."""
+    squared = jnp.sum(u * u, axis=-1, keepdims=True)
+    moving = squared > 0
+    return jnp.where(moving, jnp.sqrt(jnp.where(moving, squared, 1.0)), 0.0)
 
 
 def _gravity(g, dtype):
@@ -319,10 +330,13 @@ def drops_ballistic(positions, velocities, t, *, g=GRAVITY):
 
 
 def _phi(z):
-    """φ₁(z) = (1 − e^{−z})/z and φ₂(z) = (z − 1 + e^{−z})/z², z ≥ 0 (series below 0.1: no cancellation)."""
+    """φ₁(z) = (1 − e^{−z})/z and φ₂(z) = (1 − φ₁)/z = (z − 1 + e^{−z})/z², z ≥ 0: φ₁ closed (expm1 does not cancel),
+    φ₂ by its series below z = 0.1, where 1 − φ₁ cancels (series error z⁵/5040)."""
+    positive = z > 0
+    zp = jnp.where(positive, z, 1.0)  # no 0/0, and no NaN gradient, at z = 0
+    phi1 = jnp.where(positive, -jnp.expm1(-zp) / zp, 1.0)
     small = z < _SERIES_BELOW
-    zs = jnp.where(small, 1.0, z)  # the closed forms only where z is not small (no 0/0 under grad)
-    phi1 = jnp.where(small, 1.0 - z / 2.0 + z * z / 6.0 - z ** 3 / 24.0 + z ** 4 / 120.0, -jnp.expm1(-zs) / zs)
+    zs = jnp.where(small, 1.0, z)
     phi2 = jnp.where(small, 0.5 - z / 6.0 + z * z / 24.0 - z ** 3 / 120.0 + z ** 4 / 720.0, (1.0 - phi1) / zs)
     return phi1, phi2
 
@@ -341,7 +355,8 @@ def advance_drops_exponential(positions, velocities, dt, *, radius, wind=(0.0, 0
                               water_density=DENSITY):
     """One step of flying drops, the drag's rate frozen at the step's midpoint and the rest exact (module doc).
 
-    Second order in Δt; finite and bounded for any Δt; the parabola when the drag vanishes.
+    Second order in Δt; finite for any Δt (steps of seconds land near, not on, the terminal velocity); the
+    parabola when the drag vanishes.
 
     Parameters
     ----------
@@ -371,7 +386,7 @@ def advance_drops_exponential(positions, velocities, dt, *, radius, wind=(0.0, 0
     a = _gravity(g, dtype)
 
     def rate(u):
-        return _rate(jnp.linalg.norm(u, axis=-1, keepdims=True), r, law, *air).astype(dtype)
+        return _rate(_speed(u), r, law, *air).astype(dtype)
 
     _, v_half = _frozen_drag_step(x, v, 0.5 * dt, rate(v - w), w, a)
     return _finite(_frozen_drag_step(x, v, dt, rate(v_half - w), w, a), "drops' positions or velocities",
@@ -384,9 +399,10 @@ def advance_drops_euler(positions, velocities, dt, *, radius, wind=(0.0, 0.0, 0.
                         water_density=DENSITY):
     """One semi-implicit Euler step, as engines write it: v += Δt·(g − k(s)(v − w)), then x += Δt·v.
 
-    First order; grows past :func:`euler_stable_dt` (module doc): a concrete ``dt`` past it for any of the
-    drops, at their present speed through the air, is refused (ValueError); under ``jit`` it is not checked and
-    the drops' velocities grow without bound.
+    First order; grows past :func:`euler_stable_dt` (module doc), which shrinks as a drop speeds up: a concrete
+    ``dt`` past it for any of the drops, at the faster of its speed through the air and its terminal speed (the
+    fastest it will fall), is refused (ValueError); under ``jit`` it is not checked, and the drops' velocities
+    grow without bound.
 
     Parameters
     ----------
@@ -414,14 +430,18 @@ def advance_drops_euler(positions, velocities, dt, *, radius, wind=(0.0, 0.0, 0.
     air = (air_density, air_viscosity, water_density)
     x, v, r, w, dtype = _checked(positions, velocities, radius, wind, g, law, air)
     u = v - w
-    speed = jnp.linalg.norm(u, axis=-1, keepdims=True)
-    if not any(map(is_traced, (x, v, r, w, dt))):
-        limit = float(jnp.min(_euler_limit(speed, jnp.broadcast_to(r, speed.shape), law, air)))
+    speed = _speed(u)
+    if not any(map(is_traced, (x, v, r, w, dt, g))):  # λ grows with the speed: the faster of now and terminal
+        fastest = jnp.maximum(speed, terminal_speed(jnp.broadcast_to(r, speed.shape), g=g, law=law,
+                                                    air_density=air_density, air_viscosity=air_viscosity,
+                                                    water_density=water_density))
+        limit = float(jnp.min(_euler_limit(fastest, jnp.broadcast_to(r, speed.shape), law, air)))
         if dt > limit:
-            raise ValueError(f"dt {dt} s is past the longest step Euler takes without growing for these drops at "
-                             f"their speeds through the air, {limit:.3g} s (2/λ: euler_stable_dt, set by their radius, "
-                             f"law={law!r}, air_density={air_density!r}, air_viscosity={air_viscosity!r}, "
-                             f"water_density={water_density!r}); use method='exponential', or shorter steps")
+            raise ValueError(f"dt {dt:.3g} s is past the longest step Euler takes without growing for these drops, "
+                             f"{limit:.3g} s (2/λ at their speed through the air or their terminal speed, whichever is "
+                             f"faster: euler_stable_dt, set by their radius, g={g!r}, law={law!r}, air_density="
+                             f"{air_density!r}, air_viscosity={air_viscosity!r}, water_density={water_density!r}); use "
+                             f"method='exponential', or shorter steps")
     k = _rate(speed, r, law, *air).astype(dtype)
     v_new = v + dt * (_gravity(g, dtype) - k * u)
     return _finite((x + dt * v_new, v_new), "drops' positions or velocities", positions=positions,
