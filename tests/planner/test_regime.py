@@ -26,9 +26,11 @@ def _scenes(seed, count):
                                                              for s, t in ((0, 0.02), (1, 0.005), (1, 0.02), (2, 0.005),
                                                                           (2, 0.02))])
 def test_the_chosen_model_keeps_its_speed_error_promise(seed, tolerance):
-    """On generated scenes, the chosen model run on the scene's own kh and cells per wavelength (small waves over its
-    deepest water, four waves from a quarter of the shortest wavenumber up to it) has a measured speed error within
-    the promised bound, which is within the tolerance."""
+    """On generated scenes, the chosen model run on the scene's own kh and cells per wavelength (the scene's own wave
+    height over its deepest water, four waves from a quarter of the shortest wavenumber up to it) has a measured
+    speed error within the promised bound, which is within the tolerance. (With the measure's default heights,
+    8·10⁻⁵ of the depth at this test's kh 48 scene, float32's rounding of h read 0.08–0.25 % for the split
+    against its bound of 0.23 %: SPLIT_ERROR holds above about 10⁻⁴ of the depth.)"""
     for scene in _scenes(seed, 3):
         try:
             choice = choose_regime(scene, tolerance)
@@ -38,7 +40,8 @@ def test_the_chosen_model_keeps_its_speed_error_promise(seed, tolerance):
         if choice.regime == "linear":
             continue  # exact dispersion: its bound is the amplitude's, measured below
         kh = 2 * math.pi / scene.wavelength[0] * scene.depth[1]
-        measured = measure_speed_error(choice.regime, kh, choice.cells, seed=seed + 7)["exact"]
+        measured = measure_speed_error(choice.regime, kh, choice.cells, seed=seed + 7,
+                                       amplitude=scene.wave_height / 2 / scene.depth[1])["exact"]
         assert measured <= choice.bound, (scene, choice.regime, choice.cells, measured, choice.bound)
 
 

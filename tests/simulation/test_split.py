@@ -321,8 +321,8 @@ def test_an_end_time_float32_cannot_hold_is_reached():
     assert sw_run(ShallowWater(0.1), bed, state, until=0.02)[1] >= 1
 
 
-def _noise_run(sides, until, bed_kind, n=512, dx=1.31, taper=None, seed=0):
-    """1e-6 m of noise on still water (float32, the state's default), over a bed from 1 m to 0.25 m: ``"steps"`` (a
+def _noise_run(sides, until, bed_kind, n=512, dx=1.31, taper=None, seed=0, dtype=jnp.float32):
+    """1e-6 m of noise on still water (``dtype``; float32, the state's default), over a bed from 1 m to 0.25 m: ``"steps"`` (a
     0.25 m shelf over the middle half, steps a quarter of the strip from each end), ``"blocks"`` (random depths
     0.25, 0.4, 0.6 or 1 m, each over 8 cells), ``"rough"`` (every cell a random depth from 0.1 to 1.2 m: steps of
     up to 1.1 m in one cell) or ``"smooth"`` (0.625 + 0.375 cos 2πx/L): the largest |η| at ``until``."""
@@ -339,7 +339,7 @@ def _noise_run(sides, until, bed_kind, n=512, dx=1.31, taper=None, seed=0):
             h = 0.625 + 0.375 * np.cos(2 * np.pi * x / (n * dx))
         bed = jnp.asarray(np.broadcast_to(-h, (2, n)).copy())
         noise = 1e-6 * np.random.default_rng(seed).standard_normal(n)
-        state = sw_state(bed, jnp.asarray(np.broadcast_to(noise, (2, n)).copy()))
+        state = sw_state(bed, jnp.asarray(np.broadcast_to(noise, (2, n)).copy()), dtype=dtype)
         split = Split(ShallowWater(dx, sides=sides), levels=(0.25, 1.0), taper=taper)
         end, _ = split_run(split, bed, state, until=until)
         return float(np.abs(np.asarray(end.h)[0] - h).max())
@@ -348,24 +348,33 @@ def _noise_run(sides, until, bed_kind, n=512, dx=1.31, taper=None, seed=0):
 WALLS = {"left": "wall", "right": "wall", "bottom": "periodic", "top": "periodic"}
 
 
-@pytest.mark.slow
-@pytest.mark.xfail(strict=True, reason="found this stop, not fixed: several levels over a smooth ramp grow noise "
-                                       "(docs/physics.md §1.15)")
-def test_noise_over_a_smooth_ramp_stays_quiet_with_several_levels():
-    """1e-6 m of noise over a smooth ramp from 1 to 0.25 m (walls, 128 cells of 0.1 m, float64), 50 s. Measured:
-    levels (0.25, 1) reach 0.31 m, and the same at dx 0.39 m and with three levels; one level at 1 m stays at
-    2e-7. Cause (a trial, docs/physics.md §1.15): each level's operator keeps g η² + |q|² k/tanh(kh), shallow
-    water's g η² + |q|²/h only for long waves, so the blend of levels with weights that change along the ramp
-    keeps no norm for short waves; a pure rotation of (√g η, q/√hⱼ) per level keeps 1.9e-6 but gives short
-    waves the wrong q/η. The noise test over steps and blocks (below) uses beds this does not show on."""
-    x = np.arange(128) * 0.1
-    bed = -np.clip(1.0 - 0.75 * (x - x[25]) / (x[102] - x[25]), 0.25, 1.0)[None]
-    eta = 1e-6 * np.random.default_rng(0).standard_normal((1, 128))
+def _ramp_noise(levels, until, n=128, dx=0.1):
+    """1e-6 m of noise over a smooth ramp from 1 to 0.25 m over the middle 60 % of ``n`` cells of ``dx`` (walls,
+    float64): the largest |η| over frames every 25 s to ``until``."""
+    x = np.arange(n) * dx
+    i, j = int(0.2 * n), int(0.8 * n)
+    bed = -np.clip(1.0 - 0.75 * (x - x[i]) / (x[j] - x[i]), 0.25, 1.0)[None]
+    eta = 1e-6 * np.random.default_rng(0).standard_normal((1, n))
     with jax.enable_x64(True):
-        for levels in ((0.25, 1.0), (0.25, 0.5, 1.0)):
-            stepper = SplitStepper(Split(ShallowWater(0.1, sides="wall"), levels=levels), bed)
-            run = stepper.run(sw_state(bed, eta, dtype=jnp.float64), until=50.0, every=25.0)
-            assert np.abs(np.asarray(run.frames)).max() < 1e-5, (levels, np.abs(np.asarray(run.frames)).max())
+        stepper = SplitStepper(Split(ShallowWater(dx, sides="wall"), levels=levels), bed)
+        run = stepper.run(sw_state(bed, eta, dtype=jnp.float64), until=until, every=25.0)
+        return float(np.abs(np.asarray(run.frames)).max())
+
+
+def test_noise_over_a_smooth_ramp_stays_quiet():
+    """1e-6 m of noise over a smooth ramp from 1 to 0.25 m (walls, 128 cells of 0.1 m, float64, levels 0.25 and
+    1 m), 50 s: below 1e-5 m (measured 1.8e-6). Before the surface waves' blend was made symmetric in R (docs/
+    physics.md §1.15) it grew to 0.31 m: each level's exponential kept its own norm, g η² + |q|² k/tanh(khⱼ),
+    and a blend with weights changing along the ramp kept none for short waves."""
+    assert _ramp_noise((0.25, 1.0), 50.0) < 1e-5
+
+
+@pytest.mark.slow
+def test_noise_over_smooth_ramps_stays_quiet_for_long_runs():
+    """The ramp above for 300 s with three levels (0.25, 0.5, 1), and at 256 cells of 0.39 m with two: below
+    1e-5 m (before: 0.31 m within 50 s in each)."""
+    worst = max(_ramp_noise((0.25, 0.5, 1.0), 300.0), _ramp_noise((0.25, 1.0), 300.0, n=256, dx=0.39))
+    assert worst < 1e-5, worst
 
 
 def test_noise_over_any_bed_stays_quiet():
@@ -380,12 +389,37 @@ def test_noise_over_any_bed_stays_quiet():
 
 @pytest.mark.slow
 def test_noise_over_smooth_stepped_and_random_beds_stays_quiet_for_long_runs():
-    """256 cells, 1200 s, walls and periodic, the default taper and (0.1, 0.3) m: 1e-6 m of noise stays below
-    1e-5 m over a smooth bed, a shelf with 0.75 m steps in one cell, random blocks and a rough bed (measured: at
-    most 4.3e-6 m)."""
+    """256 cells, 1200 s, walls and periodic, the default taper and (0.1, 0.3) m, float64: 1e-6 m of noise stays
+    below 1e-5 m over a smooth bed, a shelf with 0.75 m steps in one cell, random blocks and a rough bed. In
+    float32 (measured, not asserted here) the surface waves keep their energy and the state's rounding (h to
+    6e-8 m) walks: 0.5–8.8e-6 m at 1200 s over these beds, 1e-5 m at 2400 s (float64 on the same beds: 2–3e-6,
+    flat); the README run's test above holds float32 at 150 s."""
     worst = 0.0
     for sides in (WALLS, "periodic"):
         for bed_kind, taper, seed in (("smooth", None, 0), ("steps", None, 0), ("steps", (0.1, 0.3), 0),
                                       ("blocks", None, 1), ("rough", (0.1, 0.3), 2)):
-            worst = max(worst, _noise_run(sides, 1200.0, bed_kind, n=256, taper=taper, seed=seed))
+            worst = max(worst, _noise_run(sides, 1200.0, bed_kind, n=256, taper=taper, seed=seed,
+                                          dtype=jnp.float64))
     assert worst < 1e-5, worst
+
+
+@pytest.mark.slow
+def test_the_split_shoals_a_packet_as_the_mild_slope_equation_says():
+    """A packet (σ = 6 wavelengths) up a ramp of 10 wavelengths from 1 m to 0.25 m (measure_shoaling, levels at
+    both depths, float64), against the mild-slope reference: with a bulk length of 4 m, which leaves the bulk
+    none of the wave, within 1 % at kh₀ = 1 and 3 (measured −0.60 % and −0.32 %; the earliest blend +26 % and
+    +23 %, the last one a noise mode, +700 %). With the default bulk length (1 m, the deepest level) the wave
+    keeps about 1 % of itself in the bulk at kh₀ = 3, where the limited solver damps it step after step: −9.7 %
+    (−3.9 % at kh₀ = 1). That failure is asserted too, so a change to it is seen (docs/physics.md §1.12)."""
+    from wavephys.checks.depth import measure_shoaling
+    from wavephys.physics.depth import mild_slope_transmission
+
+    def error(kh0, bulk_length):
+        amp, omega = measure_shoaling("split", 1.0, 0.25, kh0, 16, 10.0, 6.0, bulk_length=bulk_length)
+        reference, _ = mild_slope_transmission(omega, [0.0, 10 * 2 * np.pi / kh0], [1.0, 0.25])
+        return amp / reference - 1
+
+    with jax.enable_x64(True):
+        errors = {kh0: error(kh0, 4.0) for kh0 in (1.0, 3.0)}
+        assert max(map(abs, errors.values())) < 0.01, errors
+        assert error(3.0, None) < -0.05, errors

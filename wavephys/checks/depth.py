@@ -4,6 +4,7 @@ each stepper against the mild-slope reference, and Lamb's standing wave on a pla
 from __future__ import annotations
 
 import math
+from typing import Optional
 
 import numpy as np
 
@@ -82,7 +83,7 @@ def packet_potential(k, analytic, omega):
 
 
 def measure_shoaling(method: str, depth0: float, depth1: float, k0: float, per: int, ramp: float = 10.0,
-                     sigma: float = 2.0, levels: int = 4):
+                     sigma: float = 2.0, levels: int = 4, bulk_length: Optional[float] = None):
     """A packet (carrier k₀, envelope σ wavelengths) from depth h₀ up (or down) a ramp of ``ramp`` wavelengths to
     h₁, plane waves along x: (amplitude over the far plateau / incident amplitude, ω).
 
@@ -110,6 +111,9 @@ def measure_shoaling(method: str, depth0: float, depth1: float, k0: float, per: 
         Envelope in incident wavelengths, > 0.
     levels : int
         Depth levels of ``"levels"`` and ``"symmetric"``, 1 … 16.
+    bulk_length : float, optional
+        The split's bulk length, m (default: its own, the deepest level and at least 8 cells); only with
+        ``method="split"``.
 
     Returns
     -------
@@ -124,6 +128,10 @@ def measure_shoaling(method: str, depth0: float, depth1: float, k0: float, per: 
 
     if method != "split":
         DEPTH_METHODS.check(method, "method")
+        if bulk_length is not None:
+            raise ValueError(f"bulk_length is the split's (method='split'), got method={method!r}")
+    elif bulk_length is not None:
+        bulk_length = check_scalar("bulk_length", bulk_length, lo=0.0, lo_open=True)
     depth0 = check_scalar("depth0", depth0, lo=0.0, lo_open=True)
     depth1 = check_scalar("depth1", depth1, lo=0.0, lo_open=True)
     k0 = check_scalar("k0", k0, lo=0.0, lo_open=True)
@@ -156,13 +164,13 @@ def measure_shoaling(method: str, depth0: float, depth1: float, k0: float, per: 
     phi = packet_potential(k, a, disp)
     travel = (x0 - xc) / cg0 + (x1 - x0) / (0.5 * (cg0 + cg1)) + 5 * s * lam / cg1
     if method == "split":
-        eta = _split_profile(h, dx, a, k, disp, travel, depth0, depth1)
+        eta = _split_profile(h, dx, a, k, disp, travel, depth0, depth1, bulk_length)
         return float(np.abs(hilbert(eta))[x > x1 + lam].max() / 1e-3), omega
     eta, _ = run_profile(h, dx, water, dt, a.real, phi, int(travel / dt), method, levels)
     return float(np.abs(hilbert(np.asarray(eta)))[x > x1 + lam].max() / 1e-3), omega
 
 
-def _split_profile(h, dx, analytic, k, omega, until, depth0, depth1):
+def _split_profile(h, dx, analytic, k, omega, until, depth0, depth1, bulk_length=None):
     """η after the split model carries the packet (discharge q̂ = (ω/k)·η̂ per mode: travelling along +x) to
     ``until`` on a periodic strip of two rows."""
     from wavephys.simulation.shallow_water import ShallowWater, sw_state
@@ -174,8 +182,11 @@ def _split_profile(h, dx, analytic, k, omega, until, depth0, depth1):
     eta = np.real(analytic)
     rows = lambda f: np.broadcast_to(f, (2, f.size)).copy()
     bed = rows(-h)
-    state = sw_state(bed, rows(eta), u=rows(q / (h + eta)))
-    split = Split(ShallowWater(dx, sides="periodic"), levels=tuple(sorted({depth0, depth1})))
+    import jax.numpy as jnp
+
+    # float64 where x64 is on (as the docs of measure_shoaling say; the state's own default is float32)
+    state = sw_state(bed, rows(eta), u=rows(q / (h + eta)), dtype=jnp.result_type(float))
+    split = Split(ShallowWater(dx, sides="periodic"), levels=tuple(sorted({depth0, depth1})), bulk_length=bulk_length)
     end, _ = _split_run(split, bed, state, until=until)
     return np.asarray(end.h)[0] - h
 
