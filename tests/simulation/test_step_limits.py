@@ -107,3 +107,59 @@ def test_under_jit_a_step_too_long_shows_as_non_finite_or_negative_depth():
     assert not np.all(np.isfinite(out)) or out[0].min() < 0
     with pytest.raises(ValueError, match="dt = .* past the stable step"):
         check_run(solver, out, 1.0, dt=30 * limit)
+
+
+@pytest.mark.parametrize("name", ["ShallowWaterStepper", "SplitStepper", "PipesStepper"])
+def test_under_jit_and_grad_a_step_past_the_limit_of_each_nonlinear_stepper_is_nan(name):
+    """The documented behaviour under a trace, where nothing can be refused before the work (wavephys.core.stepper
+    ``advance``): 40 steps of 30 × the stable step (the pipes: 30 × their Courant limit) give a state that is not
+    finite, or negative depths (shallow water, the split), and through ``jax.grad`` a NaN value and a NaN gradient;
+    the same Δt with concrete arrays is refused by name. (The pipes keep depths ≥ 0 whatever Δt: before their step
+    turned NaN past the limit, 30 × answered finite depths of 0 to 0.1 m under jit, and a gradient of 0.)"""
+    from wavephys.models.pipes import PipesStepper
+    from wavephys.simulation.split import Split, SplitStepper
+    from wavephys.simulation.shallow_water import ShallowWaterStepper
+
+    bed = -np.ones((2, 32))
+    bump = 0.05 * np.exp(-((np.arange(32) - 16.0) / 3) ** 2) * np.ones((2, 1))
+    with jax.enable_x64(True):
+        if name == "PipesStepper":
+            pipes = Pipes(0.1, sides="periodic")
+            state = pipes_state(bed, bump, dtype=jnp.float64)
+            stepper = PipesStepper(pipes, bed, 0.5 * 0.1 / np.sqrt(9.81 * 1.05))
+            fast = PipesStepper(pipes, bed, 30 * stepper.dt)
+            dt, depth = None, lambda s: s.depth
+            scaled = lambda a: type(state)(state.depth * (1 + a), state.flows, state.time)
+            with pytest.raises(ValueError, match="dt = .* is past the stable step: Courant"):
+                fast.init(state)
+            with pytest.raises(ValueError, match="dt"):
+                stepper.step(state, 30 * stepper.dt)
+        else:
+            solver = ShallowWater(0.1, sides="periodic")
+            fast = ShallowWaterStepper(solver, bed) if name == "ShallowWaterStepper" else \
+                SplitStepper(Split(solver, levels=(1.0,)), bed)
+            state = sw_state(bed, bump, dtype=jnp.float64)
+            dt = 30 * float(stable_dt(solver, state)) / solver.cfl
+            depth = lambda s: s.fields[0]
+            scaled = lambda a: type(state)(state.fields * (1 + a), state.time)
+            with pytest.raises(ValueError, match="past the stable step"):
+                fast.step(state, dt)
+        out = depth(jax.jit(lambda s: fast.advance(s, 40, dt))(state))
+        assert not np.all(np.isfinite(out)) or np.min(out) < 0, (name, np.nanmin(out))
+        value, gradient = jax.value_and_grad(lambda a: jnp.sum(depth(fast.advance(scaled(a), 40, dt)) ** 2))(0.0)
+        assert np.isnan(value) and np.isnan(gradient), (name, value, gradient)
+
+
+def test_a_pipes_run_whose_water_deepens_past_the_courant_limit_is_refused_by_name():
+    """A dam break against a wall at a Δt 0.69 of the 1-D limit for the water at the start: the reflected water
+    piles to 1.08 m at 2.2 s, a Courant number of 0.72 (measured with the unchecked loop); the run stops there and
+    says why (before, it answered on past the limit)."""
+    from wavephys.models.pipes import PipesStepper
+
+    with jax.enable_x64(True):
+        bed = np.zeros((1, 64))
+        state = pipes_state(bed, depth=np.where(np.arange(64) < 32, 1.0, 0.0)[None], dtype=jnp.float64)
+        stepper = PipesStepper(Pipes(0.1), bed, 0.69 * 0.1 / np.sqrt(9.81))
+        with pytest.raises(ValueError, match=r"non-finite by t = 2\.\d+ s: the water grew deep enough .*Courant"):
+            stepper.run(state, steps=2000, every=100)
+        assert np.isfinite(np.asarray(stepper.run(state, steps=80).state.depth)).all()  # before the pile-up

@@ -725,3 +725,36 @@ def test_lambs_beach_with_dry_land_by_the_nonlinear_steppers():
     omega, amplitude = _lamb("SplitStepper", slope=0.05, offset=0.1)
     assert abs(omega) < 0.01 and amplitude > -0.3, (omega, amplitude)
     assert got["PipesStepper"][0] > 0.3, got  # theirs: √2 fast
+
+
+def test_the_old_run_functions_warn_name_their_stepper_and_answer_as_it_does():
+    """``sw_run``, ``sw_frames``, ``split_run``, ``split_frames`` and ``pipes_run`` (deprecated in 0.3, removal in
+    0.4: CHANGELOG) each warn with a DeprecationWarning naming the stepper that replaces it, and return what the
+    stepper does on the same water (a 2 × 8 strip, one bump, float64)."""
+    from wavephys.models.pipes import pipes_run
+    from wavephys.simulation.shallow_water import sw_frames, sw_run
+    from wavephys.simulation.split import split_frames, split_run
+
+    bed = -0.5 * np.ones((2, 8))
+    bump = 0.01 * np.exp(-((np.arange(8) - 3.5) ** 2) / 2) * np.ones((2, 1))
+    solver = sw.ShallowWater(0.1, sides="periodic")
+    split = Split(solver, levels=(0.5,))
+    state = sw.sw_state(bed, bump, dtype=jnp.float64)
+    pstate = pipes_state(bed, bump, dtype=jnp.float64)
+    cases = [(sw_run, (solver, bed, state, 0.2), ShallowWaterStepper(solver, bed), "run"),
+             (sw_frames, (solver, bed, state, [0.1, 0.2]), ShallowWaterStepper(solver, bed), "frames"),
+             (split_run, (split, bed, state, 0.2), SplitStepper(split, bed), "run"),
+             (split_frames, (split, bed, state, [0.1, 0.2]), SplitStepper(split, bed), "frames"),
+             (pipes_run, (Pipes(0.1, sides="periodic"), bed, pstate, 20, 0.01),
+              PipesStepper(Pipes(0.1, sides="periodic"), bed, 0.01), "pipes")]
+    for old, args, stepper, kind in cases:
+        with pytest.warns(DeprecationWarning, match=rf"{old.__name__} is deprecated.*{type(stepper).__name__}"):
+            got = old(*args)
+        if kind == "run":
+            want = stepper.run(args[2], until=0.2).state
+        elif kind == "frames":
+            want = stepper.frames(args[2], jnp.asarray([0.1, 0.2]))
+        else:
+            want = stepper.run(pstate, steps=20).state
+        for a, b in zip(jax.tree_util.tree_leaves(got), jax.tree_util.tree_leaves(want)):
+            np.testing.assert_allclose(np.asarray(a), np.asarray(b), rtol=0, atol=1e-12, err_msg=old.__name__)

@@ -363,9 +363,24 @@ class PipesStepper(Stepper):
 
     @classmethod
     def _advance(cls, static, dynamic, state, dt):
+        """One step; past the measured Courant limit at this step's deepest water the state turns NaN (the pipes
+        keep depths ≥ 0 whatever Δt, so a step past the limit would otherwise answer plausible depths: under a
+        trace nothing can be refused, and a concrete run stops there and is refused by :meth:`_result`)."""
         pipes, bed, _ = dynamic
         depth, flows = _advance(pipes, bed.astype(state.depth.dtype), state.depth, state.flows, dt)
-        return type(state)(depth, flows, state.time + dt)
+        area = pipes.area if pipes._constant else pipes.dx * jnp.max(state.depth)
+        courant = jnp.sqrt(pipes.g * area / pipes.dx) * dt / pipes.dx
+        limit = COURANT_LIMITS[0 if min(state.depth.shape) == 1 else 1]
+        poison = jnp.where(courant > limit, jnp.asarray(np.nan, depth.dtype), 0.0)  # added: jax.grad sees NaN too
+        return type(state)(depth + poison, flows + poison, state.time + dt)
+
+    def _result(self, state):
+        if not bool(self._finite(state)):
+            raise ValueError(f"PipesStepper: the run became non-finite by t = {float(state.time):.6g} s: the water "
+                             f"grew deep enough that dt = {float(self.dt):.4g} s passed the pipes' stable Courant "
+                             f"number √(gh)·dt/dx (COURANT_LIMITS, {COURANT_LIMITS}); make the stepper with a "
+                             f"shorter dt")
+        return state
 
     @classmethod
     def _dt(cls, static, dynamic, state):
