@@ -86,10 +86,11 @@ def run_shallow(args) -> None:
     print(f"{'model':<26}{'kh band':>14}{'max |w/w_exact - 1|':>22}")
     for r in split:
         print(f"{r['model']:<26}{r['kh'][0]:>7.2g}..{r['kh'][1]:<5.3g}{r['error']:>22.2e}")
-    memory = memory_rows((60, 240) if args.quick else (60, 240, 960), progress=_say)
-    print(f"{'run':<58}{'steps':>7}{'MB held':>10}{'peak RSS MB':>13}")
+    memory = memory_rows((60, 240) if args.quick else (60, 960, 3840), progress=_say)
+    print(f"{'run':<64}{'steps':>7}{'MB held':>10}{'resident +MB':>14}{'peak +MB':>10}")
     for r in memory:
-        print(f"{r['method']:<58}{r['steps']:>7}{r['bytes_held'] / 2**20:>10.2f}{r['peak_rss_mb']:>13.0f}")
+        print(f"{r['method']:<64}{r['steps']:>7}{r['bytes_held'] / 2**20:>10.2f}{r['resident_growth_mb']:>14.1f}"
+              f"{r['peak_growth_mb']:>10.1f}")
     _write(rows + steps + split + memory, figures(rows), Path(args.json or "bench/results/shallow.json"))
 
 

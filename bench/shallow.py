@@ -146,39 +146,103 @@ def split_dispersion_rows(bands=(0.1, 0.4, 1.6, 6.4), progress=print) -> list[di
     return rows
 
 
-def memory_rows(steps=(60, 240, 960), n=256, progress=print) -> list[dict]:
-    """Memory a long run holds when it ends: the depth stepper run by ``run_depth`` (which returns the surface
-    of every step) against the same stepper behind the one interface streaming a frame every 60 steps to a
-    callback (``DepthStepper.run``): bytes of the arrays each call leaves the caller, and the process's
-    peak resident size after each (it only grows). Linear floor ``"shallow"`` over a 1.5 m slope, n × n."""
-    import resource
+_MEMORY_CASE = r"""
+import json, resource, sys
+import numpy as np
+import jax
 
+method, steps, n = sys.argv[1], int(sys.argv[2]), int(sys.argv[3])
+
+
+def resident_mb():
+    with open("/proc/self/statm") as f:
+        return int(f.read().split()[1]) * (resource.getpagesize() / 2**20)
+
+
+def held(tree):
+    return int(sum(np.asarray(x).nbytes for x in jax.tree_util.tree_leaves(tree)))
+
+
+if method.startswith("ShallowWaterStepper"):
+    from wavephys.simulation import shallow_water as sw
+    from wavephys.steppers import ShallowWaterStepper
+
+    x = (np.arange(n) + 0.5) * (16.0 / n) - 8.0
+    bed = -np.clip(0.2 + 0.1 * (x + 8.0), 0.05, 1.5) * np.ones((n, 1))
+    start = sw.sw_state(bed, np.where(-bed > 0.06, 0.01 * np.exp(-(x ** 2) / 2.0), 0.0))
+    stepper = ShallowWaterStepper(sw.ShallowWater(16.0 / n), bed)
+    run = lambda k, keep: stepper.run(start, steps=k, every=60, callback=keep)
+else:
     from wavephys import Grid, Water
     from wavephys.simulation import Model
     from wavephys.simulation.depth import Floor, depth_state, run_depth
     from wavephys.steppers import DepthStepper
-
-    def held(tree):
-        return int(sum(np.asarray(x).nbytes for x in jax.tree_util.tree_leaves(tree)))
 
     grid = Grid(n, 16.0)
     model = Model(grid, Water(sigma=0.0), dt=1 / 30, walls="all")
     x = np.asarray(grid.mesh()[0])
     floor = Floor(np.clip(0.2 + 0.1 * (x + 8.0), 0.05, 1.5))
     start = depth_state(model, 0.01 * np.exp(-(x ** 2) / 2.0))
+    if method == "run_depth":
+        run = lambda k, keep: run_depth(model, floor, start, k, "shallow")
+    else:
+        stepper = DepthStepper(model, floor, "shallow")
+        run = lambda k, keep: stepper.run(start, steps=k, every=60, callback=keep)
+
+kept = []
+warm = run(60, lambda i, t, eta: kept.append(float(np.max(eta))))  # compiled (the steppers: one program for any count)
+del warm
+kept.clear()
+before, peak_before = resident_mb(), resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024
+out = run(steps, lambda i, t, eta: kept.append(float(np.max(eta))))
+print(json.dumps(dict(bytes_held=held(out), resident_growth_mb=resident_mb() - before,
+                      peak_growth_mb=resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024 - peak_before,
+                      frames=len(kept))))
+"""
+
+
+def memory_rows(steps=(60, 960, 3840), n=256, progress=print) -> list[dict]:
+    """Memory a long run holds: each run in a process of its own, warmed up by a run of 60 steps, then measured:
+    the bytes of the arrays the call leaves the caller, and the growth over the measured run of the resident size
+    (what the process still holds at its end) and of the peak resident size (at its worst; it includes compiling
+    where a run of this length compiles a program of its own, as ``run_depth`` does), MB.
+
+    Runs: the linear depth stepper (floor ``"shallow"`` over a 1.5 m slope, n × n) behind the one interface,
+    streaming a frame every 60 steps to a callback (``DepthStepper.run``), against ``run_depth``, which returns
+    the surface of every step (run up to 960 steps: 3840 would hold 1 GB at 256²); and nonlinear shallow water
+    (``ShallowWaterStepper.run``, the same slope, n/2 × n/2, a fixed step) streaming likewise.
+
+    Parameters
+    ----------
+    steps : sequence of int
+        Run lengths (multiples of 60).
+    n : int
+        Cells a side of the depth stepper's grid.
+    progress : callable
+
+    Returns
+    -------
+    list of dict
+        ``family="run memory"``: method, steps, n, bytes_held, resident_growth_mb, peak_growth_mb, frames.
+    """
+    import json
+    import os
+    import subprocess
+    import sys
+
+    cases = [("DepthStepper.run, a frame every 60 steps to a callback", "DepthStepper", n, steps),
+             ("run_depth (the surface of every step)", "run_depth", n, [k for k in steps if k <= 960]),
+             ("ShallowWaterStepper.run, a frame every 60 steps to a callback", "ShallowWaterStepper", n // 2, steps)]
     rows = []
-    for k in steps:
-        progress(f"memory: {k} steps at {n}^2")
-        kept = []
-        end = DepthStepper(model, floor, "shallow").run(start, steps=k, every=60,
-                                                          callback=lambda i, t, eta: kept.append(float(eta.max())))
-        rows.append(dict(method="DepthStepper.run, a frame every 60 steps to a callback", steps=k, n=n,
-                         bytes_held=held(end.state), peak_rss_mb=resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024))
-        state, surfaces = run_depth(model, floor, start, k, "shallow")
-        rows.append(dict(method="run_depth (the surface of every step)", steps=k, n=n,
-                         bytes_held=held((state, surfaces)),
-                         peak_rss_mb=resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024))
-        del state, surfaces
+    for label, method, size, lengths in cases:
+        for k in lengths:
+            progress(f"memory: {method}, {k} steps at {size}^2 (a process of its own)")
+            done = subprocess.run([sys.executable, "-c", _MEMORY_CASE, method, str(k), str(size)],
+                                  capture_output=True, text=True, env=dict(os.environ, JAX_PLATFORMS="cpu"))
+            if done.returncode:
+                raise RuntimeError(f"memory case {method} at {k} steps failed:\n{done.stderr[-2000:]}")
+            rows.append(dict(family="run memory", method=label, steps=k, n=size,
+                             **json.loads(done.stdout.strip().splitlines()[-1])))
     return rows
 
 

@@ -45,6 +45,16 @@ if (os.environ.get("WAVEPHYS_TESTS_XLA_DEFAULTS", "") in ("", "0")
     except (OSError, subprocess.TimeoutExpired):
         os.environ["WAVEPHYS_TESTS_XLA_DEFAULTS"] = "1"
 
+import sys  # noqa: E402
+from pathlib import Path  # noqa: E402
+
+# bench/ is a top-level folder, not an installed package: the tests that read its measurements import it from
+# the checkout. (A whole run had it on sys.path only because collecting wavephys/'s doctests puts the checkout
+# there; a test file run by itself could not import it.)
+_ROOT = str(Path(__file__).resolve().parent.parent)
+if _ROOT not in sys.path:
+    sys.path.append(_ROOT)
+
 import jax  # noqa: E402  (after the cache settings, which JAX reads when imported)
 import pytest  # noqa: E402
 
