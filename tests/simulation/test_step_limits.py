@@ -75,6 +75,19 @@ def test_states_that_are_not_finite_are_refused_by_what_reads_them():
         stable_dt_fields(ShallowWater(0.1), bad)
     with pytest.raises(ValueError, match="finite"):
         check_run(ShallowWater(0.1), bad, 1.0)
+    # a state that skipped the checks (as one a compiled function returns does: pytrees are rebuilt unchecked)
+    treedef = jax.tree_util.tree_structure(state)
+    unchecked = jax.tree_util.tree_unflatten(treedef, [jnp.asarray(bad), state.time])
+    with pytest.raises(ValueError, match="NaN or inf values; no step is stable"):
+        stable_dt(ShallowWater(0.1), unchecked)  # before: a finite step, the NaN cell read as dry
+    pipes = pipes_state(bed, 0.0)
+    depth = np.asarray(pipes.depth).copy()
+    depth[0, 3] = np.nan
+    leaves, treedef = jax.tree_util.tree_flatten(pipes)
+    unchecked = jax.tree_util.tree_unflatten(treedef, [jnp.asarray(depth) if np.shape(v) == depth.shape else v
+                                                       for v in leaves])
+    with pytest.raises(ValueError, match="NaN or inf values; a step needs a finite state"):
+        pipes_step(Pipes(0.1), bed, unchecked, 0.01)
 
 
 def test_float64_without_x64_is_refused_by_the_state_makers():

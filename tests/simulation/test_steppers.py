@@ -356,6 +356,18 @@ def test_a_lake_at_rest_stays_at_rest_over_an_uneven_bed(name, sides):
     assert np.abs(run.frames[:, wet]).max() <= bound, (name, sides, np.abs(run.frames[:, wet]).max(), bound)
 
 
+@pytest.mark.parametrize("sides", ["wall", "periodic"])
+def test_the_virtual_pipes_keep_a_lake_at_rest_for_a_hundred_thousand_steps(sides):
+    """The pipes' long run (the steppers that claim a lake at rest, over ≥ 10⁵ steps; shallow water's is in
+    test_open_sides.py, the split's in test_split.py's 1200 s noise runs): 10⁵ steps over an uneven bed with an
+    island, float64. Measured: exactly 0 on 3 beds with each side (equal levels give zero flows), in 1 s a run."""
+    bed = _uneven_bed(np.random.default_rng(), (12, 20))
+    stepper = PipesStepper(Pipes(0.05, sides=sides), bed, 0.005)
+    run = stepper.run(pipes_state(bed, 0.0, dtype=jnp.float64), steps=100_000, every=10_000)
+    wet = np.maximum(-bed, 0.0) > 0
+    assert np.abs(run.frames[:, wet]).max() <= 48 * np.finfo(np.float64).eps * float(np.max(-bed))
+
+
 @pytest.mark.parametrize("name,sides", [("SplitStepper", "open"), ("PipesStepper", "open"),
                                         ("PipesStepper", "inflow"), ("SplitStepper", "inflow")])
 def test_sides_a_stepper_does_not_take_are_refused_by_name(name, sides):
@@ -452,7 +464,7 @@ PROBLEMS = {
     "lake at rest over an uneven bed": {
         "ShallowWaterStepper": "test_a_lake_at_rest_stays_at_rest_over_an_uneven_bed",
         "SplitStepper": "test_a_lake_at_rest_stays_at_rest_over_an_uneven_bed",
-        "PipesStepper": "test_a_lake_at_rest_stays_at_rest_over_an_uneven_bed",
+        "PipesStepper": "test_a_lake_at_rest_stays_at_rest_over_an_uneven_bed",  # and over 10⁵ steps, beside it
         "DepthStepper": ("linear in the departure from still water over its floor: the lake at rest is its zero "
                          "state, which a linear step keeps exactly (no bed term to balance)"),
         "SpectralStepper": FLAT, "FiniteDifferenceStepper": FLAT, "KernelStepper": FLAT},
