@@ -128,7 +128,8 @@ def test_under_jit_and_grad_a_step_past_the_limit_of_each_nonlinear_stepper_is_n
     ``advance``): 40 steps of 30 × the stable step (the pipes: 30 × their Courant limit) give a state that is not
     finite, or negative depths (shallow water, the split), and through ``jax.grad`` a NaN value and a NaN gradient;
     the same Δt with concrete arrays is refused by name. (The pipes keep depths ≥ 0 whatever Δt: before their step
-    turned NaN past the limit, 30 × answered finite depths of 0 to 2.5 m on water 1 m deep under jit, and a finite value and gradient through jax.grad.)"""
+    turned NaN past the limit, 30 × answered finite depths of 0 to 2.5 m on water 1 m deep under jit, and a finite
+    value and gradient through jax.grad.)"""
     from wavephys.models.pipes import PipesStepper
     from wavephys.simulation.split import Split, SplitStepper
     from wavephys.simulation.shallow_water import ShallowWaterStepper
