@@ -122,44 +122,61 @@ def test_under_jit_a_step_too_long_shows_as_non_finite_or_negative_depth():
         check_run(solver, out, 1.0, dt=30 * limit)
 
 
-@pytest.mark.parametrize("name", ["ShallowWaterStepper", "SplitStepper", "PipesStepper"])
-def test_under_jit_and_grad_a_step_past_the_limit_of_each_nonlinear_stepper_is_nan(name):
-    """The documented behaviour under a trace, where nothing can be refused before the work (wavephys.core.stepper
-    ``advance``): 40 steps of 30 × the stable step (the pipes: 30 × their Courant limit) give a state that is not
-    finite, or negative depths (shallow water, the split), and through ``jax.grad`` a NaN value and a NaN gradient;
-    the same Δt with concrete arrays is refused by name. (The pipes keep depths ≥ 0 whatever Δt: before their step
-    turned NaN past the limit, 30 × answered finite depths of 0 to 2.5 m on water 1 m deep under jit, and a finite
-    value and gradient through jax.grad.)"""
+def _past_the_limit(name):
+    """A stepper ``name`` on 1 m of water with a bump (2 × 32, float64 on), a Δt 30 × its stable one, its
+    concrete refusals checked: (stepper, state, dt for advance, the depth of a state, the state scaled by 1 + a)."""
     from wavephys.models.pipes import PipesStepper
-    from wavephys.simulation.split import Split, SplitStepper
     from wavephys.simulation.shallow_water import ShallowWaterStepper
+    from wavephys.simulation.split import Split, SplitStepper
 
     bed = -np.ones((2, 32))
     bump = 0.05 * np.exp(-((np.arange(32) - 16.0) / 3) ** 2) * np.ones((2, 1))
+    if name == "PipesStepper":
+        pipes = Pipes(0.1, sides="periodic")
+        state = pipes_state(bed, bump, dtype=jnp.float64)
+        stepper = PipesStepper(pipes, bed, 0.5 * 0.1 / np.sqrt(9.81 * 1.05))
+        fast = PipesStepper(pipes, bed, 30 * stepper.dt)
+        with pytest.raises(ValueError, match="dt = .* is past the stable step: Courant"):
+            fast.init(state)
+        with pytest.raises(ValueError, match="dt"):
+            stepper.step(state, 30 * stepper.dt)
+        return fast, state, None, lambda s: s.depth, lambda a: type(state)(state.depth * (1 + a), state.flows,
+                                                                            state.time)
+    solver = ShallowWater(0.1, sides="periodic")
+    fast = ShallowWaterStepper(solver, bed) if name == "ShallowWaterStepper" else \
+        SplitStepper(Split(solver, levels=(1.0,)), bed)
+    state = sw_state(bed, bump, dtype=jnp.float64)
+    dt = 30 * float(stable_dt(solver, state)) / solver.cfl
+    with pytest.raises(ValueError, match="past the stable step"):
+        fast.step(state, dt)
+    return fast, state, dt, lambda s: s.fields[0], lambda a: type(state)(state.fields * (1 + a), state.time)
+
+
+@pytest.mark.parametrize("name", ["ShallowWaterStepper", "SplitStepper", "PipesStepper"])
+def test_under_jit_a_step_past_the_limit_of_each_nonlinear_stepper_shows(name):
+    """The documented behaviour under a trace, where nothing can be refused before the work (wavephys.core.stepper
+    ``advance``): 40 steps of 30 × the stable step (the pipes: 30 × their Courant limit) give a state that is not
+    finite, or negative depths (shallow water, the split); the same Δt with concrete arrays is refused by name.
+    Through ``jax.grad`` the value and gradient are NaN: the pipes here (their NaN is added, so the gradient sees
+    it), shallow water in the slow set (compiling its gradient takes 19 s). (The pipes
+    keep depths ≥ 0 whatever Δt: before their step turned NaN past the limit, 30 × answered finite depths of 0 to
+    2.5 m on water 1 m deep under jit, and a finite value and gradient through jax.grad.)"""
     with jax.enable_x64(True):
-        if name == "PipesStepper":
-            pipes = Pipes(0.1, sides="periodic")
-            state = pipes_state(bed, bump, dtype=jnp.float64)
-            stepper = PipesStepper(pipes, bed, 0.5 * 0.1 / np.sqrt(9.81 * 1.05))
-            fast = PipesStepper(pipes, bed, 30 * stepper.dt)
-            dt, depth = None, lambda s: s.depth
-            scaled = lambda a: type(state)(state.depth * (1 + a), state.flows, state.time)
-            with pytest.raises(ValueError, match="dt = .* is past the stable step: Courant"):
-                fast.init(state)
-            with pytest.raises(ValueError, match="dt"):
-                stepper.step(state, 30 * stepper.dt)
-        else:
-            solver = ShallowWater(0.1, sides="periodic")
-            fast = ShallowWaterStepper(solver, bed) if name == "ShallowWaterStepper" else \
-                SplitStepper(Split(solver, levels=(1.0,)), bed)
-            state = sw_state(bed, bump, dtype=jnp.float64)
-            dt = 30 * float(stable_dt(solver, state)) / solver.cfl
-            depth = lambda s: s.fields[0]
-            scaled = lambda a: type(state)(state.fields * (1 + a), state.time)
-            with pytest.raises(ValueError, match="past the stable step"):
-                fast.step(state, dt)
+        fast, state, dt, depth, scaled = _past_the_limit(name)
         out = depth(jax.jit(lambda s: fast.advance(s, 40, dt))(state))
         assert not np.all(np.isfinite(out)) or np.min(out) < 0, (name, np.nanmin(out))
+        if name == "PipesStepper":
+            value, gradient = jax.value_and_grad(lambda a: jnp.sum(depth(fast.advance(scaled(a), 40, dt)) ** 2))(0.0)
+            assert np.isnan(value) and np.isnan(gradient), (name, value, gradient)
+
+
+@pytest.mark.slow  # compiling the gradient of shallow water's step: 19 s on 2 cores
+@pytest.mark.parametrize("name", ["ShallowWaterStepper"])
+def test_through_grad_a_step_past_the_limit_is_nan(name):
+    """40 steps of 30 × the stable step through ``jax.grad``: a NaN value and a NaN gradient. The split's gradient
+    was measured so too (NaN, NaN) but is not run: compiling it takes 55 s at LLVM level 1, more at CI's defaults."""
+    with jax.enable_x64(True):
+        fast, state, dt, depth, scaled = _past_the_limit(name)
         value, gradient = jax.value_and_grad(lambda a: jnp.sum(depth(fast.advance(scaled(a), 40, dt)) ** 2))(0.0)
         assert np.isnan(value) and np.isnan(gradient), (name, value, gradient)
 
