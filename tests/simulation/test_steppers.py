@@ -720,6 +720,27 @@ def _lamb(name, wet_cells=64, slope=0.1, offset=0.37, periods=3):
     return w / omega - 1, abs(a) * math.exp(-decay * t[-1]) - 1
 
 
+def test_shallow_waters_loss_on_lambs_beach_is_where_its_first_wet_cell_is_thin():
+    """Shallow water's failure boundary on Lamb's beach (1:10, 64 wet cells, 3 periods, float64), measured over the
+    shoreline's place in its cell: the mode keeps all but 3-8 % of its amplitude where the cell holding the still
+    shoreline is dry (offsets 0.5-0.95 of a cell past a face; ω within +2.2 %), and loses 35-47 % where that cell
+    is wet but thinner than a fifth of s·dx (offsets 0.3-0.45: depths of 5-20 mm; ω within 1.7 %). The loss is
+    linear (the same at 1 mm, 0.1 mm and 0.01 mm), not the time step's (the same at a Courant number of 0.1) and not
+    the limiter's (MC −53 %, van Leer −48 %, unlimited −58 % at 0.37, against minmod's −44 %); it halves with each
+    doubling of the cells (−73, −44, −19 % at 32, 64, 128), a first-order error of the thin cell beside the
+    shoreline. The linear depth stepper, whose shoreline faces take the bed's depth, keeps 99.5 % at every offset
+    (test_shoreline.py); a sub-cell shoreline (Bollermann et al. 2013) is the known cure, not done."""
+    got = {offset: _lamb("ShallowWaterStepper", offset=offset) for offset in (0.0, 0.3, 0.37, 0.45, 0.5, 0.7, 0.9)}
+    for offset, (omega, amplitude) in got.items():
+        assert abs(omega) < 0.025, got
+        if 0.3 <= offset <= 0.45:
+            assert -0.55 < amplitude < -0.3, got  # the failure, measured
+        elif offset >= 0.5:
+            assert amplitude > -0.1, got
+        else:
+            assert -0.15 < amplitude < -0.05, got
+
+
 @pytest.mark.slow
 def test_lambs_beach_with_dry_land_by_the_nonlinear_steppers():
     """Lamb's standing wave on a 1:10 beach, the shoreline 0.37 of a cell past a face, 64 wet cells, 3 periods,
