@@ -154,9 +154,16 @@ import jax
 method, steps, n = sys.argv[1], int(sys.argv[2]), int(sys.argv[3])
 
 
-def resident_mb():
-    with open("/proc/self/statm") as f:
-        return int(f.read().split()[1]) * (resource.getpagesize() / 2**20)
+def resident_mb():  # Linux's count of resident pages; NaN where there is no /proc
+    try:
+        with open("/proc/self/statm") as f:
+            return int(f.read().split()[1]) * (resource.getpagesize() / 2**20)
+    except OSError:
+        return float("nan")
+
+
+def peak_mb():  # ru_maxrss: KB on Linux, bytes on macOS
+    return resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / (2**20 if sys.platform == "darwin" else 1024)
 
 
 def held(tree):
@@ -193,10 +200,10 @@ kept = []
 warm = run(60, lambda i, t, eta: kept.append(float(np.max(eta))))  # compiled (the steppers: one program for any count)
 del warm
 kept.clear()
-before, peak_before = resident_mb(), resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024
+before, peak_before = resident_mb(), peak_mb()
 out = run(steps, lambda i, t, eta: kept.append(float(np.max(eta))))
 print(json.dumps(dict(bytes_held=held(out), resident_growth_mb=resident_mb() - before,
-                      peak_growth_mb=resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024 - peak_before,
+                      peak_growth_mb=peak_mb() - peak_before,
                       frames=len(kept))))
 """
 
@@ -210,7 +217,8 @@ def memory_rows(steps=(60, 960, 3840), n=256, progress=print) -> list[dict]:
     Runs: the linear depth stepper (floor ``"shallow"`` over a 1.5 m slope, n × n) behind the one interface,
     streaming a frame every 60 steps to a callback (``DepthStepper.run``), against ``run_depth``, which returns
     the surface of every step (run up to 960 steps: 3840 would hold 1 GB at 256²); and nonlinear shallow water
-    (``ShallowWaterStepper.run``, the same slope, n/2 × n/2, a fixed step) streaming likewise.
+    (``ShallowWaterStepper.run``, the same slope, n/2 × n/2, its adaptive steps) streaming likewise. Each
+    process imports wavephys from this checkout, on the CPU unless ``JAX_PLATFORMS`` says otherwise.
 
     Parameters
     ----------
@@ -237,8 +245,12 @@ def memory_rows(steps=(60, 960, 3840), n=256, progress=print) -> list[dict]:
     for label, method, size, lengths in cases:
         for k in lengths:
             progress(f"memory: {method}, {k} steps at {size}^2 (a process of its own)")
+            root = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+            paths = [root] + [p for p in [os.environ.get("PYTHONPATH")] if p]
+            env = dict(os.environ, PYTHONPATH=os.pathsep.join(paths))
+            env.setdefault("JAX_PLATFORMS", "cpu")
             done = subprocess.run([sys.executable, "-c", _MEMORY_CASE, method, str(k), str(size)],
-                                  capture_output=True, text=True, env=dict(os.environ, JAX_PLATFORMS="cpu"))
+                                  capture_output=True, text=True, env=env, cwd=root)
             if done.returncode:
                 raise RuntimeError(f"memory case {method} at {k} steps failed:\n{done.stderr[-2000:]}")
             rows.append(dict(family="run memory", method=label, steps=k, n=size,

@@ -361,7 +361,7 @@ def test_the_virtual_pipes_keep_a_lake_at_rest_for_a_hundred_thousand_steps(side
     """The pipes' long run (the steppers that claim a lake at rest, over ≥ 10⁵ steps; shallow water's is in
     test_open_sides.py, the split's in test_split.py's 1200 s noise runs): 10⁵ steps over an uneven bed with an
     island, float64. Measured: exactly 0 on 3 beds with each side (equal levels give zero flows), in 1 s a run."""
-    bed = _uneven_bed(np.random.default_rng(), (12, 20))
+    bed = _uneven_bed(np.random.default_rng({"wall": 3, "periodic": 4}[sides]), (12, 20))
     stepper = PipesStepper(Pipes(0.05, sides=sides), bed, 0.005)
     run = stepper.run(pipes_state(bed, 0.0, dtype=jnp.float64), steps=100_000, every=10_000)
     wet = np.maximum(-bed, 0.0) > 0
@@ -433,7 +433,7 @@ def _standing(name, kh, n=32):
 # wavelength), Depth 'shallow' and FiniteDiff 3.1e-4, Kernel (whole-grid stencil) 1.3e-2 at kh 1); or the stepper's
 # measured failure band, FAILS[(stepper, kh)] = s: a long-wave speed of √(s g h), so ω off by √(s kh / tanh kh) − 1:
 # shallow water's +74 % at kh 3 (s = 1); the virtual pipes' √2 (s = 2, their documented speed with area="depth":
-# measured +41.5 % at kh 0.1 against √2·√(kh/tanh kh) − 1 = +41.7 %, +145 % at kh 3)
+# measured +41.5 % at kh 0.1 against √2·√(kh/tanh kh) − 1 = +41.7 %, +145.3 % at kh 3 against +145.6 %)
 DISPERSION = {("SpectralStepper", 0.1): 1e-5, ("SpectralStepper", 1.0): 1e-5, ("SpectralStepper", 3.0): 1e-5,
               ("SplitStepper", 1.0): 5e-3, ("SplitStepper", 3.0): 1e-2,  # at kh 0.1 it is its bulk: ShallowWater
               ("ShallowWaterStepper", 0.1): 5e-3, ("DepthStepper", 0.1): 5e-3, ("FiniteDifferenceStepper", 0.1): 5e-3,
@@ -459,6 +459,7 @@ def test_dispersion_per_kh_band(name, kh):
 FLAT = "a flat floor only (constant depth): no bed to pose it on"
 LINEAR_DAM = ("linear about still water: a dam break's departure is the whole depth, and the dry side is not a "
               "small departure")
+SHORELINE = "test_shoreline.py::test_lambs_beach_with_dry_land_keeps_its_frequency_to_half_a_percent_at_64_cells"
 PROBLEMS = {
     "dispersion per kh band": dict.fromkeys(STEPPERS, "test_dispersion_per_kh_band"),
     "lake at rest over an uneven bed": {
@@ -474,7 +475,7 @@ PROBLEMS = {
         "FiniteDifferenceStepper": "test_steppers_that_cannot_pose_a_tank_refuse_it_by_name",  # refused by the code
         "KernelStepper": "test_steppers_that_cannot_pose_a_tank_refuse_it_by_name"},
     "Lamb's beach with dry land": {
-        "DepthStepper": "test_shoreline.py::test_lambs_beach_with_dry_land_keeps_its_frequency_to_half_a_percent_at_64_cells",
+        "DepthStepper": SHORELINE,
         **dict.fromkeys(("ShallowWaterStepper", "SplitStepper", "PipesStepper"),
                         "test_lambs_beach_with_dry_land_by_the_nonlinear_steppers"),
         "SpectralStepper": FLAT, "FiniteDifferenceStepper": FLAT, "KernelStepper": FLAT},
@@ -726,9 +727,9 @@ def test_shallow_waters_loss_on_lambs_beach_is_where_its_first_wet_cell_is_thin(
     shoreline is dry (offsets 0.5-0.95 of a cell past a face; ω within +2.2 %), and loses 35-47 % where that cell
     is wet but thinner than a fifth of s·dx (offsets 0.3-0.45: depths of 5-20 mm; ω within 1.7 %). The loss is
     linear (the same at 1 mm, 0.1 mm and 0.01 mm), not the time step's (the same at a Courant number of 0.1) and not
-    the limiter's (MC −53 %, van Leer −48 %, unlimited −58 % at 0.37, against minmod's −44 %); it halves with each
-    doubling of the cells (−73, −44, −19 % at 32, 64, 128), a first-order error of the thin cell beside the
-    shoreline. The linear depth stepper, whose shoreline faces take the bed's depth, keeps 99.5 % at every offset
+    the limiter's (MC −53 %, van Leer −48 %, unlimited −58 % at 0.37, against minmod's −44 %); its decay rate falls
+    by 2.3 and 2.8 with each doubling of the cells (−73, −44, −19 % at 32, 64, 128), a first-order error of the
+    thin cell beside the shoreline. At offset 0 (the shoreline on a face, its cell 0.05 m deep) it loses 11 %. The linear depth stepper, whose shoreline faces take the bed's depth, keeps 99.5 % at every offset
     (test_shoreline.py); a sub-cell shoreline (Bollermann et al. 2013) is the known cure, not done."""
     got = {offset: _lamb("ShallowWaterStepper", offset=offset) for offset in (0.0, 0.3, 0.37, 0.45, 0.5, 0.7, 0.9)}
     for offset, (omega, amplitude) in got.items():
@@ -790,17 +791,21 @@ def test_the_old_run_functions_warn_name_their_stepper_and_answer_as_it_does():
             want = stepper.frames(args[2], jnp.asarray([0.1, 0.2]))
         else:
             want = stepper.run(pstate, steps=20).state
-        for a, b in zip(jax.tree_util.tree_leaves(got), jax.tree_util.tree_leaves(want)):
+        if kind == "run":
+            got = got[0]  # (state, steps taken)
+        got, want = jax.tree_util.tree_leaves(got), jax.tree_util.tree_leaves(want)
+        assert len(got) == len(want), (old.__name__, len(got), len(want))
+        for a, b in zip(got, want):
             np.testing.assert_allclose(np.asarray(a), np.asarray(b), rtol=0, atol=1e-12, err_msg=old.__name__)
 
 
 @pytest.mark.slow
 def test_memory_stays_flat_over_long_runs_streamed_through_the_interface():
     """The bench's memory rows (``python -m bench shallow``; each run in a process of its own, after a warm-up):
-    the depth stepper and shallow water streaming a frame every 60 steps to a callback hold the same bytes after
-    960 steps as after 60, and the process's resident size grows by a few MB (measured at 256² and 128²: 9.2 and
-    6.8 MB after 960 steps, 9.0 and 6.9 after 3840), where ``run_depth``, keeping the surface of every step, grows
-    with the run (here, 128²: 60 MB after 960 steps)."""
+    the depth stepper (128² here) and shallow water (64²) streaming a frame every 60 steps to a callback hold the
+    same bytes after 960 steps as after 60, and the process's resident size grows over 960 steps by no more than
+    over 60 plus a few MB (the bench at 256² and 128²: 9.2 and 6.8 MB over 960 steps, 9.0 and 6.9 over 3840),
+    where ``run_depth``, keeping the surface of every step, grows with the run (128²: 60 MB over 960 steps)."""
     from bench.shallow import memory_rows
 
     rows = memory_rows((60, 960), n=128, progress=lambda *_: None)
@@ -810,4 +815,5 @@ def test_memory_stays_flat_over_long_runs_streamed_through_the_interface():
     for name in ("DepthStepper.run,", "ShallowWaterStepper.run,"):
         short, long = by[name, 60], by[name, 960]
         assert long["bytes_held"] - short["bytes_held"] < 1024 and long["frames"] == 16, (short, long)
-        assert long["resident_growth_mb"] < 0.25 * kept, (long, kept)
+        # 900 steps more; run_depth's surfaces would be 56 MB of it: the allocator's noise is a few MB
+        assert long["resident_growth_mb"] < short["resident_growth_mb"] + 0.15 * kept, (short, long, kept)

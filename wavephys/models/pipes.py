@@ -296,7 +296,9 @@ def _pipes_run(pipes: Pipes, bed, state: PipesState, steps: int, dt: float) -> P
     """
     b = _checked(pipes, bed, state, dt)
     steps = check_int("steps", steps, lo=1)
-    return _stepper(pipes, b, dt).advance(state, steps)
+    stepper = _stepper(pipes, b, dt)
+    out = stepper.advance(state, steps)
+    return out if is_traced(out.depth) else stepper._result(out)  # water deepened past the limit: refused
 
 
 def pipes_courant(pipes: Pipes, depth_max: float, dt: float) -> float:
@@ -370,7 +372,7 @@ class PipesStepper(Stepper):
         depth, flows = _advance(pipes, bed.astype(state.depth.dtype), state.depth, state.flows, dt)
         area = pipes.area if pipes._constant else pipes.dx * jnp.max(state.depth)
         courant = jnp.sqrt(pipes.g * area / pipes.dx) * dt / pipes.dx
-        limit = COURANT_LIMITS[0 if min(state.depth.shape) == 1 else 1]
+        limit = COURANT_LIMITS[0 if min(state.depth.shape) == 1 else 1] * (1 + 1e-5)  # as the checks: no rounding
         poison = jnp.where(courant > limit, jnp.asarray(np.nan, depth.dtype), 0.0)  # added: jax.grad sees NaN too
         return type(state)(depth + poison, flows + poison, state.time + dt)
 

@@ -685,8 +685,9 @@ class SplitStepper(ShallowWaterStepper):
         # the tables on the device once per precision (a float64 table is float32 with x64 off), not per call
         precision = jax.dtypes.canonicalize_dtype(np.float64)
         if precision not in self._device_tables:
-            with jax.ensure_compile_time_eval():  # concrete arrays even when first asked for inside a trace (a
-                # tracer kept here leaked into the next call: jit, then grad, of one stepper failed)
+            # concrete arrays even when first asked for inside a trace (a tracer kept here leaked into the next
+            # call: jit, then grad, of one stepper failed)
+            with jax.ensure_compile_time_eval():
                 self._device_tables[precision] = jax.device_put(_tables(self.split, self.bed.shape))
         return None, (self.split, jnp.asarray(self.bed), self._device_tables[precision])
 
