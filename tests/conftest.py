@@ -22,22 +22,19 @@ if "JAX_COMPILATION_CACHE_DIR" not in os.environ:
 # where this jaxlib knows the flag (an unknown XLA flag aborts the process, so a child probes it first);
 # WAVEPHYS_TESTS_XLA_DEFAULTS=1 keeps XLA's defaults (.ci/run's slow runs use them). The child probes on the
 # CPU (the flag is the CPU generator's; a GPU plugin is released with its jaxlib and parses the same flags).
-# LLVM's optimization level 1 (XLA's default is 2; the flag sets the backend's, the CPU's here) compiles the
-# largest programs in about half the time (the split's step at 32², 11 000 StableHLO lines: 4.0 s against 7.4) and
-# runs them at the same speed on these small grids; the README's pytest took 378 s against 423 on an idle 2-core
-# machine. Level 0 compiles faster still (2.2 s) but runs it 3-4 times slower, and its programs changed a float32
-# coverage test's texels by 1.4 % (tests/caustics/test_caustics.py, the wide window; cause not looked into): the
-# suite stays on 1.
-_EMITTERS = "--xla_cpu_use_fusion_emitters=false --xla_backend_optimization_level=1"
+# Measured and not adopted: LLVM's optimization level 1 (--xla_backend_optimization_level=1; XLA's default is 2)
+# compiles the split's step at 32² (11 000 StableHLO lines) in 4.0 s against 7.4, but most programs here are small:
+# over tests/simulation/test_steppers.py and tests/caustics/test_caustics_jacobian.py the XLA compile time was 89.3
+# s against 95.0, and whole runs differed by less than this machine's run-to-run spread (about 30 s). Level 0 runs
+# 3-4 times slower and moved a float32 coverage test's texels by 1.4 % (the wide window in
+# tests/caustics/test_caustics.py).
+_EMITTERS = "--xla_cpu_use_fusion_emitters=false"
 if (os.environ.get("WAVEPHYS_TESTS_XLA_DEFAULTS", "") in ("", "0")
         and "xla_cpu_use_fusion_emitters" not in os.environ.get("XLA_FLAGS", "")):
     import subprocess
     import sys
 
-    _flags = os.environ.get("XLA_FLAGS", "")
-    for _flag in _EMITTERS.split():  # a setting already in XLA_FLAGS is the caller's: kept
-        if _flag.split("=")[0] not in _flags:
-            _flags = (_flags + " " + _flag).strip()
+    _flags = (os.environ.get("XLA_FLAGS", "") + " " + _EMITTERS).strip()
     try:
         _probe = subprocess.run([sys.executable, "-c", "import jax.numpy as j; j.ones(1).block_until_ready()"],
                                 env=dict(os.environ, XLA_FLAGS=_flags, JAX_PLATFORMS="cpu"),
