@@ -22,13 +22,14 @@ if "JAX_COMPILATION_CACHE_DIR" not in os.environ:
 # where this jaxlib knows the flag (an unknown XLA flag aborts the process, so a child probes it first);
 # WAVEPHYS_TESTS_XLA_DEFAULTS=1 keeps XLA's defaults (.ci/run's slow runs use them). The child probes on the
 # CPU (the flag is the CPU generator's; a GPU plugin is released with its jaxlib and parses the same flags).
-# Measured and not adopted: LLVM's optimization level 1 (--xla_backend_optimization_level=1; XLA's default is 2)
-# compiles the split's step at 32² (11 000 StableHLO lines) in 4.0 s against 7.4, but most programs here are small:
-# over tests/simulation/test_steppers.py and tests/caustics/test_caustics_jacobian.py the XLA compile time was 89.3
-# s against 95.0, and whole runs differed by less than this machine's run-to-run spread (about 30 s). Level 0 runs
-# 3-4 times slower and moved a float32 coverage test's texels by 1.4 % (the wide window in
-# tests/caustics/test_caustics.py).
-_EMITTERS = "--xla_cpu_use_fusion_emitters=false"
+# With it, LLVM's optimization level 1 (XLA's default is 2): it compiles the largest programs in about half the
+# time (the split's step at 32², 11 000 StableHLO lines: 4.0 s against 7.4), though most programs here are small
+# (XLA compile over tests/simulation/test_steppers.py and tests/caustics/test_caustics_jacobian.py: 89.3 s against
+# 95.0). Whole README runs on 2 cores: 378, 435 and 439 s at level 1 (the last a fresh clone) against 423 and 487 s
+# at level 2 (the last a fresh clone): about 9 %, in a run-to-run spread of 30-50 s; an interleaved A/B of three
+# compile-heavy files gave 3 %. Level 0 runs 3-4 times slower and moved a float32 coverage test's texels by 1.4 %
+# (the wide window in tests/caustics/test_caustics.py): not used.
+_EMITTERS = "--xla_cpu_use_fusion_emitters=false --xla_backend_optimization_level=1"
 if (os.environ.get("WAVEPHYS_TESTS_XLA_DEFAULTS", "") in ("", "0")
         and "xla_cpu_use_fusion_emitters" not in os.environ.get("XLA_FLAGS", "")):
     import subprocess
