@@ -723,7 +723,7 @@ def _lamb(name, wet_cells=64, slope=0.1, offset=0.37, periods=3):
 
 def test_shallow_waters_loss_on_lambs_beach_is_where_its_first_wet_cell_is_thin():
     """Shallow water's failure boundary on Lamb's beach (1:10, 64 wet cells, 3 periods, float64), measured over the
-    shoreline's place in its cell: the mode keeps all but 3-8 % of its amplitude where the cell holding the still
+    shoreline's place in its cell: the mode keeps all but 3-10 % of its amplitude where the cell holding the still
     shoreline is dry (offsets 0.5-0.95 of a cell past a face; ω within +2.2 %), and loses 35-47 % where that cell
     is wet but thinner than a fifth of s·dx (offsets 0.3-0.45: depths of 5-20 mm; ω within 1.7 %). The loss is
     linear (the same at 1 mm, 0.1 mm and 0.01 mm), not the time step's (the same at a Courant number of 0.1) and not
