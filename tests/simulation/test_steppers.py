@@ -729,7 +729,8 @@ def test_shallow_waters_loss_on_lambs_beach_is_where_its_first_wet_cell_is_thin(
     linear (the same at 1 mm, 0.1 mm and 0.01 mm), not the time step's (the same at a Courant number of 0.1) and not
     the limiter's (MC −53 %, van Leer −48 %, unlimited −58 % at 0.37, against minmod's −44 %); its decay rate falls
     by 2.3 and 2.8 with each doubling of the cells (−73, −44, −19 % at 32, 64, 128), a first-order error of the
-    thin cell beside the shoreline. At offset 0 (the shoreline on a face, its cell 0.05 m deep) it loses 11 %. The linear depth stepper, whose shoreline faces take the bed's depth, keeps 99.5 % at every offset
+    thin cell beside the shoreline. At offset 0 (the shoreline on a face, its cell 0.05 m deep) it loses 11 %. The
+    linear depth stepper, whose shoreline faces take the bed's depth, keeps 99.5 % at every offset
     (test_shoreline.py); a sub-cell shoreline (Bollermann et al. 2013) is the known cure, not done."""
     got = {offset: _lamb("ShallowWaterStepper", offset=offset) for offset in (0.0, 0.3, 0.37, 0.45, 0.5, 0.7, 0.9)}
     for offset, (omega, amplitude) in got.items():
