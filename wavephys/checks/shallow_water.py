@@ -213,7 +213,8 @@ def carrier_greenspan_errors(n: int = 1100, periods: float = 1.0, amplitude: flo
     -------
     dict
         ``max``, ``l1`` (surface errors over cells wet in either solution, m), ``runup`` (the highest
-        shoreline elevation seen, m), ``runup_exact`` (m), ``dx`` (m).
+        shoreline elevation seen, m), ``runup_exact`` (m), ``rundown`` (the lowest shoreline elevation seen,
+        m), ``rundown_exact`` (the exact shoreline's lowest elevation at the same frames, m), ``dx`` (m).
     """
     from wavephys.physics.shallow_water import carrier_greenspan, carrier_greenspan_runup
     from wavephys.simulation.shallow_water import Inflow, ShallowWater, _sw_frames, sw_state
@@ -232,16 +233,18 @@ def carrier_greenspan_errors(n: int = 1100, periods: float = 1.0, amplitude: flo
     times = np.linspace(period * periods / frames, period * periods, int(frames * periods))
     out = _sw_frames(solver, bed, state, times)
     depth = np.asarray(out.h)[:, 0]
-    errs, l1s, shore = [], [], []
+    errs, l1s, shore, exact_shore = [], [], [], []
     for i, t in enumerate(times):
-        want, _, _ = carrier_greenspan(x, t, h0, length, amplitude, period)
+        want, _, at = carrier_greenspan(x, t, h0, length, amplitude, period)
+        exact_shore.append(h0 * (at / length - 1))  # the bed's height where the exact shoreline is
         eta = depth[i] + bed[0]
         wet = (depth[i] > 1e-3) | (want > bed[0] + 1e-3)
         errs.append(np.abs(eta - want)[wet].max())
         l1s.append(np.abs(eta - want)[wet].mean())
         shore.append(eta[np.nonzero(depth[i] > 1e-3)[0].max()])
     return dict(max=float(max(errs)), l1=float(np.mean(l1s)), runup=float(max(shore)),
-                runup_exact=carrier_greenspan_runup(h0, length, amplitude, period), dx=dx)
+                runup_exact=carrier_greenspan_runup(h0, length, amplitude, period), rundown=float(min(shore)),
+                rundown_exact=float(min(exact_shore)), dx=dx)
 
 
 RUNUP_MODELS = ("shallow_water", "split", "pipes")
