@@ -15,7 +15,8 @@ import jax.numpy as jnp
 import numpy as np
 
 from wavephys import checks
-from wavephys.models.finite_difference import STABILITY_LIMIT, fd_run
+from wavephys.core.stepper import TwoLevelState
+from wavephys.models.finite_difference import STABILITY_LIMIT, FiniteDifferenceStepper
 from wavephys.plot import plot_curves
 
 
@@ -58,7 +59,8 @@ def boundary_data(quick: bool = False, progress=print):
     cs = np.linspace(0.9, 1.1, 21) * STABILITY_LIMIT
     growth = []
     for c in cs:
-        out, _, _ = fd_run(eta0, eta0, float(c), 400, check_stability=False)
+        out = FiniteDifferenceStepper(float(c), 1.0, check_stability=False).trajectory(TwoLevelState(eta0, eta0),
+                                                                                       400)[0].eta
         g = float(jnp.max(jnp.abs(out)) / jnp.max(jnp.abs(eta0)))
         growth.append(g if math.isfinite(g) else 1e38)
     rows += [dict(boundary="FD stability", courant=float(c), growth_400_steps=g) for c, g in zip(cs, growth)]

@@ -14,8 +14,9 @@ import numpy as np
 
 from bench.timing import fft_work, interleaved, median_seconds, paired_ratio
 from wavephys import Grid, Simulation, Stones, Water
-from wavephys.models.finite_difference import fd_run
-from wavephys.models.truncated_kernel import kernel_run, max_stable_dt, truncated_kernel
+from wavephys.core.stepper import TwoLevelState
+from wavephys.models.finite_difference import FiniteDifferenceStepper
+from wavephys.models.truncated_kernel import KernelStepper, max_stable_dt, truncated_kernel
 from wavephys.physics import dispersion as disp
 from wavephys.physics.heights import first_order_height
 from wavephys.physics.ring_waves import propagate
@@ -104,8 +105,9 @@ def accuracy_rows(progress=print) -> list[dict]:
             em = _height_at(grid, -dt)
             c = c0 * dt / dx
             progress(f"finite differences n={n} C={courant}")
-            seconds = median_seconds(lambda: fd_run(e0, em, c, steps), 3)
-            out, _, _ = fd_run(e0, em, c, steps)
+            fd = FiniteDifferenceStepper(c, dt)  # every step kept, as the spectral run above keeps its surfaces
+            seconds = median_seconds(lambda: fd.trajectory(TwoLevelState(e0, em), steps), 3)
+            out = fd.trajectory(TwoLevelState(e0, em), steps)[0].eta
             rows.append(dict(method="finite difference", n=n, dtype="float32", seconds=seconds,
                              label=f"n={n} C={courant}", error=_rel_l2(out, exact), steps=steps))
     grid = Grid(256, LENGTH)
@@ -117,8 +119,9 @@ def accuracy_rows(progress=print) -> list[dict]:
         dt = DURATION / steps
         em = _height_at(grid, -dt)
         progress(f"truncated kernel P={size}")
-        seconds = median_seconds(lambda: kernel_run(e0, em, stencil, dt, steps), 3)
-        out, _ = kernel_run(e0, em, stencil, dt, steps)
+        kernel = KernelStepper(stencil, dt)
+        seconds = median_seconds(lambda: kernel.advance(TwoLevelState(e0, em), steps), 3)
+        out = kernel.advance(TwoLevelState(e0, em), steps).eta
         rows.append(dict(method="truncated kernel", n=256, dtype="float32", seconds=seconds,
                          label=f"P={size}", error=_rel_l2(out, exact), steps=steps))
     for r in rows:

@@ -68,7 +68,8 @@ def step_rows(sizes=(256, 512), progress=print) -> list[dict]:
     from wavephys import Grid, Stones, Water
     from wavephys.models.pipes import Pipes, _pipes_run, pipes_state
     from wavephys.simulation import Model
-    from wavephys.simulation.depth import Floor, depth_state, run_depth
+    from wavephys.simulation.depth import Floor, depth_state
+    from wavephys.simulation.steppers import DepthStepper
     from wavephys.simulation.shallow_water import ShallowWater, _sw_run, sw_state
     from wavephys.simulation.stepping import add_source, initial_state, run
 
@@ -96,13 +97,14 @@ def step_rows(sizes=(256, 512), progress=print) -> list[dict]:
         split2 = Split(fv2, levels=(0.5, 2.0))
         split4 = Split(fv2, levels=(0.5, 0.8, 1.3, 2.0))
         k = 10
+        shallow, levels = DepthStepper(model, floor, "shallow"), DepthStepper(model, wet_floor, "levels")
         fns = {
             "spectral step (walls)": lambda: run(model, spectral, k)[0].psi,
-            "linear shallow water (varying depth)": lambda: run_depth(model, floor, linear, k, "shallow")[0].fields,
+            "linear shallow water (varying depth)": lambda: shallow.advance(linear, k).fields,
             "finite volumes, order 2": lambda: _sw_run(fv2, bed, sw, steps=k, dt=dt)[0].fields,
             "finite volumes, order 1": lambda: _sw_run(fv1, bed, sw, steps=k, dt=dt)[0].fields,
             "virtual pipes": lambda: _pipes_run(pipes, bed, ps, k, dt).depth,
-            "levels (4 depths, linear, dispersive)": lambda: run_depth(model, wet_floor, linear, k, "levels")[0].fields,
+            "levels (4 depths, linear, dispersive)": lambda: levels.advance(linear, k).fields,
             "split, 2 levels": lambda: _split_run(split2, bed, sw, steps=k, dt=dt)[0].fields,
             "split, 4 levels": lambda: _split_run(split4, bed, sw, steps=k, dt=dt)[0].fields,
         }
@@ -182,7 +184,7 @@ if method.startswith("ShallowWaterStepper"):
 else:
     from wavephys import Grid, Water
     from wavephys.simulation import Model
-    from wavephys.simulation.depth import Floor, depth_state, run_depth
+    from wavephys.simulation.depth import Floor, depth_state
     from wavephys.steppers import DepthStepper
 
     grid = Grid(n, 16.0)
@@ -190,10 +192,10 @@ else:
     x = np.asarray(grid.mesh()[0])
     floor = Floor(np.clip(0.2 + 0.1 * (x + 8.0), 0.05, 1.5))
     start = depth_state(model, 0.01 * np.exp(-(x ** 2) / 2.0))
-    if method == "run_depth":
-        run = lambda k, keep: run_depth(model, floor, start, k, "shallow")
+    stepper = DepthStepper(model, floor, "shallow")
+    if method == "trajectory":
+        run = lambda k, keep: stepper.trajectory(start, k)
     else:
-        stepper = DepthStepper(model, floor, "shallow")
         run = lambda k, keep: stepper.run(start, steps=k, every=60, callback=keep)
 
 kept = []
@@ -212,11 +214,12 @@ def memory_rows(steps=(60, 960, 3840), n=256, progress=print) -> list[dict]:
     """Memory a long run holds: each run in a process of its own, warmed up by a run of 60 steps, then measured:
     the bytes of the arrays the call leaves the caller, and the growth over the measured run of the resident size
     (what the process still holds at its end) and of the peak resident size (at its worst; it includes compiling
-    where a run of this length compiles a program of its own, as ``run_depth`` does), MB.
+    where a run of this length compiles a program of its own, as ``trajectory`` does), MB.
 
     Runs: the linear depth stepper (floor ``"shallow"`` over a 1.5 m slope, n × n) behind the one interface,
-    streaming a frame every 60 steps to a callback (``DepthStepper.run``), against ``run_depth``, which returns
-    the surface of every step (run up to 960 steps: 3840 would hold 1 GB at 256²); and nonlinear shallow water
+    streaming a frame every 60 steps to a callback (``DepthStepper.run``), against ``DepthStepper.trajectory``
+    (what the deprecated ``run_depth`` did), which returns the state of every step (run up to 960 steps: 3840
+    would hold 1 GB at 256²); and nonlinear shallow water
     (``ShallowWaterStepper.run``, the same slope, n/2 × n/2, its adaptive steps) streaming likewise. Each
     process imports wavephys from this checkout, on the CPU unless ``JAX_PLATFORMS`` says otherwise.
 
@@ -239,7 +242,7 @@ def memory_rows(steps=(60, 960, 3840), n=256, progress=print) -> list[dict]:
     import sys
 
     cases = [("DepthStepper.run, a frame every 60 steps to a callback", "DepthStepper", n, steps),
-             ("run_depth (the surface of every step)", "run_depth", n, [k for k in steps if k <= 960]),
+             ("DepthStepper.trajectory (the state of every step)", "trajectory", n, [k for k in steps if k <= 960]),
              ("ShallowWaterStepper.run, a frame every 60 steps to a callback", "ShallowWaterStepper", n // 2, steps)]
     rows = []
     for label, method, size, lengths in cases:

@@ -85,14 +85,16 @@ def accuracy_rows(progress=print) -> list[dict]:
     _, surf = sim.run(state, frames)
     rows.append(("spectral simulation", np.asarray(surf.eta), "the reference"))
     progress("surfaces: finite differences record")
-    from wavephys.models.finite_difference import fd_run
+    from wavephys.core.stepper import TwoLevelState
+    from wavephys.models.finite_difference import FiniteDifferenceStepper
 
     kp = 2 * np.pi / 10.0
     c = float(phase_speed(kp, WATER))
     sub = 2  # FD steps per frame, for a stable Courant number
     courant = c * dt / sub / float(grid.dx)
     h0 = np.asarray(surf.eta[0])
-    _, _, eta = fd_run(h0, h0, courant, sub * frames)  # from rest: waves both ways, one speed c
+    end, states = FiniteDifferenceStepper(courant, dt / sub).trajectory(TwoLevelState(h0, h0), sub * frames)
+    eta = np.concatenate([np.asarray(states.eta)[1:], np.asarray(end.eta)[None]])  # from rest: waves both ways
     rows.append(("finite differences", np.asarray(eta)[sub - 1::sub], f"c = {c:.2f} m/s, Courant {courant:.2f}"))
     for name, (make, label, _) in _models(grid, dt).items():
         progress(f"surfaces: {name} record")

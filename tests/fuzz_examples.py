@@ -643,11 +643,13 @@ SKIP = {
     # count or a time drawn large runs up to 10⁶ compiled steps a call: 14 minutes for the set)
     *(f"{cls}{method}" for cls in ("wavephys.simulation.steppers.SpectralStepper",
                                    "wavephys.simulation.steppers.DepthStepper",
+                                   "wavephys.simulation.depth.ProfileStepper",
                                    "wavephys.simulation.shallow_water.ShallowWaterStepper",
                                    "wavephys.simulation.split.SplitStepper", "wavephys.models.pipes.PipesStepper",
                                    "wavephys.models.finite_difference.FiniteDifferenceStepper",
                                    "wavephys.models.truncated_kernel.KernelStepper")
-      for method in ("", ".init", ".step", ".run", ".advance", ".advance_to", ".frames")),
+      for method in ("", ".init", ".step", ".run", ".advance", ".advance_to", ".frames", ".trajectory")),
+    "wavephys.simulation.steppers.DepthStepper.surfaces",  # of a trajectory's states (tested in test_steppers)
     # a method of a floor made by the caller (its argument is checked by the steppers, tested in test_depth)
     "wavephys.simulation.depth.Floor.check",
     # the harness's fitted tank modes, made by measure_seiches (its fields are what was measured)
@@ -808,7 +810,7 @@ def _stepper_cases():
     from wavephys.models.finite_difference import FiniteDifferenceStepper
     from wavephys.models.pipes import Pipes, PipesStepper, pipes_state
     from wavephys.models.truncated_kernel import KernelStepper
-    from wavephys.simulation.depth import Floor, depth_state
+    from wavephys.simulation.depth import Floor, ProfileState, ProfileStepper, depth_state
     from wavephys.simulation.shallow_water import ShallowWater, ShallowWaterStepper
     from wavephys.simulation.split import Split, SplitStepper
     from wavephys.simulation.steppers import DepthStepper, SpectralStepper
@@ -818,6 +820,8 @@ def _stepper_cases():
         SpectralStepper: (lambda: SpectralStepper(_model()), lambda: initial_state(_model())),
         DepthStepper: (lambda: DepthStepper(_model(), Floor(np.full((N, N), 0.5)), "shallow"),
                        lambda: depth_state(_model(), np.zeros((N, N)))),
+        ProfileStepper: (lambda: ProfileStepper(np.full(N, 0.5), 0.1, Water(), 0.05),
+                         lambda: ProfileState(np.zeros(N), np.zeros(N))),
         ShallowWaterStepper: (lambda: ShallowWaterStepper(ShallowWater(0.1), _bed()), _sw_state),
         SplitStepper: (lambda: SplitStepper(Split(ShallowWater(0.1), levels=(0.5,)), flat),
                        lambda: __import__("wavephys.simulation.shallow_water", fromlist=["x"]).sw_state(flat, 0.0)),
@@ -849,6 +853,9 @@ def _register_steppers():
         f"{mod}.steppers.SpectralStepper": {"model": _model},
         f"{mod}.steppers.DepthStepper": {"model": _model, "floor": lambda: Floor(np.full((N, N), 0.5)),
                                          "method": lambda: "shallow"},
+        f"{mod}.depth.ProfileStepper": {"depth": lambda: np.full(N, 0.5), "dx": lambda: 0.1, "dt": lambda: 0.05,
+                                        "method": lambda: "shallow", "ends": lambda: "walls"},
+        f"{mod}.depth.ProfileState": {"eta": lambda: np.zeros(N), "phi": lambda: np.zeros(N)},
         f"{mod}.shallow_water.ShallowWaterStepper": {"solver": lambda: ShallowWater(0.1), "bed": _bed},
         f"{mod}.split.SplitStepper": {"split": lambda: Split(ShallowWater(0.1), levels=(0.5,)),
                                       "bed": lambda: -np.full((N, N), 0.5)},

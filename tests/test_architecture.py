@@ -179,7 +179,7 @@ def test_optics_submodules_on_attribute_access():
 @pytest.mark.parametrize("old,new,name", [
     ("wavephys.dispersion", "wavephys.physics.dispersion", "angular_frequency"),
     ("wavephys.ship_waves", "wavephys.physics.ship_waves", "Ship"),
-    ("wavephys.finite_difference", "wavephys.models.finite_difference", "fd_run"),
+    ("wavephys.finite_difference", "wavephys.models.finite_difference", "fd_step"),
     ("wavephys.validate", "wavephys.harness", "measure_dispersion"),
     ("wavephys.params", "wavephys.core.grid", "Grid"),
     ("optics.fresnel", "optics.light.fresnel", "reflectance"),

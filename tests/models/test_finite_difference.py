@@ -5,8 +5,9 @@ import jax.numpy as jnp
 import numpy as np
 import pytest
 
-from wavephys.models.finite_difference import (STABILITY_LIMIT, courant_number, fd_angular_frequency, fd_run,
-                                        find_stability_limit, laplacian)
+from wavephys.core.stepper import TwoLevelState
+from wavephys.models.finite_difference import (STABILITY_LIMIT, FiniteDifferenceStepper, courant_number,
+                                               fd_angular_frequency, find_stability_limit, laplacian)
 
 
 def test_laplacian_of_plane_wave():
@@ -19,8 +20,9 @@ def test_laplacian_of_plane_wave():
 
 def test_blows_up_past_the_limit_and_stays_bounded_below():
     eta0 = jax.random.normal(jax.random.PRNGKey(0), (32, 32))
-    below, _, _ = fd_run(eta0, eta0, 0.98 * STABILITY_LIMIT, 400)
-    above, _, _ = fd_run(eta0, eta0, 1.02 * STABILITY_LIMIT, 400, check_stability=False)
+    start = TwoLevelState(eta0, eta0)
+    below = FiniteDifferenceStepper(0.98 * STABILITY_LIMIT, 1.0).advance(start, 400).eta
+    above = FiniteDifferenceStepper(1.02 * STABILITY_LIMIT, 1.0, check_stability=False).advance(start, 400).eta
     assert float(jnp.max(jnp.abs(below))) < 10 * float(jnp.max(jnp.abs(eta0)))
     assert not bool(jnp.all(jnp.abs(above) < 1e6))
 
@@ -32,14 +34,13 @@ def test_single_mode_follows_discrete_dispersion():
     w = float(fd_angular_frequency(k, 0.0, 1.0, c, 1.0)) * c  # phase per step (Δt = c for c = Δx = 1)
     eta_prev = np.cos(k * x + w)[None, :] * np.ones((n, 1))  # time −1
     eta = np.cos(k * x)[None, :] * np.ones((n, 1))
-    out, _, _ = fd_run(jnp.asarray(eta), jnp.asarray(eta_prev), c, 50)
+    out = FiniteDifferenceStepper(c, 1.0).advance(TwoLevelState(eta, eta_prev), 50).eta
     np.testing.assert_allclose(out[0], np.cos(k * x - 50 * w), atol=1e-4)
 
 
 def test_unstable_courant_rejected_by_default():
-    z = jnp.zeros((8, 8))
     with pytest.raises(ValueError, match="courant"):
-        fd_run(z, z, 0.8, 10)
+        FiniteDifferenceStepper(0.8, 1.0)
 
 
 @pytest.mark.parametrize("args,name", [((0.0, 0.1, 1.0), "speed"), ((1.0, -0.1, 1.0), "dt"), ((1.0, 0.1, math.nan), "dx")])
@@ -50,4 +51,4 @@ def test_bad_courant_inputs(args, name):
 
 def test_shape_mismatch():
     with pytest.raises(ValueError, match="eta"):
-        fd_run(jnp.zeros((8, 8)), jnp.zeros((8, 9)), 0.5, 1)
+        TwoLevelState(jnp.zeros((8, 8)), jnp.zeros((8, 9)))

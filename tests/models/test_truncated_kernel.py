@@ -5,8 +5,9 @@ import pytest
 
 from wavephys import Grid, Water
 from wavephys.physics.dispersion import angular_frequency
-from wavephys.models.truncated_kernel import (convolve_periodic, kernel_run, max_stable_dt, stencil_symbol,
-                                       truncated_kernel)
+from wavephys.core.stepper import TwoLevelState
+from wavephys.models.truncated_kernel import (KernelStepper, convolve_periodic, max_stable_dt, stencil_symbol,
+                                              truncated_kernel)
 
 GRID = Grid(64, 6.4)
 WATER = Water(sigma=0.0)
@@ -44,8 +45,11 @@ def test_leapfrog_stability_limit():
     st = truncated_kernel(GRID, WATER, 9)
     dt = max_stable_dt(st, GRID)
     eta = jax.random.normal(jax.random.PRNGKey(1), (64, 64))
-    ok, _ = kernel_run(eta, eta, st, 0.95 * dt, 400)
-    bad, _ = kernel_run(eta, eta, st, 1.05 * dt, 400, check_stability=False)
+    start = TwoLevelState(eta, eta)
+    ok = KernelStepper(st, 0.95 * dt).advance(start, 400).eta
+    bad = KernelStepper(st, 1.05 * dt, check_stability=False).advance(start, 400).eta
+    with pytest.raises(ValueError, match="stability limit of this stencil"):
+        KernelStepper(st, 1.05 * dt).advance(start, 1)  # refused by default, by name
     assert float(jnp.abs(ok).max()) < 20 * float(jnp.abs(eta).max())
     assert not bool(jnp.all(jnp.abs(bad) < 1e6))
 

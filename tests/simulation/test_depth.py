@@ -15,8 +15,9 @@ from wavephys.physics.depth import (depth_levels, depth_weights, lamb_beach, mil
                                     refraction_angle, shoaling_coefficient)
 from wavephys.physics.dispersion import angular_frequency, group_speed, wavenumber
 from wavephys.simulation import Model
-from wavephys.simulation.depth import (DEPTH_METHODS, Floor, depth_state, run_depth, run_profile, step_levels,
+from wavephys.simulation.depth import (DEPTH_METHODS, Floor, ProfileState, ProfileStepper, depth_state, step_levels,
                                        step_shallow, step_symmetric, symmetric_levels)
+from wavephys.steppers import DepthStepper
 from wavephys.simulation.stepping import add_height, initial_state, run, surface
 
 G = 9.81
@@ -37,7 +38,7 @@ def test_a_constant_floor_at_one_level_is_todays_step():
         today, _ = run(model, add_height(model, initial_state(model), eta), 50)
         want = np.asarray(surface(model, today).eta)
         for method in ("levels", "symmetric"):
-            state, _ = run_depth(model, Floor(np.full((64, 64), depth)), depth_state(model, eta), 50, method)
+            state = DepthStepper(model, Floor(np.full((64, 64), depth)), method).advance(depth_state(model, eta), 50)
             assert np.abs(np.asarray(state.eta) - want).max() <= 1e-11 * np.abs(want).max()
 
 
@@ -106,7 +107,7 @@ def test_refraction_over_straight_contours_follows_snells_law(method):
     phase = kx * x + ky * y
     state = depth_state(model, *travelling_packet(grid, 1e-3 * env * np.exp(1j * phase), method, h0))
     travel = 18.0 / cg0 + 6.0 / (0.5 * (cg0 + cg1)) + 18.0 / cg1  # centre from −28 to +14 m
-    state, _ = run_depth(model, Floor(h), state, int(travel / model.dt), method)
+    state = DepthStepper(model, Floor(h), method).advance(state, int(travel / model.dt))
     eta = np.asarray(state.eta) * (x > -2.0)
     a = hilbert(eta, axis=1)
     weight = np.abs(a) ** 2
@@ -146,8 +147,8 @@ def test_the_mild_slope_reference_conserves_energy_flux_and_is_the_shoaling_law_
 
 
 @pytest.mark.parametrize("method", ["levels", "shallow", "symmetric"])
-def test_the_one_step_functions_are_run_depth_one_step_at_a_time(method):
-    """step_levels/step_shallow/step_symmetric called by hand agree with run_depth (the same program)."""
+def test_the_one_step_functions_are_the_depth_steppers_one_step_at_a_time(method):
+    """step_levels/step_shallow/step_symmetric called by hand agree with DepthStepper (the same program)."""
     model = Model(Grid(16, 2.0), Water(sigma=0.0), dt=0.02, dtype="float64")
     x = (np.arange(16) + 0.5) / 16
     depth = np.tile(0.1 + 0.4 * x, (16, 1))  # a slope, wet everywhere (the levels method needs it)
@@ -157,7 +158,7 @@ def test_the_one_step_functions_are_run_depth_one_step_at_a_time(method):
     by_hand = depth_state(model, eta)
     for _ in range(3):
         by_hand, _ = step(model, floor, by_hand)
-    together, _ = run_depth(model, floor, depth_state(model, eta), 3, method)
+    together = DepthStepper(model, floor, method).advance(depth_state(model, eta), 3)
     assert float(np.abs(np.asarray(by_hand.fields) - np.asarray(together.fields)).max()) < 1e-15
     assert float(np.abs(np.asarray(together.fields)[0] - eta).max()) > 1e-6  # it moved
 
@@ -172,16 +173,22 @@ def test_depth_steppers_refuse_bad_input_by_name():
     with pytest.raises(TypeError, match="floor"):
         step_shallow(model, np.ones((16, 16)), state)
     with pytest.raises(ValueError, match="method"):
-        run_depth(model, Floor(np.ones((16, 16))), state, 2, "mild")
+        DepthStepper(model, Floor(np.ones((16, 16))), "mild")
     assert set(DEPTH_METHODS) == {"levels", "shallow", "symmetric"}
     with pytest.raises(ValueError, match="dry everywhere"):
         step_symmetric(model, Floor(np.zeros((16, 16))), state)
-    with pytest.raises(ValueError, match="eta"):
-        run_profile(np.ones(16), 0.1, Water(), 0.05, np.zeros(8), np.zeros(16), 3)
+    with pytest.raises(ValueError, match="phi"):
+        ProfileState(np.zeros(16), np.zeros(8))
+    with pytest.raises(ValueError, match="profile's 16 samples"):
+        ProfileStepper(np.ones(16), 0.1, Water(), 0.05).advance(ProfileState(np.zeros(8), np.zeros(8)), 3)
     with pytest.raises(ValueError, match="dx"):
-        run_profile(np.ones(16), -0.1, Water(), 0.05, np.zeros(16), np.zeros(16), 3)
+        ProfileStepper(np.ones(16), -0.1, Water(), 0.05)
     with pytest.raises(ValueError, match="depth"):
-        run_profile(-np.ones(16), 0.1, Water(), 0.05, np.zeros(16), np.zeros(16), 3)
+        ProfileStepper(-np.ones(16), 0.1, Water(), 0.05)
+    with pytest.raises(ValueError, match="levels method needs depth > 0"):
+        ProfileStepper(np.zeros(16), 0.1, Water(), 0.05, "levels")
+    with pytest.raises(ValueError, match="dt: ProfileStepper steps its own dt"):
+        ProfileStepper(np.ones(16), 0.1, Water(), 0.05).step(ProfileState(np.zeros(16), np.zeros(16)), dt=0.1)
 
 
 # -- the symmetric blend: shoals right at every kh ---------------------------------------------------------
@@ -252,7 +259,9 @@ def test_symmetric_step_conserves_energy_with_walls_and_dry_land():
         return float(e - modified * model.dt ** 2 / 8 * G ** 2 * np.sum(eta * apply(s, eta)))
 
     e0 = energy(state)
-    end, record = run_depth(model, floor, state, 300, "symmetric")
+    stepper = DepthStepper(model, floor, "symmetric")
+    end, states = stepper.trajectory(state, 300)
+    record = stepper.surfaces(states)
     assert abs(energy(end) / e0 - 1) < 1e-10
     assert abs(energy(end, False) / energy(state, False) - 1) > 1e-4  # the plain energy oscillates: the test can tell
     assert np.abs(np.asarray(end.eta)[depth == 0]).max() == 0.0
@@ -281,7 +290,7 @@ def test_symmetric_leapfrog_has_no_phase_error_at_a_level():
         depth = np.full((64, 64), 0.5)
         depth[:4, :4] = 0.0
         assert list(symmetric_levels(depth)) == [0.0, 0.5]
-        state, _ = run_depth(model, Floor(depth), depth_state(model, eta), 10, "symmetric")
+        state = DepthStepper(model, Floor(depth), "symmetric").advance(depth_state(model, eta), 10)
         today, _ = run(model, add_height(model, initial_state(model), eta), 10)
         want = np.asarray(surface(model, today).eta)
         inner = (slice(16, 48), slice(16, 48))
@@ -289,7 +298,7 @@ def test_symmetric_leapfrog_has_no_phase_error_at_a_level():
 
 
 def test_a_profile_between_walls_rings_at_its_modes_and_sloshes_over_a_slope_at_second_order():
-    """run_profile(ends="walls"): a wall half a sample past each end. Flat floors (0.1 and 1 m, modes 1, 3, 8 of
+    """ProfileStepper(ends="walls"): a wall half a sample past each end. Flat floors (0.1 and 1 m, modes 1, 3, 8 of
     a 4 m tank): the levels and symmetric methods return each cosine mode after one period to 1e-13. Over a
     floor sloping 3 → 7 cm in 2 m, against the exact long-wave sloshing mode (tests/simulation/test_steppers.py):
     shallow after one period within 6.4e-5 / 1.0e-5 / 1.8e-6 of the amplitude at 32 / 64 / 128 cells (second
@@ -306,8 +315,8 @@ def test_a_profile_between_walls_rings_at_its_modes_and_sloshes_over_a_slope_at_
             period = 2 * math.pi / math.sqrt(G * k * math.tanh(k * depth))
             eta = 1e-3 * np.cos(k * x)
             for method in ("levels", "symmetric"):
-                end, _ = run_profile(np.full(n, depth), side / n, water, period / 40, eta, np.zeros(n), 40, method,
-                                     ends="walls")
+                stepper = ProfileStepper(np.full(n, depth), side / n, water, period / 40, method, ends="walls")
+                end = stepper.advance(ProfileState(eta, np.zeros(n)), 40).eta
                 assert np.abs(np.asarray(end) - eta).max() < 1e-13, (depth, m, method)
     w_ref, xs, shape = _sloshing_reference()
     errors = {}
@@ -316,12 +325,12 @@ def test_a_profile_between_walls_rings_at_its_modes_and_sloshes_over_a_slope_at_
         x = (np.arange(cells) + 0.5) * dx
         eta = 1e-3 * np.interp(x, xs, shape)
         for method in ("shallow", "levels", "symmetric") if cells == 64 else ("shallow",):
-            end, _ = run_profile(_slope(x), dx, water, 2 * math.pi / w_ref / 40, eta, np.zeros(cells), 40, method,
-                                 ends="walls")
+            stepper = ProfileStepper(_slope(x), dx, water, 2 * math.pi / w_ref / 40, method, ends="walls")
+            end = stepper.advance(ProfileState(eta, np.zeros(cells)), 40).eta
             errors[cells, method] = np.abs(np.asarray(end) - eta).max() / 1e-3
             if method == "shallow":
                 assert abs(float(np.sum(end) - eta.sum()) * dx) < 1e-15
     assert errors[32, "shallow"] < 1e-4 and errors[128, "shallow"] < errors[32, "shallow"] / 16, errors
     assert errors[64, "levels"] < 4e-3 and errors[64, "symmetric"] > 0.3, errors
     with pytest.raises(ValueError, match="ends"):
-        run_profile(np.ones(8), 0.1, water, 0.01, np.zeros(8), np.zeros(8), 1, ends="open")
+        ProfileStepper(np.ones(8), 0.1, water, 0.01, ends="open")

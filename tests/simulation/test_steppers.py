@@ -26,8 +26,8 @@ from wavephys.simulation import shallow_water as sw
 from wavephys.simulation.depth import Floor, depth_state
 from wavephys.simulation.split import Split
 from wavephys.steppers import (STEPPERS, DepthStepper, FiniteDifferenceStepper, KernelStepper,
-                                          PipesStepper, ShallowWaterStepper, SpectralStepper, SplitStepper,
-                                          TwoLevelState)
+                                          PipesStepper, ProfileState, ProfileStepper, ShallowWaterStepper,
+                                          SpectralStepper, SplitStepper, TwoLevelState)
 
 G = 9.81
 
@@ -40,7 +40,7 @@ def x64():
 
 def _omega(times, frames, mode):
     """ω (rad/s) of the frames' projection on ``mode``, fitted as a cos(ωt + p)."""
-    proj = np.tensordot(frames, mode, axes=([1, 2], [0, 1])) / np.sum(mode * mode)
+    proj = np.tensordot(frames, mode, axes=mode.ndim) / np.sum(mode * mode)
     spectrum = np.abs(np.fft.rfft(proj - proj.mean(), 16 * len(proj)))
     guess = 2 * math.pi * np.argmax(spectrum) / (16 * len(proj) * (times[1] - times[0]))
     (a, w, p), _ = curve_fit(lambda t, a, w, p: a * np.cos(w * t + p), times, proj, p0=[proj.max(), guess, 0.0])
@@ -194,10 +194,10 @@ def test_a_tank_over_a_sloping_floor_sloshes_at_its_own_frequency_and_passes_the
 def _runup(height, cot_beta, dx, depth=1.0, seconds=25.0):
     """A solitary wave (η, φ from solitary_wave, solitary_potential) one wavelength off the toe of a plane beach,
     dry land behind the shoreline at x = 0 and a wall far offshore, by the linear shallow-water profile stepper
-    (run_profile, method 'shallow', ends 'walls'): the shoreline's elevation over time, extrapolated to x = 0
+    (ProfileStepper, method 'shallow', ends 'walls'): the shoreline's elevation over time, extrapolated to x = 0
     from the two wet cells nearest it (linear theory's run-up is η there; Synolakis 1987)."""
     from wavephys.physics.shallow_water import solitary_potential, solitary_wave
-    from wavephys.simulation.depth import run_profile
+    from wavephys.simulation.depth import ProfileState, ProfileStepper
 
     gamma = math.sqrt(3 * height / (4 * depth))
     toe = depth * cot_beta
@@ -210,8 +210,9 @@ def _runup(height, cot_beta, dx, depth=1.0, seconds=25.0):
     phi = solitary_potential(x, height, depth, crest)
     arrival = (crest - toe) / math.sqrt(G * depth) + 2 * math.sqrt(toe * cot_beta / G)
     steps = int((arrival + seconds) / 0.02)
-    *_, frames = run_profile(h, dx, Water(sigma=0.0), 0.02, eta, phi, steps, "shallow", ends="walls", every=1)
-    frames = np.asarray(frames)
+    stepper = ProfileStepper(h, dx, Water(sigma=0.0), 0.02, "shallow", ends="walls")
+    end, states = stepper.trajectory(ProfileState(eta, phi), steps)
+    frames = np.concatenate([np.asarray(states.eta), np.asarray(end.eta)[None]])
     i, j = np.nonzero(h > 0)[0][:2]
     return frames[:, i] - x[i] * (frames[:, j] - frames[:, i]) / (x[j] - x[i])
 
@@ -400,6 +401,9 @@ def _standing(name, kh, n=32):
         if name == "SpectralStepper":
             return SpectralStepper(model), add_height(model, initial_state(model), jnp.asarray(amp * mode)), mode, 0.0
         return DepthStepper(model, Floor(np.full((n, n), h)), "shallow"), depth_state(model, amp * mode), mode, 0.0
+    if name == "ProfileStepper":  # one row; the long waves by its linear shallow-water method, the rest by its blend
+        stepper = ProfileStepper(np.full(n, h), dx, water, period / 80, "shallow" if kh < 0.5 else "symmetric")
+        return stepper, ProfileState(amp * mode[0], np.zeros(n)), mode[0], 0.0
     if name == "ShallowWaterStepper":
         return ShallowWaterStepper(sw.ShallowWater(dx, sides="periodic"), bed), \
             sw.sw_state(bed, amp * mode, dtype=jnp.float64), mode, bed
@@ -437,7 +441,7 @@ def _standing(name, kh, n=32):
 DISPERSION = {("SpectralStepper", 0.1): 1e-5, ("SpectralStepper", 1.0): 1e-5, ("SpectralStepper", 3.0): 1e-5,
               ("SplitStepper", 1.0): 5e-3, ("SplitStepper", 3.0): 1e-2,  # at kh 0.1 it is its bulk: ShallowWater
               ("ShallowWaterStepper", 0.1): 5e-3, ("DepthStepper", 0.1): 5e-3, ("FiniteDifferenceStepper", 0.1): 5e-3,
-              ("KernelStepper", 1.0): 2e-2}
+              ("KernelStepper", 1.0): 2e-2, ("ProfileStepper", 0.1): 5e-3, ("ProfileStepper", 3.0): 1e-5}
 FAILS = {("ShallowWaterStepper", 3.0): 1, ("DepthStepper", 3.0): 1, ("FiniteDifferenceStepper", 3.0): 1,
          ("PipesStepper", 0.1): 2, ("PipesStepper", 3.0): 2}
 
@@ -466,26 +470,31 @@ PROBLEMS = {
         "ShallowWaterStepper": "test_a_lake_at_rest_stays_at_rest_over_an_uneven_bed",
         "SplitStepper": "test_a_lake_at_rest_stays_at_rest_over_an_uneven_bed",
         "PipesStepper": "test_a_lake_at_rest_stays_at_rest_over_an_uneven_bed",  # and over 10⁵ steps, beside it
-        "DepthStepper": ("linear in the departure from still water over its floor: the lake at rest is its zero "
-                         "state, which a linear step keeps exactly (no bed term to balance)"),
+        **dict.fromkeys(("DepthStepper", "ProfileStepper"), (
+            "linear in the departure from still water over its floor: the lake at rest is its zero state, which a "
+            "linear step keeps exactly (no bed term to balance)")),
         "SpectralStepper": FLAT, "FiniteDifferenceStepper": FLAT, "KernelStepper": FLAT},
     "seiche in a walled Lx ≠ Ly tank, and its mass": {
         **dict.fromkeys(("SpectralStepper", "DepthStepper", "ShallowWaterStepper", "SplitStepper", "PipesStepper"),
                         "test_the_first_seiche_of_a_rectangular_tank_and_its_mass"),
+        "ProfileStepper": ("waves uniform in y on one row: no second side, so no Lx ≠ Ly tank (its walls along x: "
+                           "test_depth.py::test_a_profile_between_walls_rings_at_its_modes_and_sloshes_over_a_slope_at_second_order)"),
         "FiniteDifferenceStepper": "test_steppers_that_cannot_pose_a_tank_refuse_it_by_name",  # refused by the code
         "KernelStepper": "test_steppers_that_cannot_pose_a_tank_refuse_it_by_name"},
     "Lamb's beach with dry land": {
         "DepthStepper": SHORELINE,
+        "ProfileStepper": "test_lambs_beach_on_one_row_by_the_profile_stepper",
         **dict.fromkeys(("ShallowWaterStepper", "SplitStepper", "PipesStepper"),
                         "test_lambs_beach_with_dry_land_by_the_nonlinear_steppers"),
         "SpectralStepper": FLAT, "FiniteDifferenceStepper": FLAT, "KernelStepper": FLAT},
     "dam break on a dry bed (Ritter)": {
         **dict.fromkeys(("ShallowWaterStepper", "SplitStepper", "PipesStepper"),
                         "test_a_dam_break_by_each_nonlinear_stepper_against_ritter"),
-        "DepthStepper": LINEAR_DAM, "SpectralStepper": FLAT, "FiniteDifferenceStepper": FLAT, "KernelStepper": FLAT},
+        "DepthStepper": LINEAR_DAM, "ProfileStepper": LINEAR_DAM, "SpectralStepper": FLAT, "FiniteDifferenceStepper": FLAT, "KernelStepper": FLAT},
     "solitary wave's run-up (Synolakis)": {
-        # the depth stepper's 'shallow' scheme (depth._shallow_steps) on a profile, through run_profile
-        "DepthStepper": "test_a_solitary_wave_runs_up_a_beach_as_the_exact_linear_theory_says",
+        # the depth stepper's 'shallow' scheme (depth._shallow_steps) on a profile, through ProfileStepper
+        **dict.fromkeys(("DepthStepper", "ProfileStepper"),
+                        "test_a_solitary_wave_runs_up_a_beach_as_the_exact_linear_theory_says"),
         "ShallowWaterStepper": "test_shallow_water.py::test_solitary_wave_runs_up_to_the_exact_linear_runup",
         "SplitStepper": "test_the_split_runs_a_solitary_wave_up_a_beach_as_the_exact_linear_theory_says",
         "PipesStepper": "test_the_virtual_pipes_run_a_solitary_wave_up_a_beach_short_their_documented_failure",
@@ -575,6 +584,7 @@ def _bad_input_cases():
     return {
         "SpectralStepper": (SpectralStepper(model), initial_state(model)),
         "DepthStepper": (DepthStepper(model, Floor(np.full((n, n), 0.5)), "shallow"), depth_state(model, np.zeros((n, n)))),
+        "ProfileStepper": (ProfileStepper(np.full(n, 0.5), 0.1, Water(), 0.05), ProfileState(np.zeros(n), np.zeros(n))),
         "ShallowWaterStepper": (ShallowWaterStepper(sw.ShallowWater(0.1), flat), sw.sw_state(flat, 0.0)),
         "SplitStepper": (SplitStepper(Split(sw.ShallowWater(0.1), levels=(0.5,)), flat), sw.sw_state(flat, 0.0)),
         "PipesStepper": (PipesStepper(Pipes(0.1), flat, 0.005), pipes_state(flat, 0.0)),
@@ -743,6 +753,40 @@ def test_shallow_waters_loss_on_lambs_beach_is_where_its_first_wet_cell_is_thin(
             assert -0.15 < amplitude < -0.05, got
 
 
+def test_lambs_beach_on_one_row_by_the_profile_stepper():
+    """Lamb's first standing mode (1 mm) on beaches of 1:5, 1:10 and 1:50, the still shoreline at generated
+    sub-cell offsets, 64 wet cells, dry land behind it and a wall offshore, by the profile stepper's linear
+    shallow-water method between walls for 3 periods: ω and the amplitude left within 0.5 % (the 2-D depth
+    stepper's bounds: SHORELINE), the water kept. Measured (float64, seed 52: offsets 0.62, 0.57, 0.52): ω − 1
+    −2.9e-4 / −3.0e-4 / −3.0e-4 and amplitude − 1 +4.7e-4 / +3.2e-4 / +1.4e-4 on 1:5 / 1:10 / 1:50."""
+    from scipy.special import j0, jn_zeros
+
+    from wavephys.simulation.depth import _shore_geometry
+
+    rng = np.random.default_rng(52)
+    wet, per, periods = 64, 40, 3
+    n = int(math.ceil(wet * 4 / 3 / 2)) * 2
+    x = (np.arange(n) + 0.5) * 1.0
+    for slope in (0.2, 0.1, 0.02):
+        offset = float(rng.uniform(0.0, 1.0))
+        shore = n - (wet - offset)
+        omega = jn_zeros(1, 1)[0] / (2 * math.sqrt((n - shore) / (G * slope)))
+        dt = 2 * math.pi / omega / per
+        eta0 = np.where(x + 0.5 > shore + 1e-9, 1e-3 * j0(2 * omega * np.sqrt(np.maximum(x - shore, 0.0) / (G * slope))),
+                        0.0)
+        stepper = ProfileStepper(np.maximum(slope * (x - shore), 0.0), 1.0, Water(sigma=0.0), dt, "shallow",
+                                 ends="walls")
+        end, states = stepper.trajectory(ProfileState(eta0, np.zeros(n)), per * periods)
+        frames = np.asarray(states.eta)
+        t = np.arange(len(frames)) * dt
+        proj = frames @ eta0 / np.sum(eta0 * eta0)
+        (a, w, _), _ = curve_fit(lambda t, a, w, p: a * np.cos(w * t + p), t, proj, p0=[1.0, omega, 0.0])
+        assert abs(w / omega - 1) < 0.005 and abs(abs(a) - 1) < 0.005, (slope, offset, w / omega - 1, abs(a) - 1)
+        _, _, inv = _shore_geometry(np.broadcast_to(np.maximum(slope * (x - shore), 0.0), (2, n)), (True, False))
+        area = np.where(inv[0] > 0, 1 / np.where(inv[0] > 0, inv[0], 1.0), 0.0)  # each cell's wet fraction
+        assert abs(float(np.sum(area * (np.asarray(end.eta) - eta0)))) < 1e-15, (slope, offset)  # the water kept
+
+
 @pytest.mark.slow
 def test_lambs_beach_with_dry_land_by_the_nonlinear_steppers():
     """Lamb's standing wave on a 1:10 beach, the shoreline 0.37 of a cell past a face, 64 wet cells, 3 periods,
@@ -800,21 +844,72 @@ def test_the_old_run_functions_warn_name_their_stepper_and_answer_as_it_does():
             np.testing.assert_allclose(np.asarray(a), np.asarray(b), rtol=0, atol=1e-12, err_msg=old.__name__)
 
 
+def test_the_old_history_functions_warn_and_answer_through_their_stepper():
+    """``run_depth``, ``run_profile``, ``fd_run`` and ``kernel_run`` (deprecated in 0.3, removal in 0.4: CHANGELOG)
+    each warn naming the stepper that replaces it, and return what they returned before, now from the stepper's
+    loop (``trajectory``, ``advance``, ``run``): checked against the stepper called directly, to rounding
+    (float64; the steps themselves are the same functions, so only the loop differs)."""
+    from wavephys.models.finite_difference import fd_run
+    from wavephys.models.truncated_kernel import kernel_run
+    from wavephys.simulation.depth import run_depth, run_profile
+
+    rng = np.random.default_rng(7)
+    n = 16
+    model = Model(Grid(n, 2.0), Water(sigma=0.0), dt=0.02, dtype="float64")
+    floor = Floor(0.05 + 0.3 * rng.random((n, n)))
+    start = depth_state(model, 1e-3 * rng.standard_normal((n, n)))
+    with pytest.warns(DeprecationWarning, match="run_depth is deprecated.*DepthStepper"):
+        end, surfaces = run_depth(model, floor, start, 5, "shallow")
+    stepper = DepthStepper(model, floor, "shallow")
+    want_end, states = stepper.trajectory(start, 5)
+    assert surfaces.shape == (5, 2, n, n)
+    np.testing.assert_allclose(end.fields, want_end.fields, rtol=0, atol=1e-15)
+    np.testing.assert_allclose(surfaces[:, 0], states.fields[:, 0], rtol=0, atol=1e-15)  # η at each step's start
+    rate = (states.fields[3, 0] - states.fields[1, 0]) / (2 * model.dt)  # η̇ at step 2, by central difference
+    assert np.abs(surfaces[2, 1] - rate).max() < 0.1 * np.abs(rate).max(), (np.abs(surfaces[2, 1] - rate).max(),
+                                                                          np.abs(rate).max())
+
+    h = 0.2 + 0.3 * rng.random(n)
+    eta, phi = 1e-3 * rng.standard_normal(n), np.zeros(n)
+    with pytest.warns(DeprecationWarning, match="run_profile is deprecated.*ProfileStepper"):
+        got = run_profile(h, 0.1, Water(sigma=0.0), 0.01, eta, phi, 6, "symmetric", ends="walls", every=3)
+    run = ProfileStepper(h, 0.1, Water(sigma=0.0), 0.01, ends="walls").run(ProfileState(eta, phi), steps=6, every=3)
+    np.testing.assert_allclose(got[0], run.state.eta, rtol=0, atol=1e-15)
+    np.testing.assert_allclose(got[2], np.concatenate([eta[None], run.frames]), rtol=0, atol=1e-15)
+
+    e0 = rng.standard_normal((2, n, n))  # a batch of two fields, as the old functions took
+    with pytest.warns(DeprecationWarning, match="fd_run is deprecated.*FiniteDifferenceStepper"):
+        a, b, history = fd_run(e0, e0, 0.5, 4)
+    end = FiniteDifferenceStepper(0.5, 1.0).advance(TwoLevelState(e0, e0), 4)
+    assert history.shape == (4, 2, n, n)
+    np.testing.assert_allclose(a, end.eta, rtol=0, atol=1e-12)
+    np.testing.assert_allclose(history[-1], end.eta, rtol=0, atol=1e-12)
+    np.testing.assert_allclose(b, end.eta_prev, rtol=0, atol=1e-12)
+    stencil = np.array([[0.0, -1, 0], [-1, 4, -1], [0, -1, 0]])
+    with pytest.warns(DeprecationWarning, match="kernel_run is deprecated.*KernelStepper"):
+        a, b = kernel_run(e0, e0, stencil, 0.1, 4)
+    end = KernelStepper(stencil, 0.1).advance(TwoLevelState(e0, e0), 4)
+    np.testing.assert_allclose(a, end.eta, rtol=0, atol=1e-12)
+    np.testing.assert_allclose(b, end.eta_prev, rtol=0, atol=1e-12)
+
+
 @pytest.mark.slow
 def test_memory_stays_flat_over_long_runs_streamed_through_the_interface():
     """The bench's memory rows (``python -m bench shallow``; each run in a process of its own, after a warm-up):
     the depth stepper (128² here) and shallow water (64²) streaming a frame every 60 steps to a callback hold the
     same bytes after 960 steps as after 60, and the process's resident size grows over 960 steps by no more than
     over 60 plus a few MB (the bench at 256² and 128²: 9.2 and 6.8 MB over 960 steps, 9.0 and 6.9 over 3840),
-    where ``run_depth``, keeping the surface of every step, grows with the run (128²: 60 MB over 960 steps)."""
+    where ``DepthStepper.trajectory`` (the deprecated ``run_depth``), keeping the state of every step, grows with
+    the run (128²: 60 MB over 960 steps)."""
     from bench.shallow import memory_rows
 
     rows = memory_rows((60, 960), n=128, progress=lambda *_: None)
     by = {(r["method"].split()[0], r["steps"]): r for r in rows}
-    kept = by["run_depth", 960]["bytes_held"] / 2**20
-    assert kept > 55 and by["run_depth", 960]["resident_growth_mb"] > 0.8 * kept, by["run_depth", 960]
+    every = by["DepthStepper.trajectory", 960]
+    kept = every["bytes_held"] / 2**20
+    assert kept > 55 and every["resident_growth_mb"] > 0.8 * kept, every
     for name in ("DepthStepper.run,", "ShallowWaterStepper.run,"):
         short, long = by[name, 60], by[name, 960]
         assert long["bytes_held"] - short["bytes_held"] < 1024 and long["frames"] == 16, (short, long)
-        # 900 steps more; run_depth's surfaces would be 56 MB of it: the allocator's noise is a few MB
+        # 900 steps more; a trajectory's states would be 56 MB of it: the allocator's noise is a few MB
         assert long["resident_growth_mb"] < short["resident_growth_mb"] + 0.15 * kept, (short, long, kept)

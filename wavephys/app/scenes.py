@@ -324,9 +324,11 @@ def _shore_heights(n, times):
     the offshore side (the water there is pulled to the incoming swell: it makes the swell and takes what the
     beach sends back) and by a surf-zone damping where the water is shallower than 35 cm (a crude stand-in for
     breaking: linear waves would steepen without limit at the shoreline)."""
-    from wavephys.simulation.depth import depth_state, run_depth
+    from wavephys.simulation.depth import depth_state
+    from wavephys.simulation.steppers import DepthStepper
 
     model, floor, relax, surf, _ = _shore_setup(n)
+    stepper = DepthStepper(model, floor, "symmetric")
     phases = SHORE_WARMUP + np.mod(np.asarray(times, np.float64), SHORE_CYCLE)
     order = np.argsort(phases, kind="stable")
     out = np.zeros((len(phases), n, n), np.float32)
@@ -335,7 +337,7 @@ def _shore_heights(n, times):
     for i in order:
         target = int(round(phases[i] / model.dt))
         while step < target:
-            state, _ = run_depth(model, floor, state, 1, "symmetric")
+            state = stepper.advance(state, 1)
             step += 1
             want_eta, want_phi = _shore_swell(n, step * model.dt)
             eta, phi = np.asarray(state.eta, np.float64), np.asarray(state.phi, np.float64)

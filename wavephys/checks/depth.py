@@ -87,7 +87,7 @@ def measure_shoaling(method: str, depth0: float, depth1: float, k0: float, per: 
     """A packet (carrier k₀, envelope σ wavelengths) from depth h₀ up (or down) a ramp of ``ramp`` wavelengths to
     h₁, plane waves along x: (amplitude over the far plateau / incident amplitude, ω).
 
-    Plane waves on one periodic row (:func:`~wavephys.simulation.depth.run_profile`), (50 + max(0, ramp − 10))·σ/2
+    Plane waves on one periodic row (:class:`~wavephys.simulation.depth.ProfileStepper`), (50 + max(0, ramp − 10))·σ/2
     wavelengths long; the packet starts 5σ from the left end and 4σ + 1 before the ramp, and the run ends when
     its centre is 2.5σ past the ramp. A packet spreads as it travels (its carrier disperses): over this run a σ =
     2 packet's peak falls by about 5 % at kh = 1–3 by that alone, a σ = 6 packet's by 0.2 %; measure dispersive
@@ -124,7 +124,7 @@ def measure_shoaling(method: str, depth0: float, depth1: float, k0: float, per: 
 
     from wavephys.core.inputs import check_int, check_scalar
     from wavephys.physics.dispersion import angular_frequency, group_speed, wavenumber
-    from wavephys.simulation.depth import DEPTH_METHODS, run_profile
+    from wavephys.simulation.depth import DEPTH_METHODS, ProfileState, ProfileStepper
 
     if method != "split":
         DEPTH_METHODS.check(method, "method")
@@ -166,7 +166,7 @@ def measure_shoaling(method: str, depth0: float, depth1: float, k0: float, per: 
     if method == "split":
         eta = _split_profile(h, dx, a, k, disp, travel, depth0, depth1, bulk_length)
         return float(np.abs(hilbert(eta))[x > x1 + lam].max() / 1e-3), omega
-    eta, _ = run_profile(h, dx, water, dt, a.real, phi, int(travel / dt), method, levels)
+    eta = ProfileStepper(h, dx, water, dt, method, levels).advance(ProfileState(a.real, phi), int(travel / dt)).eta
     return float(np.abs(hilbert(np.asarray(eta)))[x > x1 + lam].max() / 1e-3), omega
 
 
@@ -214,7 +214,8 @@ def lamb_beach_error(n: int = 128, periods: int = 3, method: str = "shallow") ->
     from wavephys.core.inputs import check_int
     from wavephys.physics.depth import lamb_beach
     from wavephys.simulation import Model
-    from wavephys.simulation.depth import Floor, depth_state, run_depth
+    from wavephys.simulation.depth import Floor, depth_state
+    from wavephys.simulation.steppers import DepthStepper
 
     n = check_int("n", n, lo=16, even=True)
     periods = check_int("periods", periods, lo=1)
@@ -224,7 +225,7 @@ def lamb_beach_error(n: int = 128, periods: int = 3, method: str = "shallow") ->
     omega = jn_zeros(1, 3)[2] / (2 * math.sqrt(length / (G * slope)))
     model = Model(grid, Water(sigma=0.0), dt=2 * math.pi / omega / 40, walls="x", dtype=np.dtype(float).name)
     eta0 = lamb_beach(x, omega, slope, 1e-3)
-    state, _ = run_depth(model, Floor(slope * x), depth_state(model, eta0), 40 * periods, method)
+    state = DepthStepper(model, Floor(slope * x), method).advance(depth_state(model, eta0), 40 * periods)
     return float(np.abs(np.asarray(state.eta) - eta0 * math.cos(omega * 40 * periods * model.dt)).max() / 1e-3)
 
 
@@ -263,7 +264,8 @@ def lamb_shoreline_errors(wet_cells: int = 64, slope: float = 0.1, offset: float
 
     from wavephys.core.inputs import check_int, check_scalar
     from wavephys.simulation import Model
-    from wavephys.simulation.depth import Floor, depth_state, run_depth
+    from wavephys.simulation.depth import Floor, depth_state
+    from wavephys.simulation.steppers import DepthStepper
 
     wet_cells = check_int("wet_cells", wet_cells, lo=8)
     slope = check_scalar("slope", slope, lo=0.0, lo_open=True)
@@ -280,9 +282,9 @@ def lamb_shoreline_errors(wet_cells: int = 64, slope: float = 0.1, offset: float
         model = Model(grid, Water(sigma=0.0), dt=2 * math.pi / omega / per, walls="x", dtype="float64")
         eta0 = np.where(x + dx / 2 > shore + 1e-9,
                         amplitude * j0(2 * omega * np.sqrt(np.maximum(x - shore, 0.0) / (G * slope))), 0.0)
-        state, surfaces = run_depth(model, Floor(np.maximum(slope * (x - shore), 0.0)), depth_state(model, eta0),
-                                    per * periods, "shallow")
-        frames = np.asarray(surfaces)[:, 0]
+        state, states = DepthStepper(model, Floor(np.maximum(slope * (x - shore), 0.0)), "shallow").trajectory(
+            depth_state(model, eta0), per * periods)
+        frames = np.asarray(states.fields)[:, 0]
         end = np.asarray(state.eta)
     t = np.arange(len(frames)) * model.dt
     proj = np.tensordot(frames, eta0, axes=([1, 2], [0, 1])) / np.sum(eta0 * eta0)

@@ -15,7 +15,8 @@ from wavephys.core.inputs import check_int, check_scalar
 from wavephys.core.water import Water
 from wavephys.harness.checks import Check, bound, compare
 from wavephys.harness.dispersion import dispersion_error, measure_dispersion
-from wavephys.models.finite_difference import fd_angular_frequency, fd_run
+from wavephys.core.stepper import TwoLevelState
+from wavephys.models.finite_difference import FiniteDifferenceStepper, fd_angular_frequency
 from wavephys.physics import dispersion as disp
 
 __all__ = ["check_dispersion_limits", "check_dispersion_minima", "check_inverse_dispersion", "dispersion_scene",
@@ -186,7 +187,8 @@ def check_fd_dispersion(n: int = 64, courant: float = 0.5, frames: int = 1024) -
     dx, c = 1.0, 1.0
     dt = courant * dx / c
     eta0 = 1e-3 * jax.random.normal(jax.random.PRNGKey(1), (n, n))
-    _, _, hist = fd_run(eta0, eta0, courant, frames)
+    end, states = FiniteDifferenceStepper(courant, dt).trajectory(TwoLevelState(eta0, eta0), frames)
+    hist = jnp.concatenate([states.eta[1:], end.eta[None]])  # η after each step
     s = measure_dispersion(hist, dx, dt, axes="tyx").select(k_max=0.5 / dx)
     speed = s.omega / s.k
     own = np.asarray(fd_angular_frequency(s.k, 0.0, c, dt, dx))

@@ -13,7 +13,8 @@ class methods of (static settings, array settings, state): ``_parts``, ``_advanc
   ``every`` steps or seconds and streaming each to a ``callback`` (nothing kept: memory stays flat) or
   returning the chosen frames stacked; never every step unless asked;
 * the pure :meth:`Stepper.advance`, :meth:`Stepper.advance_to`, :meth:`Stepper.frames` (``jit``, ``vmap``;
-  ``grad`` through a fixed number of steps);
+  ``grad`` through a fixed number of steps), and :meth:`Stepper.trajectory`, every step's state for the
+  measurements that need them;
 * :attr:`Stepper.sides` — the four sides (``left``, ``right``, ``bottom``, ``top``) in one vocabulary,
   :data:`SIDE_KINDS`; one clock: each state carries its time, s.
 
@@ -68,10 +69,10 @@ class TwoLevelState:
 
     Parameters
     ----------
-    eta : array (ny, nx)
-        η^n, m.
-    eta_prev : array (ny, nx)
-        η^{n−1}, m.
+    eta : array (..., ny, nx)
+        η^n, m (leading axes: a batch of fields stepped together).
+    eta_prev : array (..., ny, nx)
+        η^{n−1}, m, the shape of ``eta``.
     time : float
         s.
     """
@@ -83,8 +84,10 @@ class TwoLevelState:
     def __post_init__(self):
         if any(is_traced(v) for v in (self.eta, self.eta_prev, self.time)):
             return
-        check_array("eta", self.eta, ndim=2)
-        check_array("eta_prev", self.eta_prev, ndim=2, shape_tail=np.shape(self.eta))
+        check_array("eta", self.eta, min_ndim=2)
+        check_array("eta_prev", self.eta_prev, min_ndim=2, shape_tail=np.shape(self.eta))
+        if np.ndim(self.eta_prev) != np.ndim(self.eta):
+            raise ValueError(f"eta_prev must have eta's shape {np.shape(self.eta)}, got {np.shape(self.eta_prev)}")
         check_scalar("time", self.time)
         object.__setattr__(self, "eta", jnp.asarray(self.eta))
         object.__setattr__(self, "eta_prev", jnp.asarray(self.eta_prev, jnp.asarray(self.eta).dtype))
@@ -95,15 +98,18 @@ register(TwoLevelState, ("eta", "eta_prev", "time"))
 
 
 # -- the loop, written once ---------------------------------------------------------------------
-@functools.partial(jax.jit, static_argnums=(0, 1, 4))
-def _steps_program(cls, static, dynamic, state, steps, dt):
+@functools.partial(jax.jit, static_argnums=(0, 1, 4, 6))
+def _steps_program(cls, static, dynamic, state, steps, dt, keep=False):
     """``steps`` steps (of ``dt``, or the stepper's own where it is NaN), the count static: the form
-    ``jax.grad`` differentiates (:meth:`Stepper.advance`)."""
-    def body(_, s):
+    ``jax.grad`` differentiates (:meth:`Stepper.advance`); with ``keep``, ``(state, the states at each step's
+    start stacked)`` (:meth:`Stepper.trajectory`)."""
+    def one(s):
         own = cls._dt(static, dynamic, s)
         return cls._advance(static, dynamic, s, jnp.where(jnp.isnan(dt), own, dt).astype(own.dtype))
 
-    return jax.lax.fori_loop(0, steps, body, state)
+    if keep:
+        return jax.lax.scan(lambda s, _: (one(s), s), state, None, length=steps)
+    return jax.lax.fori_loop(0, steps, lambda _, s: one(s), state)
 
 
 @functools.partial(jax.jit, static_argnums=(0, 1))
@@ -303,6 +309,28 @@ class Stepper:
         if any(is_traced(v) for v in jax.tree_util.tree_leaves((state, dt, dynamic))):
             return _steps_program(type(self), static, dynamic, state, steps, dt)  # jax.grad needs a static count
         return _count_program(type(self), static, dynamic, state, steps, dt)
+
+    def trajectory(self, state, steps: int):
+        """``steps`` steps of the stepper's own Δt keeping every state: ``(state after them, the states at each
+        step's start stacked on a leading axis)`` (pure, one compiled scan; no stability check, as
+        :meth:`advance`). Memory grows with ``steps``: for measurements that need every step (a gauge, a
+        record); :meth:`run` with ``every`` or a ``callback`` keeps only what it is asked for.
+
+        Parameters
+        ----------
+        state
+            A state of this stepper's kind.
+        steps : int
+            ≥ 1 (static: one program per count).
+
+        Returns
+        -------
+        (state, stacked states)
+        """
+        steps = check_int("steps", steps, lo=1)
+        state = self.init(state)
+        static, dynamic = self._parts()
+        return _steps_program(type(self), static, dynamic, state, steps, jnp.asarray(np.nan), True)
 
     def _whole_steps(self, state, time, name):
         """The number of the stepper's fixed steps from the state's time to ``time`` (ValueError naming

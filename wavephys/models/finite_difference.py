@@ -29,7 +29,8 @@ import numpy as np
 
 from wavephys.core.inputs import Array, Real, Spec, check_array, check_bool, check_int, check_scalar, validate
 from wavephys.core.stepper import TwoLevelState, _TwoLevel
-from wavephys.models.two_level import check_levels, run_two_level
+from wavephys.core.aliases import deprecated_function
+from wavephys.models.two_level import check_levels
 from wavephys.core.grid import Grid
 
 __all__ = ["FiniteDifferenceStepper", 
@@ -148,7 +149,7 @@ def fd_step(eta, eta_prev, courant, damping=0.0):
     return (2.0 - damping) * eta - (1.0 - damping) * eta_prev + courant**2 * laplacian(eta)
 
 
-def fd_run(eta, eta_prev, courant, steps: int, damping=0.0, check_stability: bool = True):
+def _fd_history(eta, eta_prev, courant, steps: int, damping=0.0, check_stability: bool = True):
     """Run ``steps`` steps; returns (η^{N}, η^{N−1}, stacked heights of every step).
 
     Parameters
@@ -179,16 +180,14 @@ def fd_run(eta, eta_prev, courant, steps: int, damping=0.0, check_stability: boo
     """
     eta, eta_prev = check_levels(eta, eta_prev)
     check_bool("check_stability", check_stability)
-    check_scalar("courant", courant, lo=0.0, hi=10.0, lo_open=True)
-    if check_stability:
-        check_scalar("courant", courant, lo=0.0, hi=STABILITY_LIMIT, lo_open=True)
-    check_scalar("damping", damping, lo=0.0, hi=1.0, hi_open=True)
     steps = check_int("steps", steps, lo=1)
-    return _fd_run(eta, eta_prev, courant, damping, steps)
+    stepper = FiniteDifferenceStepper(courant, 1.0, damping, check_stability=check_stability)
+    end, states = stepper.trajectory(TwoLevelState(eta, eta_prev), steps)
+    return end.eta, end.eta_prev, jnp.concatenate([states.eta[1:], end.eta[None]])
 
 
-def _fd_run(eta, eta_prev, courant, damping, steps):
-    return run_two_level(fd_step, eta, eta_prev, (courant, damping), steps, True)
+fd_run = deprecated_function(
+    _fd_history, "fd_run", "FiniteDifferenceStepper(courant, dt).run / .advance, or .trajectory for every step")
 
 
 @validate(kx=Array(), ky=Array(), speed=_POSITIVE, dt=_POSITIVE, dx=_POSITIVE)
@@ -275,8 +274,10 @@ def find_stability_limit(n: int = 32, steps: int = 400, growth: float = 10.0,
     eta0 = jax.random.normal(jax.random.PRNGKey(seed), (n, n))
     amp0 = float(jnp.max(jnp.abs(eta0)))
 
+    state = TwoLevelState(eta0, eta0)
+
     def unstable(c):
-        a, _, _ = _fd_run(eta0, eta0, c, 0.0, steps)
+        a = FiniteDifferenceStepper(c, 1.0, check_stability=False).trajectory(state, steps)[0].eta
         amp = float(jnp.max(jnp.abs(a)))
         return not math.isfinite(amp) or amp > growth * amp0
 
@@ -368,10 +369,13 @@ class FiniteDifferenceStepper(_TwoLevel):
         s, > 0 (the clock; the scheme itself sees only C).
     damping : float
         d in [0, 1).
+    check_stability : bool
+        Refuse C > 1/√2 (default); False lets C go to 10 to watch the scheme blow up (its failure boundary).
     """
 
-    def __init__(self, courant: float, dt: float, damping: float = 0.0):
-        check_scalar("courant", courant, lo=0.0, hi=STABILITY_LIMIT, lo_open=True)
+    def __init__(self, courant: float, dt: float, damping: float = 0.0, check_stability: bool = True):
+        check_bool("check_stability", check_stability)
+        check_scalar("courant", courant, lo=0.0, hi=STABILITY_LIMIT if check_stability else 10.0, lo_open=True)
         check_scalar("damping", damping, lo=0.0, hi=1.0, hi_open=True)
         self.courant, self.damping, self.dt = float(courant), float(damping), check_scalar("dt", dt, lo=0.0,
                                                                                          lo_open=True)

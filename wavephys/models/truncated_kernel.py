@@ -24,10 +24,12 @@ import jax
 import jax.numpy as jnp
 import numpy as np
 
-from wavephys.core.inputs import Array, Real, Spec, check_array, check_bool, check_int, check_scalar, validate
+from wavephys.core.inputs import (Array, Real, Spec, check_array, check_bool, check_int, check_scalar, is_traced,
+                                  validate)
 from wavephys.core.specs import GRID, WATER
 from wavephys.core.stepper import TwoLevelState, _TwoLevel
-from wavephys.models.two_level import check_levels, run_two_level
+from wavephys.core.aliases import deprecated_function
+from wavephys.models.two_level import check_levels
 from wavephys.physics.dispersion import angular_frequency
 from wavephys.core.grid import Grid
 from wavephys.core.water import Water
@@ -200,7 +202,7 @@ def kernel_step(eta, eta_prev, stencil, dt):
     return 2.0 * eta - eta_prev - dt * dt * convolve_periodic(eta, stencil)
 
 
-def kernel_run(eta, eta_prev, stencil, dt, steps: int, check_stability: bool = True):
+def _kernel_steps(eta, eta_prev, stencil, dt, steps: int, check_stability: bool = True):
     """``steps`` leapfrog steps; returns (η^N, η^{N−1}), m.
 
     Parameters
@@ -231,13 +233,11 @@ def kernel_run(eta, eta_prev, stencil, dt, steps: int, check_stability: bool = T
     _STENCIL("stencil", stencil, {"eta": eta})
     _DT("dt", dt, {})
     steps = check_int("steps", steps, lo=1)
-    if check_stability:
-        n = eta.shape[-1]
-        limit = max_stable_dt(stencil, Grid(n, float(n)))  # the symbol depends on the samples only
-        if dt > limit:
-            raise ValueError(f"dt must be <= {limit:.4g} s, the stability limit of this stencil (max_stable_dt), "
-                             f"got {dt!r}; pass check_stability=False to watch it blow up")
-    return run_two_level(kernel_step, eta, eta_prev, (jnp.asarray(stencil, eta.dtype), dt), steps, False)
+    end = KernelStepper(stencil, dt, check_stability).advance(TwoLevelState(eta, eta_prev), steps)
+    return end.eta, end.eta_prev
+
+
+kernel_run = deprecated_function(_kernel_steps, "kernel_run", "KernelStepper(stencil, dt).run / .advance")
 
 
 class KernelStepper(_TwoLevel):
@@ -248,15 +248,35 @@ class KernelStepper(_TwoLevel):
     stencil : array_like (m, m)
         The kernel, 1/s² (from :func:`~wavephys.models.truncated_kernel.kernel_stencil`).
     dt : float
-        s, > 0 (stable below the stencil's limit: :func:`~wavephys.models.truncated_kernel.kernel_stable_dt`).
+        s, > 0, at most the stencil's limit on the state's grid (:func:`max_stable_dt`).
+    check_stability : bool
+        Refuse a state whose grid makes ``dt`` unstable (default); False lets it run, to watch it blow up (its
+        failure boundary).
     """
 
-    def __init__(self, stencil, dt: float):
+    def __init__(self, stencil, dt: float, check_stability: bool = True):
         check_array("stencil", stencil, ndim=2)
         shape = np.shape(stencil)
         if shape[0] != shape[1] or shape[0] % 2 == 0:
             raise ValueError(f"stencil must be square with an odd side (its centre a sample), got shape {shape}")
         self.stencil, self.dt = np.asarray(stencil), check_scalar("dt", dt, lo=0.0, lo_open=True)
+        self.check_stability, self._limits = check_bool("check_stability", check_stability), {}
+
+    def _checked_state(self, state):
+        state = super()._checked_state(state)
+        if self.check_stability and not is_traced(state.eta):
+            n = state.eta.shape[-1]
+            limit = self._stable_dt(n)
+            if self.dt > limit:
+                raise ValueError(f"dt must be <= {limit:.4g} s, the stability limit of this stencil (max_stable_dt) "
+                                 f"on a {n}-sample grid, got {self.dt!r}; pass check_stability=False to watch it "
+                                 f"blow up")
+        return state
+
+    def _stable_dt(self, n):
+        if n not in self._limits:  # the symbol depends on the samples only
+            self._limits[n] = float(max_stable_dt(self.stencil, Grid(n, float(n))))
+        return self._limits[n]
 
     def _parts(self):
         return None, (jnp.asarray(self.stencil), self.dt)

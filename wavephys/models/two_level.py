@@ -1,16 +1,14 @@
-"""Shared driver for the two-level (leapfrog-type) peer schemes: η^{n+1} = step(η^n, η^{n−1})."""
+"""The two-level (leapfrog-type) peer schemes' shared input check (their loop is the steppers' one:
+:mod:`wavephys.core.stepper`)."""
 
 from __future__ import annotations
 
-from functools import partial
-
-import jax
 import jax.numpy as jnp
 
 from wavephys.core.inputs import check_array
 
 __internal__ = True  # tooling for the library's own modules: not fuzzed as public API
-__all__ = ["check_levels", "run_two_level"]
+__all__ = ["check_levels"]
 
 
 def check_levels(eta, eta_prev):
@@ -32,34 +30,3 @@ def check_levels(eta, eta_prev):
         raise ValueError(f"eta and eta_prev must have one shape, got {jnp.shape(eta)} and {jnp.shape(eta_prev)}")
     eta = jnp.asarray(eta)
     return eta, jnp.asarray(eta_prev, eta.dtype)
-
-
-@partial(jax.jit, static_argnames=("step", "steps", "history"))
-def run_two_level(step, eta, eta_prev, args, steps: int, history: bool):
-    """Apply ``step(η^n, η^{n−1}, *args)`` ``steps`` times in one compiled loop.
-
-    Parameters
-    ----------
-    step : Callable
-        ``step(eta, eta_prev, *args) -> eta_next``, traceable.
-    eta, eta_prev : jax.Array
-        η^0 and η^{−1}, m.
-    args : tuple
-        Passed to every step.
-    steps : int
-        N, static.
-    history : bool
-        Also return every step's η.
-
-    Returns
-    -------
-    tuple
-        (η^N, η^{N−1}) and, with ``history``, the stacked η^1 … η^N.
-    """
-    def body(carry, _):
-        a, b = carry
-        c = step(a, b, *args)
-        return (c, a), (c if history else None)
-
-    (a, b), hist = jax.lax.scan(body, (eta, eta_prev), None, length=steps)
-    return (a, b, hist) if history else (a, b)

@@ -79,7 +79,8 @@ def step_symmetric_seconds(progress=print, step: dict | None = None) -> dict:
     :func:`wavephys.simulation.depth.symmetric_work`, divided out)."""
     import wavephys.simulation.stepping as st
     from wavephys import Grid, Stones, Water
-    from wavephys.simulation.depth import Floor, depth_state, run_depth, symmetric_work
+    from wavephys.simulation.depth import Floor, depth_state, symmetric_work
+    from wavephys.simulation.steppers import DepthStepper
     from wavephys.simulation.model import Model
 
     step = step or shipped()["step"]
@@ -93,7 +94,7 @@ def step_symmetric_seconds(progress=print, step: dict | None = None) -> dict:
         levels, substeps = symmetric_work(model, floor)
         ds = depth_state(model, st.surface(model, state).eta)
         times = interleaved({"spectral": lambda: st.run(model, state, steps),
-                             "symmetric": lambda: run_depth(model, floor, ds, steps, method="symmetric")},
+                             "symmetric": lambda: DepthStepper(model, floor, "symmetric").trajectory(ds, steps)},
                             repeats=7, warmup=1, block=3)
         ratio = float(np.median([a / b for a, b in zip(times["symmetric"], times["spectral"])])) / (levels * substeps)
         out["ratio"].append(ratio)

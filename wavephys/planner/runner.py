@@ -159,12 +159,13 @@ def _floor_heights(model: SceneModel) -> np.ndarray:
     """Frames (F, n, n), m, on the output texels, of the waves stepped over the scene's sloping
     floor by the symmetric depth stepper, from the stones' craters at rest."""
     import wavephys.simulation.stepping as stepping
-    from wavephys.simulation.depth import depth_state, run_depth
+    from wavephys.simulation.depth import depth_state
+    from wavephys.simulation.steppers import DepthStepper
 
     sim = model.simulation
     eta0 = stepping.surface(sim, _initial_state(model)).eta  # the craters, exactly as the spectral step's
-    state, surfs = run_depth(sim, model.floor(), depth_state(sim, eta0), model.steps, method="symmetric")
-    eta = jnp.concatenate([surfs[1:, 0], state.eta[None]])
+    state, states = DepthStepper(sim, model.floor(), "symmetric").trajectory(depth_state(sim, eta0), model.steps)
+    eta = jnp.concatenate([states.fields[1:, 0], state.eta[None]])
     return np.asarray(interior(model, eta))
 
 

@@ -31,14 +31,16 @@ import numpy as np
 from wavephys.core.inputs import check_array, check_choice, check_instance, check_int, check_scalar
 from wavephys.core.water import Water
 from wavephys.core.methods import Methods
+from wavephys.core.aliases import deprecated_function
 from wavephys.core.pytree import register
+from wavephys.core.stepper import Stepper, _fixed_dt
 from wavephys.physics.depth import depth_levels, depth_weights
 from wavephys.physics.dispersion import angular_frequency, surface_operator
 from wavephys.physics.ring_waves import rotate_pair
 from wavephys.simulation.model import Model, operators
 
 __all__ = ["Floor", "DepthState", "depth_state", "step_levels", "step_shallow", "step_symmetric", "DEPTH_METHODS",
-           "run_depth", "run_profile", "shallow_substeps", "symmetric_levels", "symmetric_work", "SYMMETRIC_COURANT",
+           "run_depth", "run_profile", "DepthStepper", "ProfileState", "ProfileStepper", "PROFILE_ENDS", "shallow_substeps", "symmetric_levels", "symmetric_work", "SYMMETRIC_COURANT",
            "MAX_SUBSTEPS"]
 
 
@@ -623,8 +625,102 @@ DEPTH_METHODS = Methods("varying depth", levels=step_levels, shallow=step_shallo
 """Steppers over a varying floor by name (module doc)."""
 
 
-def run_depth(model: Model, floor: Floor, state: DepthState, steps: int, method: str = "levels"):
-    """``steps`` steps over the floor: ``(final state, (steps, 2, n, n) stacked (η, η̇) at each step's start)``.
+@functools.partial(jax.jit, static_argnums=(0, 1))
+def _surfaces_program(cls, static, dynamic, fields):
+    return jax.vmap(lambda f: cls._program(static, dynamic, f)[1].astype(f.dtype))(fields)
+
+
+class DepthStepper(Stepper):
+    """Linear waves over a varying floor (:mod:`wavephys.simulation.depth`): ``method`` one of ``"levels"``,
+    ``"symmetric"``, ``"shallow"``; Δt is the model's.
+
+    Parameters
+    ----------
+    model : Model
+    floor : Floor
+    method : str
+    """
+
+    def __init__(self, model, floor, method: str = "levels"):
+        check_instance("model", model, Model, "wavephys.simulation.Model")
+        check_instance("floor", floor, Floor, "wavephys.simulation.depth.Floor")
+        DEPTH_METHODS.check(method, "method")
+        floor.check(model)
+        self.model, self.floor, self.method, self.state_type = model, floor, method, DepthState
+
+    def _parts(self):
+        model, method = self.model, self.method
+        floor = _tank_floor(model, self.floor)
+        mask = operators(model).mask
+        if method == "symmetric" and _is_one_level(floor):
+            method = "levels"
+        if method == "levels":
+            if not float(floor.depth.min()) > 0:
+                raise ValueError("floor: the levels method needs depth > 0 everywhere (dry land: method='shallow' "
+                                 "or 'symmetric')")
+            tables, weights, _ = _level_tables(model, floor)
+            return ("levels", 0), (model, (tables, weights, mask))
+        if method == "symmetric":
+            big_k, restoring, roots, substeps = _symmetric_tables(model, floor)
+            return ("symmetric", substeps), (model, (big_k, restoring, roots, mask))
+        hx, hy, inv = _geometry(model, floor)
+        return ("shallow", shallow_substeps(model, floor)), (model, (hx, hy, inv, mask))
+
+    def _checked_state(self, state):
+        _check(self.model, self.floor, state)
+        return state
+
+    @classmethod
+    def _program(cls, static, dynamic, fields):
+        """One step of (η, φ): ``(the fields after it, (η, η̇) at its start)``."""
+        kind, substeps = static
+        model, args = dynamic
+        if kind == "levels":
+            return _levels_program(model.transform, model.inverse_transform, *args, fields)
+        if kind == "symmetric":
+            return _symmetric_program(model, *args, fields, substeps)
+        return _shallow_program(model, *args, fields, substeps)
+
+    @classmethod
+    def _advance(cls, static, dynamic, state, dt):
+        new = cls._program(static, dynamic, state.fields)[0]
+        return type(state)(new.astype(state.fields.dtype), state.time + dynamic[0].dt)
+
+    def surfaces(self, states):
+        """The surfaces (η, m; η̇, m/s) of stacked states (:meth:`trajectory`'s), stacked: (T, 2, n, n).
+
+        Parameters
+        ----------
+        states : DepthState
+            States stacked on a leading axis.
+
+        Returns
+        -------
+        jax.Array (T, 2, n, n)
+        """
+        static, dynamic = self._parts()
+        return _surfaces_program(type(self), static, dynamic, states.fields)
+
+    @classmethod
+    def _dt(cls, static, dynamic, state):
+        return jnp.asarray(dynamic[0].dt, state.time.dtype)
+
+    @classmethod
+    def _height(cls, static, dynamic, state):
+        return state.fields[0]
+
+    def _check_dt(self, state, dt):
+        return _fixed_dt(self, float(self.model.dt), dt)
+
+    @property
+    def sides(self):
+        wx, wy = self.model.wall_axes
+        return ("wall" if wx else "periodic",) * 2 + ("wall" if wy else "periodic",) * 2
+
+
+def _run_depth(model: Model, floor: Floor, state: DepthState, steps: int, method: str = "levels"):
+    """``steps`` steps over the floor: ``(final state, (steps, 2, n, n) stacked (η, η̇) at each step's start)``
+    (``DepthStepper``'s ``trajectory`` and ``surfaces``).
 
     Parameters
     ----------
@@ -641,51 +737,57 @@ def run_depth(model: Model, floor: Floor, state: DepthState, steps: int, method:
     (DepthState, jax.Array)
     """
     steps = check_int("steps", steps, lo=1)
-    DEPTH_METHODS.check(method, "method")
-    floor = _check(model, floor, state)
-    mask = operators(model).mask
-    if method == "symmetric" and _is_one_level(floor):
-        method = "levels"  # one depth, no dry land: the exact spectral step
-    if method == "levels":
-        if not float(floor.depth.min()) > 0:
-            raise ValueError("floor: the levels method needs depth > 0 everywhere (dry land: method='shallow' "
-                             "or 'symmetric')")
-        tables, weights, _ = _level_tables(model, floor)
-        fields, surfaces = _scan(model, "levels", (tables, weights, mask), state.fields, steps, 0)
-    elif method == "symmetric":
-        big_k, restoring, roots, substeps = _symmetric_tables(model, floor)
-        fields, surfaces = _scan(model, "symmetric", (big_k, restoring, roots, mask), state.fields, steps, substeps)
-    else:
-        hx, hy, inv = _geometry(model, floor)
-        fields, surfaces = _scan(model, "shallow", (hx, hy, inv, mask), state.fields, steps,
-                                 shallow_substeps(model, floor))
-    return DepthState(fields.astype(model.dtype), state.time + steps * model.dt), surfaces
+    stepper = DepthStepper(model, floor, method)
+    end, states = stepper.trajectory(state, steps)
+    return end, stepper.surfaces(states)
 
 
-@functools.partial(jax.jit, static_argnums=(0, 1, 4, 5))
-def _scan(model, kind, args, fields, steps, substeps):
-    """``steps`` steps of one method, compiled once per (model, method, steps, sub-steps)."""
-    if kind == "levels":
-        def body(f, _):
-            return _levels_program(model.transform, model.inverse_transform, *args, f)
-    elif kind == "symmetric":
-        def body(f, _):
-            return _symmetric_program(model, *args, f, substeps)
-    else:
-        def body(f, _):
-            return _shallow_program(model, *args, f, substeps)
-    return jax.lax.scan(body, fields, None, length=steps)
+run_depth = deprecated_function(_run_depth, "run_depth", "DepthStepper(model, floor, method).run / .advance, or "
+                                                         ".trajectory for every step")
 
 
 PROFILE_ENDS = ("periodic", "walls")
-""":func:`run_profile`'s ends: the profile wraps, or reflecting walls half a sample past its first and last
+""":class:`ProfileStepper`'s ends: the profile wraps, or reflecting walls half a sample past its first and last
 samples (the texel convention of a walled tank)."""
 
 
-def run_profile(depth, dx: float, water: Water, dt: float, eta, phi, steps: int, method: str = "symmetric",
-                levels: int = 4, ends: str = "periodic", every: Optional[int] = None):
-    """Plane waves along x over a depth profile h(x): the steppers of :data:`DEPTH_METHODS` on one row (what a
-    square grid gives for waves uniform in y, at 1/n of the cost), periodic or between walls.
+@dataclass(frozen=True)
+class ProfileState:
+    """Plane waves along x over a depth profile (:class:`ProfileStepper`): η and φ at the profile's samples.
+
+    Parameters
+    ----------
+    eta : array (n,)
+        Height η, m, finite.
+    phi : array (n,)
+        Surface potential φ, m²/s, the shape of ``eta``.
+    time : float
+        s.
+    """
+
+    eta: jax.Array
+    phi: jax.Array
+    time: jax.Array = 0.0
+
+    def __post_init__(self):
+        if any(isinstance(v, jax.core.Tracer) for v in (self.eta, self.phi, self.time)):
+            return
+        check_array("eta", self.eta, ndim=1)
+        check_array("phi", self.phi, ndim=1)
+        if np.shape(self.eta) != np.shape(self.phi):
+            raise ValueError(f"eta and phi must have one shape, got {np.shape(self.eta)} and {np.shape(self.phi)}")
+        check_scalar("time", self.time)
+        dtype = jnp.float64 if jax.config.jax_enable_x64 else jnp.float32
+        for name in ("eta", "phi", "time"):
+            object.__setattr__(self, name, jnp.asarray(getattr(self, name), dtype))
+
+
+register(ProfileState, ("eta", "phi", "time"))
+
+
+class ProfileStepper(Stepper):
+    """Plane waves along x over a depth profile h(x): the methods of :data:`DEPTH_METHODS` on one row (what a
+    square grid gives for waves uniform in y, at 1/n of the cost), periodic or between walls; Δt fixed.
 
     Parameters
     ----------
@@ -697,10 +799,6 @@ def run_profile(depth, dx: float, water: Water, dt: float, eta, phi, steps: int,
         g, ρ, σ (its depth is ignored).
     dt : float
         Step, s, > 0.
-    eta, phi : array_like (n,)
-        Height (m) and surface potential (m²/s) at the start.
-    steps : int
-        ≥ 1.
     method : {"levels", "shallow", "symmetric"}
     levels : int
         Depth levels, 1 … 16 (as :class:`Floor`).
@@ -708,9 +806,131 @@ def run_profile(depth, dx: float, water: Water, dt: float, eta, phi, steps: int,
         ``"periodic"`` (default): the profile wraps (a ramp up must come back down); ``"walls"``: a reflecting
         wall half a sample past each end (cosine modes cos(mπx/L), L = n·dx), so a beach or a ramp can end
         where it ends.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from wavephys import Water
+    >>> x = (np.arange(64) + 0.5) * 0.05
+    >>> stepper = ProfileStepper(0.1 + 0.2 * x / x[-1], 0.05, Water(sigma=0.0), 1 / 64, ends="walls")
+    >>> run = stepper.run(ProfileState(0.001 * np.cos(np.pi * x / 3.2), np.zeros(64)), steps=64, every=32)
+    >>> run.frames.shape, run.times.tolist()
+    ((2, 64), [0.5, 1.0])
+    """
+
+    def __init__(self, depth, dx: float, water: Water, dt: float, method: str = "symmetric", levels: int = 4,
+                 ends: str = "periodic"):
+        check_array("depth", depth, ndim=1, lo=0.0)
+        self.n = check_int("depth.shape[0]", np.shape(depth)[0], lo=4, even=True)
+        self.dx = check_scalar("dx", dx, lo=0.0, lo_open=True)
+        check_instance("water", water, Water, "wavephys.Water")
+        self.dt = check_scalar("dt", dt, lo=0.0, lo_open=True)
+        DEPTH_METHODS.check(method, "method")
+        self.levels = check_int("levels", levels, lo=1, hi=16)
+        self.ends = check_choice("ends", ends, PROFILE_ENDS)
+        self.depth, self.water, self.method = np.asarray(depth, np.float64), water, method
+        if method == "levels" and not float(self.depth.min()) > 0:
+            raise ValueError("depth: the levels method needs depth > 0 everywhere (dry land: method='shallow' "
+                             "or 'symmetric')")
+        self.state_type, self._made = ProfileState, {}
+
+    def _parts(self):
+        dtype = jnp.float64 if jax.config.jax_enable_x64 else jnp.float32
+        if dtype not in self._made:
+            self._made[dtype] = self._operators(dtype)
+        return self._made[dtype]
+
+    def _operators(self, dtype):
+        """(static (method, walled, sub-steps), dynamic ((dx, g, Δt), operators)) in ``dtype``."""
+        n, dx, dt, water, walled = self.n, self.dx, self.dt, self.water, self.ends == "walls"
+        h = np.broadcast_to(self.depth, (2, n))
+        if walled:
+            kx = np.pi * np.arange(n)[None, :] / (n * dx)
+            ky = 2 * np.pi * np.fft.rfftfreq(2, dx)[:, None]
+        else:
+            ky = 2 * np.pi * np.fft.fftfreq(2, dx)[:, None]
+            kx = 2 * np.pi * np.fft.rfftfreq(n, dx)[None, :]
+        k = np.sqrt(kx * kx + ky * ky)
+        method = self.method
+        if method == "symmetric" and len(symmetric_levels(h, self.levels)) == 1:
+            method = "levels"
+        with jax.enable_x64(True):
+            if method == "levels":
+                lv = depth_levels(h, self.levels)
+                args, sub = (np.asarray(_level_operators(k, water, dt, lv)), np.asarray(depth_weights(h, lv))), 0
+            elif method == "symmetric":
+                lv = symmetric_levels(h, self.levels)
+                big_k, restoring, sub = _symmetric_operators(k, water, lv, dt)
+                roots = np.sqrt(np.asarray(depth_weights(h, lv))[int(lv[0] == 0):])
+                args = (np.asarray(big_k), roots, None if restoring is None else np.asarray(restoring))
+            else:
+                hx, _, inv = _shore_geometry(h, (walled, False))
+                c = math.sqrt(float(water.g) * float(h.max()))
+                sub = _substeps(c * dt / (0.5 * dx), dt, "shallow")
+                args = (hx, np.zeros((2, n)), inv)
+        args = tuple(None if a is None else jnp.asarray(a, dtype) for a in args)
+        scalars = tuple(jnp.asarray(v, dtype) for v in (dx, water.g, dt))
+        return (method, walled, sub), (scalars, args)
+
+    def _checked_state(self, state):
+        state = super()._checked_state(state)
+        if not isinstance(state.eta, jax.core.Tracer) and np.shape(state.eta) != (self.n,):
+            raise ValueError(f"state: eta must have the profile's {self.n} samples, got shape {np.shape(state.eta)}")
+        return state
+
+    @classmethod
+    def _advance(cls, static, dynamic, state, dt):
+        method, walled, substeps = static
+        (dx, g, own), args = dynamic
+        n = state.eta.shape[-1]
+        if walled:  # cosine modes along x, the two rows (uniform in y) by rfft
+            from wavephys.core.spectral import cosine_transform, inverse_cosine_transform
+
+            forward = lambda f: jnp.fft.rfft(cosine_transform(f, -1), axis=-2)
+            inverse = lambda spec: inverse_cosine_transform(jnp.fft.irfft(spec, n=2, axis=-2), -1)
+        else:
+            forward = jnp.fft.rfft2
+            inverse = lambda spec: jnp.fft.irfft2(spec, s=(2, n))
+        fields = jnp.stack([jnp.broadcast_to(state.eta, (2, n)), jnp.broadcast_to(state.phi, (2, n))])
+        if method == "levels":
+            out = _levels_program(forward, inverse, *args, None, fields)[0]
+        elif method == "symmetric":
+            out = _symmetric_steps(forward, inverse, args[0], args[1], args[2], g, own, None, fields, substeps)[0]
+        else:
+            out = _shallow_steps(dx, g, own, args[0], args[1], None, fields, substeps, args[2])[0]
+        out = out.astype(state.eta.dtype)
+        return ProfileState(out[0, 0], out[1, 0], state.time + own.astype(state.time.dtype))
+
+    @classmethod
+    def _dt(cls, static, dynamic, state):
+        return jnp.asarray(dynamic[0][2], state.time.dtype)
+
+    @classmethod
+    def _height(cls, static, dynamic, state):
+        return state.eta
+
+    def _check_dt(self, state, dt):
+        return _fixed_dt(self, self.dt, dt)
+
+    @property
+    def sides(self):
+        return ("wall" if self.ends == "walls" else "periodic",) * 2 + ("periodic",) * 2
+
+
+def _run_profile(depth, dx: float, water: Water, dt: float, eta, phi, steps: int, method: str = "symmetric",
+                 levels: int = 4, ends: str = "periodic", every: Optional[int] = None):
+    """``steps`` steps of a :class:`ProfileStepper` from (η, φ), optionally keeping η every ``every`` steps.
+
+    Parameters
+    ----------
+    depth, dx, water, dt, method, levels, ends
+        As :class:`ProfileStepper`.
+    eta, phi : array_like (n,)
+        Height (m) and surface potential (m²/s) at the start.
+    steps : int
+        ≥ 1.
     every : int, optional
-        Also return η every ``every`` steps (≥ 1, dividing ``steps``): frames at steps 0, every, …, steps, for
-        run-up and gauges, from the one compiled loop.
+        Also return η every ``every`` steps (≥ 1, dividing ``steps``): frames at steps 0, every, …, steps.
 
     Returns
     -------
@@ -718,83 +938,22 @@ def run_profile(depth, dx: float, water: Water, dt: float, eta, phi, steps: int,
         η and φ after ``steps`` steps, (n,), float64 when x64 is on, else float32; with ``every``, the frames
         (steps // every + 1, n) too.
     """
-    check_array("depth", depth, ndim=1, lo=0.0)
-    n = check_int("depth.shape[0]", np.shape(depth)[0], lo=4, even=True)
-    dx = check_scalar("dx", dx, lo=0.0, lo_open=True)
-    check_instance("water", water, Water, "wavephys.Water")
-    dt = check_scalar("dt", dt, lo=0.0, lo_open=True)
-    check_array("eta", eta, ndim=1, shape_tail=(n,))
-    check_array("phi", phi, ndim=1, shape_tail=(n,))
+    stepper = ProfileStepper(depth, dx, water, dt, method, levels, ends)
+    check_array("eta", eta, ndim=1, shape_tail=(stepper.n,))
+    check_array("phi", phi, ndim=1, shape_tail=(stepper.n,))
     steps = check_int("steps", steps, lo=1)
-    DEPTH_METHODS.check(method, "method")
-    levels = check_int("levels", levels, lo=1, hi=16)
-    check_choice("ends", ends, PROFILE_ENDS)
     if every is not None:
         every = check_int("every", every, lo=1)
         if steps % every:
             raise ValueError(f"every: {every} does not divide steps = {steps} (frames are taken every `every` steps "
                              f"up to the last)")
-    walled = ends == "walls"
-    h = np.broadcast_to(np.asarray(depth, np.float64), (2, n))
-    dtype = jnp.float64 if jax.config.jax_enable_x64 else jnp.float32
-    if walled:
-        kx = np.pi * np.arange(n)[None, :] / (n * dx)
-        ky = 2 * np.pi * np.fft.rfftfreq(2, dx)[:, None]
-    else:
-        ky = 2 * np.pi * np.fft.fftfreq(2, dx)[:, None]
-        kx = 2 * np.pi * np.fft.rfftfreq(n, dx)[None, :]
-    k = np.sqrt(kx * kx + ky * ky)
-    fields = jnp.stack([jnp.broadcast_to(jnp.asarray(eta, dtype), (2, n)),
-                        jnp.broadcast_to(jnp.asarray(phi, dtype), (2, n))])
-    if method == "symmetric" and len(symmetric_levels(h, levels)) == 1:
-        method = "levels"
-    with jax.enable_x64(True):
-        if method == "levels":
-            lv = depth_levels(h, levels)
-            args, sub = (np.asarray(_level_operators(k, water, dt, lv)), np.asarray(depth_weights(h, lv))), 0
-        elif method == "symmetric":
-            lv = symmetric_levels(h, levels)
-            big_k, restoring, sub = _symmetric_operators(k, water, lv, dt)
-            roots = np.sqrt(np.asarray(depth_weights(h, lv))[int(lv[0] == 0):])
-            args = (np.asarray(big_k), roots, None if restoring is None else np.asarray(restoring))
-        else:
-            hx, _, inv = _shore_geometry(h, (walled, False))
-            c = math.sqrt(float(water.g) * float(h.max()))
-            sub = _substeps(c * dt / (0.5 * dx), dt, "shallow")
-            args = (hx, np.zeros((2, n)), inv)
-    args = tuple(None if a is None else jnp.asarray(a, dtype) for a in args)
-    scalars = tuple(jnp.asarray(v, dtype) for v in (dx, water.g, dt))
-    out, frames = _profile_program(method, walled, steps, every, sub, scalars, args, fields)
+    state = ProfileState(eta, phi)
     if every is None:
-        return out[0, 0], out[1, 0]
-    return out[0, 0], out[1, 0], jnp.concatenate([fields[0, 0][None], frames])
+        end = stepper.advance(state, steps)
+        return end.eta, end.phi
+    run = stepper.run(state, steps=steps, every=every)
+    return run.state.eta, run.state.phi, jnp.concatenate([state.eta[None], jnp.asarray(run.frames)])
 
 
-@functools.partial(jax.jit, static_argnums=(0, 1, 2, 3, 4))
-def _profile_program(method, walled, steps, every, substeps, scalars, args, fields):
-    """:func:`run_profile`'s loop, compiled once per (method, ends, steps, every, sub-steps) and shape: the
-    profile's operators and (dx, g, Δt) are its arguments."""
-    n = fields.shape[-1]
-    dx, g, dt = scalars
-    if walled:  # cosine modes along x, the two rows (uniform in y) by rfft
-        from wavephys.core.spectral import cosine_transform, inverse_cosine_transform
-
-        forward = lambda f: jnp.fft.rfft(cosine_transform(f, -1), axis=-2)
-        inverse = lambda spec: inverse_cosine_transform(jnp.fft.irfft(spec, n=2, axis=-2), -1)
-    else:
-        forward = jnp.fft.rfft2
-        inverse = lambda spec: jnp.fft.irfft2(spec, s=(2, n))
-    if method == "levels":
-        one = lambda f: _levels_program(forward, inverse, *args, None, f)[0]
-    elif method == "symmetric":
-        one = lambda f: _symmetric_steps(forward, inverse, args[0], args[1], args[2], g, dt, None, f, substeps)[0]
-    else:
-        one = lambda f: _shallow_steps(dx, g, dt, args[0], args[1], None, f, substeps, args[2])[0]
-    if every is None:
-        return jax.lax.fori_loop(0, steps, lambda _, f: one(f), fields), None
-
-    def chunk(f, _):
-        f = jax.lax.fori_loop(0, every, lambda _, f: one(f), f)
-        return f, f[0, 0]
-
-    return jax.lax.scan(chunk, fields, None, length=steps // every)
+run_profile = deprecated_function(_run_profile, "run_profile",
+                                  "ProfileStepper(depth, dx, water, dt, method, levels, ends).run / .advance")

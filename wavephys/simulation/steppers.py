@@ -1,19 +1,20 @@
 """The simulation layer's steppers behind the one interface (:mod:`wavephys.core.stepper`): the spectral model
-(:class:`SpectralStepper`) and the varying floors (:class:`DepthStepper`); nonlinear shallow water and the split
-live beside their schemes and are re-exported here. Every stepper and the registry: :mod:`wavephys.steppers`.
+(:class:`SpectralStepper`); the varying floors (:class:`DepthStepper`, :class:`ProfileStepper`), nonlinear
+shallow water and the split live beside their schemes and are re-exported here. Every stepper and the
+registry: :mod:`wavephys.steppers`.
 """
 
 from __future__ import annotations
 
 import jax.numpy as jnp
-import numpy as np
 
-from wavephys.core.inputs import check_instance, check_scalar
+from wavephys.core.inputs import check_instance
 from wavephys.core.stepper import Stepper, _fixed_dt
+from wavephys.simulation.depth import DepthStepper, ProfileStepper
 from wavephys.simulation.shallow_water import ShallowWaterStepper
 from wavephys.simulation.split import SplitStepper
 
-__all__ = ["SpectralStepper", "DepthStepper", "ShallowWaterStepper", "SplitStepper"]
+__all__ = ["SpectralStepper", "DepthStepper", "ProfileStepper", "ShallowWaterStepper", "SplitStepper"]
 
 
 class SpectralStepper(Stepper):
@@ -75,82 +76,3 @@ class SpectralStepper(Stepper):
         x = "wall" if wx else ("open" if self.model.margin else "periodic")
         y = "wall" if wy else ("open" if self.model.margin else "periodic")
         return (x, x, y, y)
-
-
-class DepthStepper(Stepper):
-    """Linear waves over a varying floor (:mod:`wavephys.simulation.depth`): ``method`` one of ``"levels"``,
-    ``"symmetric"``, ``"shallow"``; Δt is the model's.
-
-    Parameters
-    ----------
-    model : Model
-    floor : Floor
-    method : str
-    """
-
-    def __init__(self, model, floor, method: str = "levels"):
-        from wavephys.simulation.depth import DEPTH_METHODS, DepthState, Floor
-        from wavephys.simulation.model import Model
-
-        check_instance("model", model, Model, "wavephys.simulation.Model")
-        check_instance("floor", floor, Floor, "wavephys.simulation.depth.Floor")
-        DEPTH_METHODS.check(method, "method")
-        floor.check(model)
-        self.model, self.floor, self.method, self.state_type = model, floor, method, DepthState
-
-    def _parts(self):
-        from wavephys.simulation import depth as d
-        from wavephys.simulation.model import operators
-
-        model, method = self.model, self.method
-        floor = d._tank_floor(model, self.floor)
-        mask = operators(model).mask
-        if method == "symmetric" and d._is_one_level(floor):
-            method = "levels"
-        if method == "levels":
-            if not float(floor.depth.min()) > 0:
-                raise ValueError("floor: the levels method needs depth > 0 everywhere (dry land: method='shallow' "
-                                 "or 'symmetric')")
-            tables, weights, _ = d._level_tables(model, floor)
-            return ("levels", 0), (model, (tables, weights, mask))
-        if method == "symmetric":
-            big_k, restoring, roots, substeps = d._symmetric_tables(model, floor)
-            return ("symmetric", substeps), (model, (big_k, restoring, roots, mask))
-        hx, hy, inv = d._geometry(model, floor)
-        return ("shallow", d.shallow_substeps(model, floor)), (model, (hx, hy, inv, mask))
-
-    def _checked_state(self, state):
-        from wavephys.simulation.depth import _check
-        _check(self.model, self.floor, state)
-        return state
-
-    @classmethod
-    def _advance(cls, static, dynamic, state, dt):
-        from wavephys.simulation import depth as d
-        kind, substeps = static
-        model, args = dynamic
-        if kind == "levels":
-            new = d._levels_program(model.transform, model.inverse_transform, *args, state.fields)[0]
-        elif kind == "symmetric":
-            new = d._symmetric_program(model, *args, state.fields, substeps)[0]
-        else:
-            new = d._shallow_program(model, *args, state.fields, substeps)[0]
-        return type(state)(new.astype(state.fields.dtype), state.time + model.dt)
-
-    @classmethod
-    def _dt(cls, static, dynamic, state):
-        return jnp.asarray(dynamic[0].dt, state.time.dtype)
-
-    @classmethod
-    def _height(cls, static, dynamic, state):
-        return state.fields[0]
-
-    def _check_dt(self, state, dt):
-        return _fixed_dt(self, float(self.model.dt), dt)
-
-    @property
-    def sides(self):
-        wx, wy = self.model.wall_axes
-        return ("wall" if wx else "periodic",) * 2 + ("wall" if wy else "periodic",) * 2
-
-

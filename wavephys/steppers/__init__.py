@@ -8,6 +8,7 @@ class                        method                                      state  
 :class:`SpectralStepper`      exact linear waves (the spectral step)      ``State``               ``model.dt`` (any)
 :class:`DepthStepper`         a varying floor (levels, symmetric,         ``DepthState``          ``model.dt``
                               linear shallow water)
+:class:`ProfileStepper`       the same on one row: plane waves over h(x)  ``ProfileState``        fixed ``dt``
 :class:`ShallowWaterStepper`  nonlinear shallow water, wet/dry            ``SWState``             adaptive (``cfl``)
 :class:`SplitStepper`         shallow water + dispersive waves            ``SWState``             adaptive
 :class:`PipesStepper`         virtual pipes                               ``PipesState``          fixed ``dt``
@@ -36,12 +37,14 @@ from wavephys.models.pipes import PipesStepper
 from wavephys.models.truncated_kernel import KernelStepper
 from wavephys.simulation.shallow_water import ShallowWaterStepper
 from wavephys.simulation.split import SplitStepper
+from wavephys.simulation.depth import ProfileState, ProfileStepper
 from wavephys.simulation.steppers import DepthStepper, SpectralStepper
 
 __all__ = ["Stepper", "Run", "TwoLevelState", "SIDE_KINDS", "STEPPERS", "SpectralStepper", "DepthStepper",
-           "ShallowWaterStepper", "SplitStepper", "PipesStepper", "FiniteDifferenceStepper", "KernelStepper"]
+           "ProfileStepper", "ProfileState", "ShallowWaterStepper", "SplitStepper", "PipesStepper",
+           "FiniteDifferenceStepper", "KernelStepper"]
 
-STEPPERS = {cls.__name__: cls for cls in (SpectralStepper, DepthStepper, ShallowWaterStepper, SplitStepper,
-                                          PipesStepper, FiniteDifferenceStepper, KernelStepper)}
+STEPPERS = {cls.__name__: cls for cls in (SpectralStepper, DepthStepper, ProfileStepper, ShallowWaterStepper,
+                                          SplitStepper, PipesStepper, FiniteDifferenceStepper, KernelStepper)}
 """Every stepper class by name (a new stepper is one class beside its scheme plus its entry here and its problems
 in the set)."""
