@@ -146,7 +146,7 @@ def thacker_errors(n: int, h0: float = 0.1, a: float = 1.0, shift: float = 0.5, 
 
 
 def lake_at_rest(n: int = 48, seed: int = 0, order: int = 2, dtype: str = "float64", sides="wall",
-                 until: float = 2.0, reconstruction: str = "audusse") -> dict:
+                 until: float = 2.0) -> dict:
     """A lake at rest (surface 0.5 m) over a random bed with islands that break the surface: its largest
     change after ``until`` s.
 
@@ -162,8 +162,6 @@ def lake_at_rest(n: int = 48, seed: int = 0, order: int = 2, dtype: str = "float
         As :class:`~wavephys.simulation.shallow_water.ShallowWater`.
     until : float
         s.
-    reconstruction : {"audusse", "chen_noelle"}
-        As :class:`~wavephys.simulation.shallow_water.ShallowWater`.
 
     Returns
     -------
@@ -183,7 +181,7 @@ def lake_at_rest(n: int = 48, seed: int = 0, order: int = 2, dtype: str = "float
         x0, y0, r, top = rng.uniform(0, 1), rng.uniform(0, 1), rng.uniform(0.05, 0.2), rng.uniform(0.2, 0.9)
         bed += top * np.exp(-((xx - x0) ** 2 + (yy - y0) ** 2) / (2 * r * r))
     bed += 0.05 * rng.standard_normal((n, n))  # rough
-    solver = ShallowWater(dx, sides=sides, order=order, reconstruction=reconstruction)
+    solver = ShallowWater(dx, sides=sides, order=order)
     state = sw_state(bed, 0.5, dtype=_dtype(dtype))
     end, steps = _sw_run(solver, bed, state, until=until)
     h0, h1 = np.asarray(state.h), np.asarray(end.h)
@@ -194,7 +192,7 @@ def lake_at_rest(n: int = 48, seed: int = 0, order: int = 2, dtype: str = "float
 
 
 def carrier_greenspan_errors(n: int = 1100, periods: float = 1.0, amplitude: float = 1.0, frames: int = 64,
-                             order: int = 2, reconstruction: str = "audusse") -> dict:
+                             order: int = 2) -> dict:
     """Carrier & Greenspan's standing wave on a 50 km beach (h₀ = 500 m, T = 900 s, ``amplitude`` m at the
     offshore end, which is an :class:`~wavephys.simulation.shallow_water.Inflow` of the exact solution),
     on n cells over 1.1 × the beach, sampled at ``frames`` times per period.
@@ -210,9 +208,6 @@ def carrier_greenspan_errors(n: int = 1100, periods: float = 1.0, amplitude: flo
     frames : int
         Samples per period.
     order : {1, 2}
-    reconstruction : {"audusse", "chen_noelle"}
-        As :class:`~wavephys.simulation.shallow_water.ShallowWater` (the drawdown, measured at 550 cells:
-        −3.1 / −3.3 / −3.6 % by Audusse's, +1.1 / −0.25 / −0.63 % by Chen & Noelle's, at 0.5 / 1 / 1.5 m).
 
     Returns
     -------
@@ -232,7 +227,7 @@ def carrier_greenspan_errors(n: int = 1100, periods: float = 1.0, amplitude: flo
     ts = np.linspace(0.0, (periods + 0.1) * period, int(40 * (periods + 1)) + 1)
     edge = [carrier_greenspan([-0.5 * dx], t, h0, length, amplitude, period)[:2] for t in ts]
     solver = ShallowWater(dx, sides={"left": Inflow(ts, [e[0][0] for e in edge], [e[1][0] for e in edge])},
-                          dry=1e-4, order=order, reconstruction=reconstruction)
+                          dry=1e-4, order=order)
     eta0, u0, _ = carrier_greenspan(x, 0.0, h0, length, amplitude, period)
     state = sw_state(bed, eta0[None], u=u0[None], dtype=_dtype("float64"))
     times = np.linspace(period * periods / frames, period * periods, int(frames * periods))

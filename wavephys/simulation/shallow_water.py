@@ -17,11 +17,6 @@ properties follow and are tested (tests/simulation/test_shallow_water.py):
   stages are forward-Euler steps of a positive scheme);
 * **conservative** — the water changes only by what crosses an open or inflow side.
 
-``reconstruction="chen_noelle"`` uses Chen & Noelle's (2017) form instead (:func:`_hydrostatic`): the same
-wherever no sheet is thinner than the bed's step between two cells, and there it keeps gravity's pull down the
-slope, so a backwash drains in time (Carrier & Greenspan's drawdown: mean error 1.7 % against 3.0 % at 550
-cells; docs/physics.md §1.13). Audusse's stays the default.
-
 ``order=2`` reconstructs h, η and the velocities linearly in each cell (minmod slopes; first
 order in a cell next to a dry one, so a shoreline at rest stays at rest) with a cell-centred
 bed source that keeps the balance (Audusse et al. 2004, §4), and steps with Heun's method (SSP
@@ -35,8 +30,7 @@ References
 ----------
 E. Audusse, F. Bouchut, M.-O. Bristeau, R. Klein & B. Perthame (2004). A fast and stable
 well-balanced scheme with hydrostatic reconstruction for shallow water flows. *SIAM J. Sci.
-Comput.* 25(6), 2050–2065. G. Chen & S. Noelle (2017). A new hydrostatic reconstruction scheme based on
-subcell reconstructions. *SIAM J. Numer. Anal.* 55(2), 758–784. A. Harten, P. D. Lax & B. van Leer (1983). On upstream differencing
+Comput.* 25(6), 2050–2065. A. Harten, P. D. Lax & B. van Leer (1983). On upstream differencing
 and Godunov-type schemes for hyperbolic conservation laws. *SIAM Review* 25(1), 35–61.
 """
 
@@ -52,22 +46,19 @@ import numpy as np
 
 from wavephys.core.aliases import deprecated_function
 from wavephys.core.stepper import Stepper, _bed
-from wavephys.core.inputs import (check_array, check_choice, check_state_dtype, check_instance, check_int, check_scalar, describe,
+from wavephys.core.inputs import (check_array, check_state_dtype, check_instance, check_int, check_scalar, describe,
                                   is_traced)
 from wavephys.core.pytree import register
 from wavephys.physics.shallow_water import water_depth
 from wavephys.physics.walls import SIDES
 
 __all__ = ["ShallowWater", "ShallowWaterStepper", "Inflow", "Open", "SWState", "sw_state", "stable_dt", "sw_step", "sw_run", "sw_frames",
-           "sw_mass", "sw_surface", "SIDE_KINDS", "RECONSTRUCTIONS", "advance_fields", "stable_dt_fields", "check_run"]
+           "sw_mass", "sw_surface", "SIDE_KINDS", "advance_fields", "stable_dt_fields", "check_run"]
 
 SIDE_KINDS = ("wall", "open", "periodic", "inflow")
 """What a side of the domain can be: a reflecting wall, an open side (:class:`Open`: a sea at rest
 outside, which outgoing waves leave into), periodic (with the opposite side), or an :class:`Inflow` (a
 given surface and velocity outside)."""
-
-RECONSTRUCTIONS = ("audusse", "chen_noelle")
-"""The hydrostatic reconstructions of a face: :class:`ShallowWater`'s ``reconstruction`` (:func:`_hydrostatic`)."""
 
 
 @dataclass(frozen=True)
@@ -197,10 +188,6 @@ class ShallowWater:
         Depth below which a cell counts as dry (no velocity), m, ≥ 0 (default 1e-6).
     order : {1, 2}
         Spatial order of the reconstruction (and Euler / Heun in time).
-    reconstruction : {"audusse", "chen_noelle"}
-        The hydrostatic reconstruction at the faces (:data:`RECONSTRUCTIONS`): Audusse et al.'s (2004), or Chen &
-        Noelle's (2017), which keeps gravity's pull down a slope on water thinner than the bed's step between two
-        cells (module doc).
 
     Examples
     --------
@@ -215,7 +202,6 @@ class ShallowWater:
     cfl: float = 0.45
     dry: float = 1e-6
     order: int = 2
-    reconstruction: str = "audusse"
     inflows: tuple = field(default=(None, None, None, None), init=False, repr=False)
 
     def __post_init__(self):
@@ -226,7 +212,6 @@ class ShallowWater:
         check_scalar("cfl", self.cfl, lo=0.0, hi=1.0, lo_open=True)
         check_scalar("dry", self.dry, lo=0.0)
         order = check_int("order", self.order, lo=1, hi=2)
-        check_choice("reconstruction", self.reconstruction, RECONSTRUCTIONS)
         for name in ("dx", "g", "cfl", "dry"):  # Python floats: weakly typed under jit, so a float32 state stays so
             object.__setattr__(self, name, float(getattr(self, name)))
         kinds, inflows = _normalize_sides(self.sides)
@@ -275,13 +260,13 @@ class ShallowWater:
                 o = Open(o.level, depth)
             outside.append(o)
         settled = object.__new__(ShallowWater)
-        for name in ("dx", "g", "cfl", "dry", "order", "reconstruction", "sides"):
+        for name in ("dx", "g", "cfl", "dry", "order", "sides"):
             object.__setattr__(settled, name, getattr(self, name))
         object.__setattr__(settled, "inflows", tuple(outside))
         return settled
 
 
-register(ShallowWater, ("dx", "g", "cfl", "dry", "inflows"), ("sides", "order", "reconstruction"))
+register(ShallowWater, ("dx", "g", "cfl", "dry", "inflows"), ("sides", "order"))
 
 
 def _past_limit(solver: ShallowWater, cfl: float) -> ShallowWater:
@@ -289,7 +274,7 @@ def _past_limit(solver: ShallowWater, cfl: float) -> ShallowWater:
     measuring where the scheme fails (wavephys.checks.shallow_water)."""
     check_scalar("cfl", cfl, lo=0.0, hi=2.0, lo_open=True)
     copy = object.__new__(ShallowWater)
-    for name in ("dx", "g", "dry", "order", "reconstruction", "sides", "inflows"):
+    for name in ("dx", "g", "dry", "order", "sides", "inflows"):
         object.__setattr__(copy, name, getattr(solver, name))
     object.__setattr__(copy, "cfl", float(cfl))
     return copy
@@ -590,46 +575,7 @@ def _hll(g, hl, ul, vl, hr, ur, vr):
     return mass, normal, along
 
 
-def _hydrostatic(lh, lb, rh, rb, reconstruction):
-    """The depths the two sides of a face meet at, and what the cut leaves each side as a source: ``(h*_L, h*_R,
-    s_L, s_R)``, the source on each side being ½g·s (m²: h² − h*² for Audusse, (h + h*)(b* − b) for Chen & Noelle;
-    the two are equal wherever Audusse's h* is not cut to 0).
-
-    ``"audusse"`` (Audusse et al. 2004): b* = max(b_L, b_R), h* = max(0, h + b − b*). ``"chen_noelle"`` (Chen &
-    Noelle 2017): b* = min(max(b_L, b_R), min(w_L, w_R)) with w = h + b the surfaces, h* = min(w − b*, h). They
-    differ only where one side's surface lies below the other side's bed (a sheet on a slope thinner than the
-    bed's step between the cells): there Audusse puts b* on the higher bed, and the source ½g(h² − h*²) the cut
-    leaves is 0, so nothing pulls the sheet down the slope but its own pressure (it drains as a weir); Chen &
-    Noelle lower b* to the lower surface, and the source ½g(h + h*)(b* − b) is gravity's pull g h Δb on it.
-    Both keep a lake at rest (dry land included) and h* ≤ h (positivity).
-
-    Parameters
-    ----------
-    lh, lb, rh, rb : jax.Array
-        Depth (m) and bed elevation (m) each side.
-    reconstruction : {"audusse", "chen_noelle"}
-
-    Returns
-    -------
-    (jax.Array, jax.Array, jax.Array, jax.Array)
-        h*_L, h*_R (m) and s_L, s_R (m²).
-
-    References
-    ----------
-    G. Chen & S. Noelle (2017). A new hydrostatic reconstruction scheme based on subcell reconstructions.
-    *SIAM J. Numer. Anal.* 55(2), 758–784.
-    """
-    if reconstruction == "chen_noelle":
-        wl, wr = lh + lb, rh + rb
-        top = jnp.minimum(jnp.maximum(lb, rb), jnp.minimum(wl, wr))
-        hl, hr = jnp.minimum(wl - top, lh), jnp.minimum(wr - top, rh)
-        return hl, hr, (lh + hl) * (top - lb), (rh + hr) * (top - rb)
-    top = jnp.maximum(lb, rb)
-    hl, hr = jnp.maximum(0.0, lh + lb - top), jnp.maximum(0.0, rh + rb - top)
-    return hl, hr, lh * lh - hl * hl, rh * rh - hr * hr
-
-
-def _axis_rate(p, axis, g, dx, order, dry, walls, limited=True, reconstruction="audusse"):
+def _axis_rate(p, axis, g, dx, order, dry, walls, limited=True):
     """Rate of change (h, normal, tangential), each (ny, nx), from the fluxes across ``axis`` of a padded
     (4, …) array (two ghost cells each end of that axis); ``walls`` = (lo, hi) set the wall faces' mass flux
     to exactly 0."""
@@ -646,18 +592,20 @@ def _axis_rate(p, axis, g, dx, order, dry, walls, limited=True, reconstruction="
 
         lh, lb, lu, lv = _face_value(cells(0, n + 1), cells(1, n + 1), cells(2, n + 1), 1.0, order, dry, limited)
         rh, rb, ru, rv = _face_value(cells(1, n + 1), cells(2, n + 1), cells(3, n + 1), -1.0, order, dry, limited)
-        hl, hr, sl, sr = _hydrostatic(lh, lb, rh, rb, reconstruction)
-        return _hll(g, hl, lu, lv, hr, ru, rv) + (sl, sr)
+        top = jnp.maximum(lb, rb)
+        hl = jnp.maximum(0.0, lh + lb - top)
+        hr = jnp.maximum(0.0, rh + rb - top)
+        return _hll(g, hl, lu, lv, hr, ru, rv) + (lh, hl, rh, hr)
 
     # a conditional is a boundary XLA does not fuse across: the face fluxes are computed once, in their own
     # loop, then differenced (fused into the difference, each face was recomputed per use: ×30 slower on CPU, measured at 256²).
     # g must be traced for it (the solver an argument of the compiled program, not a constant in it): XLA folds a
     # constant predicate away with the boundary (measured: 27 ms a step at 128² instead of 1)
     def nothing(p):  # never taken (g > 0): a branch as cheap as possible
-        return (jnp.zeros_like(cut(p[0], 0, n + 1)),) * 5
+        return (jnp.zeros_like(cut(p[0], 0, n + 1)),) * 7
 
     out = jax.lax.cond(g > 0, face_fluxes, nothing, p)
-    mass, normal, along, sl, sr = out
+    mass, normal, along, lh, hl, rh, hr = out
     if walls[0] or walls[1]:
         shape = [1] * mass.ndim
         shape[axis] = n + 1
@@ -668,8 +616,8 @@ def _axis_rate(p, axis, g, dx, order, dry, walls, limited=True, reconstruction="
             open_face = open_face.at[-1].set(0.0)
         open_face = open_face.reshape(shape)
         mass, along = mass * open_face, along * open_face
-    seen_left = normal + 0.5 * g * sl  # what the cell on the low side of a face sees (the cut's pressure put back)
-    seen_right = normal + 0.5 * g * sr  # … and the cell on its high side
+    seen_left = normal + 0.5 * g * (lh * lh - hl * hl)  # what the cell on the low side of a face sees
+    seen_right = normal + 0.5 * g * (rh * rh - hr * hr)  # … and the cell on its high side
     r_mass = -(cut(mass, 1, n) - cut(mass, 0, n)) / dx
     r_normal = -(cut(seen_left, 1, n) - cut(seen_right, 0, n)) / dx
     r_along = -(cut(along, 1, n) - cut(along, 0, n)) / dx
@@ -691,13 +639,13 @@ def _rate(solver: ShallowWater, bed, fields, t, limited=True):
         p = _pad_axis(jnp.stack([h, hu, hv, bed]), -1, solver.sides[:2], solver.inflows[:2], t, solver.g,
                       solver.dry)
         r = _axis_rate(p, -1, solver.g, solver.dx, solver.order, solver.dry,
-                       (solver.sides[0] == "wall", solver.sides[1] == "wall"), limited, solver.reconstruction)
+                       (solver.sides[0] == "wall", solver.sides[1] == "wall"), limited)
         out = out + jnp.stack([r[0], r[1], r[2]])
     if ny > 1 or "inflow" in solver.sides[2:]:
         p = _pad_axis(jnp.stack([h, hv, hu, bed]), -2, solver.sides[2:], solver.inflows[2:], t, solver.g,
                       solver.dry)
         r = _axis_rate(p, -2, solver.g, solver.dx, solver.order, solver.dry,
-                       (solver.sides[2] == "wall", solver.sides[3] == "wall"), limited, solver.reconstruction)
+                       (solver.sides[2] == "wall", solver.sides[3] == "wall"), limited)
         out = out + jnp.stack([r[0], r[2], r[1]])
     return out
 

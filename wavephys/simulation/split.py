@@ -184,10 +184,6 @@ class Split:
         if bad:
             raise ValueError(f"solver.sides: the split model takes 'wall' or 'periodic' sides, got {bad[0]!r} "
                              f"(open and inflow sides would reflect its surface waves)")
-        if self.solver.reconstruction != "audusse":
-            raise ValueError(f"solver.reconstruction: the split model takes the 'audusse' reconstruction, got "
-                             f"{self.solver.reconstruction!r} (measured: with 'chen_noelle' 1e-6 m of noise over a rough "
-                             f"bed grows to 5e-3 m in 150 s inside the split, though not in shallow water alone)")
         check_array("levels", self.levels, ndim=1, lo=0.0, lo_open=True)
         levels = tuple(float(v) for v in np.atleast_1d(np.asarray(self.levels, np.float64)))
         if len(levels) < 1 or len(levels) > 16:
