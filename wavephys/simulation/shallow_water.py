@@ -17,10 +17,10 @@ properties follow and are tested (tests/simulation/test_shallow_water.py):
   stages are forward-Euler steps of a positive scheme);
 * **conservative** — the water changes only by what crosses an open or inflow side.
 
-``order=2`` reconstructs h, η and the velocities linearly in each wet cell, the shoreline's too
-(minmod slopes; a lake at rest has η's slope 0, so a shoreline at rest stays at rest) with a
-cell-centred bed source that keeps the balance (Audusse et al. 2004, §4), and steps with Heun's
-method (SSP RK2); ``order=1`` is piecewise constant with forward Euler.
+``order=2`` reconstructs h, η and the velocities linearly in each cell (minmod slopes; first
+order in a cell next to a dry one, so a shoreline at rest stays at rest) with a cell-centred
+bed source that keeps the balance (Audusse et al. 2004, §4), and steps with Heun's method (SSP
+RK2); ``order=1`` is piecewise constant with forward Euler.
 
 What it neglects: dispersion (every wave runs at √(gh): right for kh ≲ 0.3), vertical
 accelerations, friction, viscosity, and breaking (a bore is a shock that conserves mass and
@@ -546,9 +546,7 @@ def _face_value(a, b, c, side, order, dry, limited=True):
         return hb, eb - hb, ub, vb
     ha, ea, ua, va = prim(a)
     hc, ec, uc, vc = prim(c)
-    # linear in every wet cell, the shoreline's included (η's slope is 0 in a lake at rest, so it stays at rest);
-    # first order there let a backwash's sheet hold the run-up and drop at once (docs/physics.md §1.13)
-    keep = hb > dry
+    keep = (ha > dry) & (hb > dry) & (hc > dry)  # first order next to a dry cell: a shoreline at rest stays so
     half = 0.5 * side * jnp.where(keep, 1.0, 0.0)
     slope = _minmod if limited else _mean
     h = hb + half * slope(hb - ha, hc - hb)
