@@ -642,14 +642,14 @@ SKIP = {
     # the steppers: their bad inputs are refused by name in tests/simulation/test_steppers.py (fuzzed, a step
     # count or a time drawn large runs up to 10⁶ compiled steps a call: 14 minutes for the set)
     *(f"{cls}{method}" for cls in ("wavephys.simulation.steppers.SpectralStepper",
-                                   "wavephys.simulation.steppers.DepthStepper",
+                                   "wavephys.simulation.depth.DepthStepper",
                                    "wavephys.simulation.depth.ProfileStepper",
                                    "wavephys.simulation.shallow_water.ShallowWaterStepper",
                                    "wavephys.simulation.split.SplitStepper", "wavephys.models.pipes.PipesStepper",
                                    "wavephys.models.finite_difference.FiniteDifferenceStepper",
                                    "wavephys.models.truncated_kernel.KernelStepper")
       for method in ("", ".init", ".step", ".run", ".advance", ".advance_to", ".frames", ".trajectory")),
-    "wavephys.simulation.steppers.DepthStepper.surfaces",  # of a trajectory's states (tested in test_steppers)
+    "wavephys.simulation.depth.DepthStepper.surfaces",  # of a trajectory's states (tested in test_steppers)
     # a method of a floor made by the caller (its argument is checked by the steppers, tested in test_depth)
     "wavephys.simulation.depth.Floor.check",
     # the harness's fitted tank modes, made by measure_seiches (its fields are what was measured)
@@ -851,7 +851,7 @@ def _register_steppers():
     mod = "wavephys.simulation"
     OVERRIDES.update({
         f"{mod}.steppers.SpectralStepper": {"model": _model},
-        f"{mod}.steppers.DepthStepper": {"model": _model, "floor": lambda: Floor(np.full((N, N), 0.5)),
+        f"{mod}.depth.DepthStepper": {"model": _model, "floor": lambda: Floor(np.full((N, N), 0.5)),
                                          "method": lambda: "shallow"},
         f"{mod}.depth.ProfileStepper": {"depth": lambda: np.full(N, 0.5), "dx": lambda: 0.1, "dt": lambda: 0.05,
                                         "method": lambda: "shallow", "ends": lambda: "walls"},
