@@ -525,12 +525,8 @@ def _fixed_dt(stepper, own: float, dt) -> float:
     return float(dt)
 
 
-class _TwoLevel(Stepper):
-    state_type = TwoLevelState
-
-    @classmethod
-    def _dt(cls, static, dynamic, state):
-        return jnp.asarray(dynamic[-1], state.eta.dtype)
+class _FixedEta(Stepper):
+    """A stepper whose state holds the surface as ``eta`` and which steps its own fixed ``self.dt``."""
 
     @classmethod
     def _height(cls, static, dynamic, state):
@@ -538,6 +534,14 @@ class _TwoLevel(Stepper):
 
     def _check_dt(self, state, dt):
         return _fixed_dt(self, self.dt, dt)
+
+
+class _TwoLevel(_FixedEta):
+    state_type = TwoLevelState
+
+    @classmethod
+    def _dt(cls, static, dynamic, state):
+        return jnp.asarray(dynamic[-1], state.eta.dtype)
 
     @property
     def sides(self):

@@ -33,7 +33,7 @@ from wavephys.core.water import Water
 from wavephys.core.methods import Methods
 from wavephys.core.aliases import deprecated_function
 from wavephys.core.pytree import register
-from wavephys.core.stepper import Stepper, _fixed_dt
+from wavephys.core.stepper import Stepper, _FixedEta, _fixed_dt
 from wavephys.physics.depth import depth_levels, depth_weights
 from wavephys.physics.dispersion import angular_frequency, surface_operator
 from wavephys.physics.ring_waves import rotate_pair
@@ -785,7 +785,7 @@ class ProfileState:
 register(ProfileState, ("eta", "phi", "time"))
 
 
-class ProfileStepper(Stepper):
+class ProfileStepper(_FixedEta):
     """Plane waves along x over a depth profile h(x): the methods of :data:`DEPTH_METHODS` on one row (what a
     square grid gives for waves uniform in y, at 1/n of the cost), periodic or between walls; Δt fixed.
 
@@ -904,13 +904,6 @@ class ProfileStepper(Stepper):
     @classmethod
     def _dt(cls, static, dynamic, state):
         return jnp.asarray(dynamic[0][2], state.time.dtype)
-
-    @classmethod
-    def _height(cls, static, dynamic, state):
-        return state.eta
-
-    def _check_dt(self, state, dt):
-        return _fixed_dt(self, self.dt, dt)
 
     @property
     def sides(self):
