@@ -50,6 +50,8 @@ def test_leapfrog_stability_limit():
     bad = KernelStepper(st, 1.05 * dt, check_stability=False).advance(start, 400).eta
     with pytest.raises(ValueError, match="stability limit of this stencil"):
         KernelStepper(st, 1.05 * dt).advance(start, 1)  # refused by default, by name
+    with pytest.raises(ValueError, match="stability limit of this stencil"):  # and under jit (the grid is static)
+        jax.jit(lambda e: KernelStepper(st, 1.05 * dt).advance(TwoLevelState(e, e), 1).eta)(eta)
     assert float(jnp.abs(ok).max()) < 20 * float(jnp.abs(eta).max())
     assert not bool(jnp.all(jnp.abs(bad) < 1e6))
 

@@ -401,7 +401,8 @@ def _standing(name, kh, n=32):
         if name == "SpectralStepper":
             return SpectralStepper(model), add_height(model, initial_state(model), jnp.asarray(amp * mode)), mode, 0.0
         return DepthStepper(model, Floor(np.full((n, n), h)), "shallow"), depth_state(model, amp * mode), mode, 0.0
-    if name == "ProfileStepper":  # one row; the long waves by its linear shallow-water method, the rest by its blend
+    if name == "ProfileStepper":  # one row; the long waves by its linear shallow-water method; at kh 3 its blend,
+        # which on a flat floor is the exact spectral step of its levels (the profile's transforms are what is tested)
         stepper = ProfileStepper(np.full(n, h), dx, water, period / 80, "shallow" if kh < 0.5 else "symmetric")
         return stepper, ProfileState(amp * mode[0], np.zeros(n)), mode[0], 0.0
     if name == "ShallowWaterStepper":

@@ -284,7 +284,8 @@ class Stepper:
     # -- pure forms (jit, vmap; grad through a fixed number of steps) ---------------------------------
     def advance(self, state, steps: int, dt=None):
         """``steps`` steps of the stepper's own Δt, or of ``dt``: the state after them (pure: ``jax.jit``,
-        ``jax.vmap`` and, with a fixed Δt, ``jax.grad`` apply; no stability check: see :meth:`step`; called with
+        ``jax.vmap`` and, with a fixed Δt, ``jax.grad`` apply; a concrete ``dt`` past the stable step is refused
+        by name, and :meth:`init`'s checks apply, but the run is not checked as :meth:`step`'s is; called with
         concrete arrays it stops at the first state that is not finite, whose time then says how far it got).
 
         Parameters
@@ -312,8 +313,8 @@ class Stepper:
 
     def trajectory(self, state, steps: int):
         """``steps`` steps of the stepper's own Δt keeping every state: ``(state after them, the states at each
-        step's start stacked on a leading axis)`` (pure, one compiled scan; no stability check, as
-        :meth:`advance`). Memory grows with ``steps``: for measurements that need every step (a gauge, a
+        step's start stacked on a leading axis)`` (pure, one compiled scan; it does not stop at a non-finite state,
+        and checks no more than :meth:`init` does). Memory grows with ``steps``: for measurements that need every step (a gauge, a
         record); :meth:`run` with ``every`` or a ``callback`` keeps only what it is asked for.
 
         Parameters
@@ -331,6 +332,13 @@ class Stepper:
         state = self.init(state)
         static, dynamic = self._parts()
         return _steps_program(type(self), static, dynamic, state, steps, jnp.asarray(np.nan), True)
+
+    def _every_step(self, state, steps: int):
+        """``steps`` of the stepper's own steps, all of them (no early stop at a non-finite state, nothing kept):
+        what the deprecated run functions did."""
+        state = self.init(state)
+        static, dynamic = self._parts()
+        return _steps_program(type(self), static, dynamic, state, steps, jnp.asarray(np.nan))
 
     def _whole_steps(self, state, time, name):
         """The number of the stepper's fixed steps from the state's time to ``time`` (ValueError naming

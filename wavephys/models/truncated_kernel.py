@@ -24,8 +24,7 @@ import jax
 import jax.numpy as jnp
 import numpy as np
 
-from wavephys.core.inputs import (Array, Real, Spec, check_array, check_bool, check_int, check_scalar, is_traced,
-                                  validate)
+from wavephys.core.inputs import Array, Real, Spec, check_array, check_bool, check_int, check_scalar, validate
 from wavephys.core.specs import GRID, WATER
 from wavephys.core.stepper import TwoLevelState, _TwoLevel
 from wavephys.core.aliases import deprecated_function
@@ -233,7 +232,7 @@ def _kernel_steps(eta, eta_prev, stencil, dt, steps: int, check_stability: bool 
     _STENCIL("stencil", stencil, {"eta": eta})
     _DT("dt", dt, {})
     steps = check_int("steps", steps, lo=1)
-    end = KernelStepper(stencil, dt, check_stability).advance(TwoLevelState(eta, eta_prev), steps)
+    end = KernelStepper(stencil, dt, check_stability)._every_step(TwoLevelState(eta, eta_prev), steps)
     return end.eta, end.eta_prev
 
 
@@ -264,7 +263,7 @@ class KernelStepper(_TwoLevel):
 
     def _checked_state(self, state):
         state = super()._checked_state(state)
-        if self.check_stability and not is_traced(state.eta):
+        if self.check_stability:  # the grid's size is static, even under a trace
             n = state.eta.shape[-1]
             limit = self._stable_dt(n)
             if self.dt > limit:
@@ -274,8 +273,9 @@ class KernelStepper(_TwoLevel):
         return state
 
     def _stable_dt(self, n):
-        if n not in self._limits:  # the symbol depends on the samples only
-            self._limits[n] = float(max_stable_dt(self.stencil, Grid(n, float(n))))
+        if n not in self._limits:  # the symbol depends on the samples only; the stencil is concrete, even under jit
+            with jax.ensure_compile_time_eval():
+                self._limits[n] = float(max_stable_dt(self.stencil, Grid(n, float(n))))
         return self._limits[n]
 
     def _parts(self):
