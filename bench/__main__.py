@@ -71,7 +71,7 @@ def run_walls(args) -> None:
 
 
 def run_shallow(args) -> None:
-    from bench.shallow import dam_break_rows, figures, memory_rows, split_dispersion_rows, step_rows
+    from bench.shallow import compile_rows, dam_break_rows, figures, memory_rows, split_dispersion_rows, step_rows
 
     rows = dam_break_rows((100, 200, 400) if args.quick else (100, 200, 400, 800, 1600), progress=_say)
     print(f"{'case':<22}{'method':<26}{'n':>6}{'seconds':>10}{'L1 m':>11}{'max m':>9}")
@@ -82,6 +82,11 @@ def run_shallow(args) -> None:
     for r in steps:
         print(f"{r['method']:<38}{r['n']:>6}{r['seconds'] * 1e3:>10.3f}{r['ratio']:>12.2f}  (quartiles "
               f"{r['ratio_quartiles'][0]:.2f}–{r['ratio_quartiles'][1]:.2f})")
+    compiled = compile_rows(progress=_say)
+    print(f"{'stepper':<26}{'form':<26}{'n':>5}{'lower s':>9}{'compile s':>11}{'lines':>7}")
+    for r in compiled:
+        print(f"{r['method']:<26}{r['form']:<26}{r['n']:>5}{r['lower_seconds']:>9.2f}{r['compile_seconds']:>11.2f}"
+              f"{r['lines']:>7}")
     split = split_dispersion_rows(progress=_say)
     print(f"{'model':<26}{'kh band':>14}{'max |w/w_exact - 1|':>22}")
     for r in split:
@@ -91,7 +96,7 @@ def run_shallow(args) -> None:
     for r in memory:
         print(f"{r['method']:<64}{r['steps']:>7}{r['bytes_held'] / 2**20:>10.2f}{r['resident_growth_mb']:>14.1f}"
               f"{r['peak_growth_mb']:>10.1f}")
-    _write(rows + steps + split + memory, figures(rows), Path(args.json or "bench/results/shallow.json"))
+    _write(rows + steps + compiled + split + memory, figures(rows), Path(args.json or "bench/results/shallow.json"))
 
 
 def run_boundaries(args) -> None:

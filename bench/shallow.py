@@ -7,6 +7,9 @@ Rows (JSON):
   solution after compiling, t = 1 s), error (L1, m), max_error (m), front (position error, m);
 * ``family="step"``: method, n (n × n cells), seconds per step (median of interleaved rounds), ratio to the
   spectral step of the same grid in the same rounds (median, quartiles);
+* ``family="compile"``: method, form (the step's two stages as one loop, as shipped, or written out, as before
+  0.3.0), n, lower_seconds and compile_seconds (median of fresh compiles of the stepper's loop program), lines
+  (StableHLO);
 * ``family="split dispersion"``: model (split, finite volumes order 2), kh band (kh0 … 4 kh0), worst
   |ω/ω_exact − 1| by the harness's dispersion check over four waves on 128 periodic cells.
 """
@@ -113,6 +116,59 @@ def step_rows(sizes=(256, 512), progress=print) -> list[dict]:
             ratio, q1, q3 = paired_ratio(times, name, ["spectral step (walls)"])
             rows.append(dict(family="step", method=name, n=n, seconds=statistics.median(times[name]) / k,
                              ratio=ratio, ratio_quartiles=[q1, q3]))
+    return rows
+
+
+def _two_stages_written_out(solver, bed, fields, t, dt, limited=True):
+    """The order-2 step with its two stages as two copies of the rate in the program (the solver's form before
+    0.3.0, the same arithmetic): the baseline of :func:`compile_rows`."""
+    from wavephys.simulation.shallow_water import _dry_out, _rate
+
+    u1 = _dry_out(fields + dt * _rate(solver, bed, fields, t, limited), solver.dry)
+    return _dry_out(0.5 * fields + 0.5 * (u1 + dt * _rate(solver, bed, u1, t + dt, limited)), solver.dry)
+
+
+def compile_rows(n=32, repeats=3, progress=print) -> list[dict]:
+    """Seconds to lower and to compile the loop program of each nonlinear stepper at n × n (walls, float32), the
+    median of ``repeats`` fresh compiles, and its StableHLO lines; against the same stepper with the two stages
+    of its step written out (:func:`_two_stages_written_out`), in the same run (module doc)."""
+    import contextlib
+    import time
+    from unittest import mock
+
+    from wavephys.core.stepper import _loop_program
+    from wavephys.simulation import shallow_water as sw
+    from wavephys.simulation.split import Split, SplitStepper
+
+    dx = 8.0 / n
+    c = (np.arange(n) + 0.5) * dx - 4.0
+    xx, yy = np.meshgrid(c, c)
+    bed = jnp.asarray(-1.5 + 0.1 * xx + 0.2 * np.sin(yy), jnp.float32)
+    cases = {"finite volumes, order 2": sw.ShallowWaterStepper(sw.ShallowWater(dx), bed),
+             "split, 1 level": SplitStepper(Split(sw.ShallowWater(dx), levels=(1.0,)), bed),
+             "split, 2 levels": SplitStepper(Split(sw.ShallowWater(dx), levels=(0.5, 2.0)), bed)}
+    rows = []
+    for name, stepper in cases.items():
+        progress(f"shallow: compiling {name} at {n}^2")
+        state = stepper.init(sw.sw_state(bed, 0.01 * np.exp(-(xx * xx + yy * yy))))
+        static, dynamic = stepper._parts()
+        args = (type(stepper), static, dynamic, state, jnp.asarray(np.inf, jnp.float32), jnp.asarray(10, jnp.int32),
+                jnp.asarray(np.nan, jnp.float32))
+        for form in ("one loop of two stages", "two stages written out"):
+            lower, build, lines = [], [], 0
+            for _ in range(repeats):
+                jax.clear_caches()
+                with (contextlib.nullcontext() if form == "one loop of two stages"
+                      else mock.patch.object(sw, "_advance", _two_stages_written_out)):
+                    start = time.perf_counter()
+                    lowered = _loop_program.lower(*args)
+                    middle = time.perf_counter()
+                    lowered.compile()
+                    lower.append(middle - start)
+                    build.append(time.perf_counter() - middle)
+                    lines = lowered.as_text().count("\n")
+            rows.append(dict(family="compile", method=name, form=form, n=n, lower_seconds=statistics.median(lower),
+                             compile_seconds=statistics.median(build), lines=lines))
     return rows
 
 

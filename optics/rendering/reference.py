@@ -59,6 +59,16 @@ def sample(field, length: float, xy):
     return texture_sample(np.asarray(field), length, xy[..., 0], xy[..., 1])
 
 
+def _sample(field, length: float, xy):
+    """:func:`sample` without its checks, for the march's inner loop (the scene's textures were checked when it
+    was made, and the points are the tracer's own): a trace samples them thousands of times, and the checks
+    (each texture finite, every call) took 40 % of a sample's time (0.16 ms against 0.09 ms for 1500 points on
+    a 256² texture)."""
+    f = np.asarray(field, np.float64)
+    ny, nx = f.shape[:2]
+    return bilinear(f, texel_coordinates(xy[..., 0], length, nx), texel_coordinates(xy[..., 1], length, ny), "clamp")
+
+
 def water_level(scene: Scene, xy):
     """Water height (m) at points xy (..., 2): clamped, or tiled and faded with distance from the eye."""
     return _surface_sample(scene, scene.water, xy)
@@ -68,10 +78,10 @@ def _surface_sample(scene: Scene, field, xy):
     """A field on the water surface (heights, foam) at xy: clamped, or tiled; beyond the
     square (surroundings) it fades to its mean with distance from the eye."""
     if scene.surroundings == "none":
-        return sample(field, scene.length, xy)
+        return _sample(field, scene.length, xy)
     w = np.asarray(field, np.float64)
     if scene.surroundings == "extend":
-        h = sample(w, scene.length, xy)
+        h = _sample(w, scene.length, xy)
     else:
         ny, nx = w.shape
         u = np.mod((xy[..., 0] / scene.length + 0.5) * nx - 0.5, nx)
@@ -212,8 +222,8 @@ def _normal(field, length, xy):
     ny, nx = field.shape
     hx, hy = length / nx, length / ny
     ex, ey = np.array([hx, 0.0]), np.array([0.0, hy])
-    gx = (sample(field, length, xy + ex) - sample(field, length, xy - ex)) / (2 * hx)
-    gy = (sample(field, length, xy + ey) - sample(field, length, xy - ey)) / (2 * hy)
+    gx = (_sample(field, length, xy + ex) - _sample(field, length, xy - ex)) / (2 * hx)
+    gy = (_sample(field, length, xy + ey) - _sample(field, length, xy - ey)) / (2 * hy)
     n = np.stack([-gx, -gy, np.ones_like(gx)], axis=-1)
     return n / np.linalg.norm(n, axis=-1, keepdims=True)
 
@@ -329,7 +339,7 @@ def far_field(scene: Scene, o, d):
 def _gap(scene: Scene, p, mode):
     """> 0 while the ray is in its medium: mode 0 air (ground, water from above), 1 water
     (ground, surface from below), 2 ground only. Returns (gap, ground term, water term)."""
-    g = p[..., 2] - sample(scene.ground, scene.length, p[..., :2])
+    g = p[..., 2] - _sample(scene.ground, scene.length, p[..., :2])
     if mode == 2:
         return g, g, np.full_like(g, np.inf)
     w = water_level(scene, p[..., :2]) - p[..., 2]
