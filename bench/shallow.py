@@ -132,11 +132,6 @@ def compile_rows(n=32, repeats=3, progress=print) -> list[dict]:
     """Seconds to lower and to compile the loop program of each nonlinear stepper at n × n (walls, float32), the
     median of ``repeats`` fresh compiles, and its StableHLO lines; against the same stepper with the two stages
     of its step written out (:func:`_two_stages_written_out`), in the same run (module doc)."""
-    import contextlib
-    import time
-    from unittest import mock
-
-    from wavephys.core.stepper import _loop_program
     from wavephys.simulation import shallow_water as sw
     from wavephys.simulation.split import Split, SplitStepper
 
@@ -148,27 +143,47 @@ def compile_rows(n=32, repeats=3, progress=print) -> list[dict]:
              "split, 1 level": SplitStepper(Split(sw.ShallowWater(dx), levels=(1.0,)), bed),
              "split, 2 levels": SplitStepper(Split(sw.ShallowWater(dx), levels=(0.5, 2.0)), bed)}
     rows = []
-    for name, stepper in cases.items():
-        progress(f"shallow: compiling {name} at {n}^2")
-        state = stepper.init(sw.sw_state(bed, 0.01 * np.exp(-(xx * xx + yy * yy))))
-        static, dynamic = stepper._parts()
-        args = (type(stepper), static, dynamic, state, jnp.asarray(np.inf, jnp.float32), jnp.asarray(10, jnp.int32),
-                jnp.asarray(np.nan, jnp.float32))
-        for form in ("one loop of two stages", "two stages written out"):
-            lower, build, lines = [], [], 0
-            for _ in range(repeats):
-                jax.clear_caches()
-                with (contextlib.nullcontext() if form == "one loop of two stages"
-                      else mock.patch.object(sw, "_advance", _two_stages_written_out)):
-                    start = time.perf_counter()
-                    lowered = _loop_program.lower(*args)
-                    middle = time.perf_counter()
-                    lowered.compile()
-                    lower.append(middle - start)
-                    build.append(time.perf_counter() - middle)
-                    lines = lowered.as_text().count("\n")
-            rows.append(dict(family="compile", method=name, form=form, n=n, lower_seconds=statistics.median(lower),
-                             compile_seconds=statistics.median(build), lines=lines))
+    cached = jax.config.jax_enable_compilation_cache  # fresh compiles, not a persistent cache's copies
+    jax.config.update("jax_enable_compilation_cache", False)
+    try:
+        for name, stepper in cases.items():
+            rows += _compile_case(name, stepper, bed, xx, yy, n, repeats, progress)
+    finally:
+        jax.config.update("jax_enable_compilation_cache", cached)
+        jax.clear_caches()  # the written-out form's programs go
+    return rows
+
+
+def _compile_case(name, stepper, bed, xx, yy, n, repeats, progress) -> list[dict]:
+    """:func:`compile_rows`' two rows of one stepper."""
+    import contextlib
+    import time
+    from unittest import mock
+
+    from wavephys.core.stepper import _loop_program
+    from wavephys.simulation import shallow_water as sw
+
+    progress(f"shallow: compiling {name} at {n}^2")
+    state = stepper.init(sw.sw_state(bed, 0.01 * np.exp(-(xx * xx + yy * yy))))
+    static, dynamic = stepper._parts()
+    args = (type(stepper), static, dynamic, state, jnp.asarray(np.inf, jnp.float32), jnp.asarray(10, jnp.int32),
+            jnp.asarray(np.nan, jnp.float32))
+    rows = []
+    for form in ("one loop of two stages", "two stages written out"):
+        lower, build, lines = [], [], 0
+        for _ in range(repeats):
+            jax.clear_caches()
+            with (contextlib.nullcontext() if form == "one loop of two stages"
+                  else mock.patch.object(sw, "_advance", _two_stages_written_out)):
+                start = time.perf_counter()
+                lowered = _loop_program.lower(*args)
+                middle = time.perf_counter()
+                lowered.compile()
+                lower.append(middle - start)
+                build.append(time.perf_counter() - middle)
+                lines = lowered.as_text().count("\n")
+        rows.append(dict(family="compile", method=name, form=form, n=n, lower_seconds=statistics.median(lower),
+                         compile_seconds=statistics.median(build), lines=lines))
     return rows
 
 

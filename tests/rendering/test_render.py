@@ -9,7 +9,7 @@ import pytest
 from optics.light.attenuation import WATER_TRANSMITTANCE_METHODS, fit_rgb_coefficients
 from optics.checks import flat_pool, flat_pool_colour, underwater_view
 from optics.light.fresnel import N_AIR, N_WATER
-from optics.rendering.reference import psnr, ray_directions, trace
+from optics.rendering.reference import _shade_rays, psnr, psnr_against_reference, ray_directions, trace
 from optics.rendering.renderer import EGL_PACKAGES, Renderer, RendererUnavailable, render_sequence, save_png, to_srgb8
 from optics.rendering.scene import DEFAULT_ABSORPTION, Camera, Effects, Scene, look_at
 from wavephys import Grid
@@ -40,6 +40,53 @@ def renderer():
 
 # Every built-in scene, all effects on, GPU against the reference (≥ 100 dB at 160×120): the
 # registry's "builtin-scenes" rows, asserted by tests/app/test_registry.py; each effect off below.
+
+
+def test_the_reference_allows_a_hundredth_of_a_pixel_at_edges_and_no_more():
+    """psnr_against_reference, on waves beside a quay (edges) without a GPU: an image that
+    takes the other side of an edge at three pixels (the reference a two-hundredth of a pixel off there) passes,
+    where plain PSNR puts it below 90 dB; the whole image half a pixel off, or a two-hundredth of a pixel off (over
+    a tenth of its pixels then move by more than 1e-4), or 3e-3 added to 2 % of the pixels where the colour hardly
+    changes, fails; bad input is refused by name."""
+    n, length = 32, 8.0
+    x, y = np.meshgrid((np.arange(n) + 0.5) * length / n - length / 2, (np.arange(n) + 0.5) * length / n - length / 2)
+    ground = np.where(x > 1.0, 0.4, -1.0 + 0.05 * y)  # a quay: its edge and its reflection are edges
+    water = 0.05 * np.sin(2 * np.pi * (x + 0.5 * y) / 2.0)
+    scene = Scene(ground, water, length, camera=look_at((-1.0, -6.0, 2.5), (0.5, 0.0, 0.0), 50.0))
+    width, height = 32, 24
+
+    def shifted(offset):
+        d = ray_directions(scene.camera, width, height, offset).reshape(-1, 3)
+        return _shade_rays(scene, d, height, 256, 10).reshape(height, width, 3).astype(np.float32)
+
+    exact = trace(scene, width, height)
+    assert psnr_against_reference(exact, scene) == (math.inf, 0)
+    # a renderer that lands on the other side of an edge at three pixels, as float32 does: the reference itself a
+    # two-hundredth of a pixel off there
+    off = shifted((0.005, 0.0))
+    change = np.abs(off - exact).max(-1).ravel()
+    edge = np.argsort(change)[-3:]
+    near = exact.copy().reshape(-1, 3)
+    near[edge] = off.reshape(-1, 3)[edge]
+    near = near.reshape(exact.shape)
+    plain = psnr(near, exact)
+    value, edges = psnr_against_reference(near, scene)
+    assert plain < 90.0 and value >= 100.0 and edges == 3, (plain, value, edges)
+    assert psnr_against_reference(shifted((0.5, 0.0)), scene)[0] < 60.0  # misplaced rays
+    assert np.count_nonzero(change > 1e-4) > width * height // 10  # a two-hundredth of a pixel, everywhere:
+    # over 1 % of the pixels, not an edge's few: only the worst 1 % get the shifted samples (measured 73 dB; 96 dB if
+    # every pixel got them)
+    assert psnr_against_reference(off, scene)[0] < 80.0
+    smooth = np.argsort(change)[: width * height // 50]  # 2 % of the pixels, where the colour hardly changes
+    worse = exact.copy().reshape(-1, 3)
+    worse[smooth] += 3e-3
+    assert psnr_against_reference(worse.reshape(exact.shape), scene)[0] < 100.0
+    with pytest.raises(ValueError, match="shift"):
+        psnr_against_reference(exact, scene, shift=0.0)
+    with pytest.raises(ValueError, match="image"):
+        psnr_against_reference(exact[..., :2], scene)
+    with pytest.raises(TypeError, match="scene"):
+        psnr_against_reference(exact, "dambreak")
 
 
 @pytest.mark.parametrize("name", ["pool", "storm"])  # a walled pool and an open sea to the horizon

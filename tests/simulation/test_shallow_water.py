@@ -223,6 +223,9 @@ def test_the_two_stages_in_one_loop_are_the_stages_written_out_to_the_bit():
         a, c = loop(solver, a, k * dt), out(solver, c, k * dt)
         assert np.array_equal(np.asarray(a), np.asarray(c)), k
     assert float(np.abs(np.asarray(a) - np.asarray(fields)).max()) > 0  # it moved
+    # a float64 Δt and bed (x64 on) with float32 fields: the step keeps the fields' dtype
+    mixed = jax.jit(lambda s, f, step: sw.advance_fields(s, bed, f, 0.0, step))(solver, fields, np.float64(dt))
+    assert mixed.dtype == jnp.float32 and np.array_equal(np.asarray(mixed), np.asarray(loop(solver, fields, 0.0)))
 
 
 def test_order_two_beats_order_one_and_float32_agrees_with_float64():
@@ -255,23 +258,27 @@ def test_thacker_bowl_over_three_periods():
 
 def test_carrier_greenspan_standing_wave_on_a_beach():
     """Its run-up and its drawdown (the lowest shoreline elevation, against the exact shoreline at the same 64
-    frames): measured +0.29 % and −1.6 % at 1100 cells (the drawdown shallower: the backwash's thin sheet drains
-    late; docs/physics.md §1.13)."""
+    frames): measured +0.61 % and +0.49 % at 1100 cells (with first-order shoreline cells +0.29 % and −1.6 %: the
+    backwash's thin sheet drained late; docs/physics.md §1.13)."""
     r = carrier_greenspan_errors(1100, periods=1.0)
     assert abs(r["runup"] / r["runup_exact"] - 1) < 0.01
-    assert abs(r["rundown"] / r["rundown_exact"] - 1) < 0.025, r
+    assert abs(r["rundown"] / r["rundown_exact"] - 1) < 0.01, r
     assert r["l1"] < 0.003  # m, for a 4.1 m run-up
     assert r["max"] < 0.1 * r["runup_exact"]
 
 
 @pytest.mark.slow
 def test_carrier_greenspan_converges():
-    """The surface's L1 error, and the drawdown's: −3.3, −1.6, +0.04 % at 550, 1100, 2200 cells (measured)."""
+    """The surface's L1 error (4.2e-3, 1.4e-3, 5.2e-4 m at 550, 1100, 2200 cells: order 1.5), and the run-up and
+    drawdown within 1 % at each (measured +0.43 / +0.61 / +0.35 % and +0.02 / +0.49 / +0.19 %; with first-order
+    shoreline cells the drawdown was −3.3 / −1.6 / +0.04 %). Over amplitudes 0.5, 0.6, … 1.5 m the drawdown's
+    |error| is 0.02-5.0 % at 550 cells (mean 1.4 %) and 0.04-3.4 % at 1100 (mean 0.8 %): the largest where the
+    lowest shoreline falls between the 64 frames (measured, not asserted)."""
     runs = [carrier_greenspan_errors(n, periods=1.0) for n in (550, 1100, 2200)]
-    assert convergence_order([r["l1"] for r in runs], (550, 1100, 2200)) >= 0.8
-    assert all(abs(r["runup"] / r["runup_exact"] - 1) < 0.02 for r in runs)
+    assert convergence_order([r["l1"] for r in runs], (550, 1100, 2200)) >= 1.2
+    assert all(abs(r["runup"] / r["runup_exact"] - 1) < 0.01 for r in runs)
     drawdown = [abs(r["rundown"] / r["rundown_exact"] - 1) for r in runs]
-    assert drawdown[0] < 0.04 and drawdown[1] < 0.6 * drawdown[0] and drawdown[2] < 0.6 * drawdown[1], drawdown
+    assert max(drawdown) < 0.01, drawdown
 
 
 @pytest.mark.parametrize("cot,frac", [(19.85, 0.34), pytest.param(10.0, 0.2, marks=pytest.mark.slow),

@@ -243,7 +243,7 @@ def test_the_virtual_pipes_run_a_solitary_wave_up_a_beach_short_their_documented
     model='pipes'): the pipes' run-up is 0.38 of the exact linear one (−62 %), their run-down 0.50 — and
     with the flows started at their own speed (√2 the long-wave relation, or 2 ×) still −53 % and −46 %, so
     not the start (the pipes carry no momentum advection and scale outflows down at a drying cell; which of
-    the two loses the run-up is not examined). Shallow water on the same cells: −1.9 % (test_shallow_water.py
+    the two loses the run-up is not examined). Shallow water on the same cells: −1.0 % (test_shallow_water.py
     holds it to 3 % at d/20)."""
     from wavephys.checks.shallow_water import solitary_runup_run
     from wavephys.physics.shallow_water import solitary_breaking_limit
@@ -257,10 +257,11 @@ def test_the_virtual_pipes_run_a_solitary_wave_up_a_beach_short_their_documented
 @pytest.mark.slow
 def test_the_split_runs_a_solitary_wave_up_a_beach_as_the_exact_linear_theory_says():
     """The NTHMP case at d/10 (solitary_runup_run, model='split': levels 0.25, 0.5, 1 m, surface waves faded into
-    the bulk between 0.5 and 0.2 m): within 5 % of the exact linear run-up, measured −4.9 %, run-down 1.12 of
-    the linear one; at d/20 −3.0 %, 1.08 (shallow water alone: −1.9 % at d/10, −6e-5 % at d/20). With its
+    the bulk between 0.5 and 0.2 m): within 5 % of the exact linear run-up, measured −4.1 %, run-down 1.12 of
+    the linear one; at d/20 −2.7 %, 1.07 (shallow water alone: −1.0 % at d/10, +0.18 % at d/20; with first-order
+    shoreline cells the split −4.9 % and −3.0 %, shallow water −1.9 % and −6e-5 %). With its
     earlier blend (each level's exponential in (η, q/√h) and a turn for the slope terms) −6.0 %, an xfail here;
-    the gap to shallow water, 3.0 points at d/10 and at d/20, is the model's, not explained (docs/physics.md
+    the gap to shallow water, 3.1 and 2.9 points at d/10 and d/20, is the model's, not explained (docs/physics.md
     §1.15)."""
     from wavephys.checks.shallow_water import solitary_runup_run
     from wavephys.physics.shallow_water import solitary_breaking_limit
@@ -734,24 +735,25 @@ def _lamb(name, wet_cells=64, slope=0.1, offset=0.37, periods=3):
 
 def test_shallow_waters_loss_on_lambs_beach_is_where_its_first_wet_cell_is_thin():
     """Shallow water's failure boundary on Lamb's beach (1:10, 64 wet cells, 3 periods, float64), measured over the
-    shoreline's place in its cell: the mode keeps all but 3-10 % of its amplitude where the cell holding the still
-    shoreline is dry (offsets 0.5-0.95 of a cell past a face; ω within +2.2 %), and loses 35-47 % where that cell
-    is wet but thinner than a fifth of s·dx (offsets 0.3-0.45: depths of 5-20 mm; ω within 1.7 %). The loss is
-    linear (the same at 1 mm, 0.1 mm and 0.01 mm), not the time step's (the same at a Courant number of 0.1) and not
-    the limiter's (MC −53 %, van Leer −48 %, unlimited −58 % at 0.37, against minmod's −44 %); its decay rate falls
-    by 2.3 and 2.8 with each doubling of the cells (−73, −44, −19 % at 32, 64, 128), a first-order error of the
-    thin cell beside the shoreline. At offset 0 (the shoreline on a face, its cell 0.05 m deep) it loses 11 %. The
-    linear depth stepper, whose shoreline faces take the bed's depth, keeps 99.5 % at every offset
-    (test_shoreline.py); a sub-cell shoreline (Bollermann et al. 2013) is the known cure, not done."""
+    shoreline's place in its cell: the mode keeps all but 1.1-1.8 % of its amplitude where the cell holding the
+    still shoreline is dry (offsets 0.6-0.95 of a cell past a face), 2-8 % at offsets 0-0.2, and loses 17-51 %
+    where that cell is wet but thinner than a fifth of s·dx (offsets 0.3-0.45: depths of 5-20 mm; 9.8 % at 0.5);
+    ω within 2.4 % throughout. The loss at 0.37 is linear in the amplitude and first order in the cells (−69, −30,
+    −10 % at 32, 64, 128). Before the shoreline's cells were reconstructed linearly (first order there) it lost
+    3-10 % at dry offsets, 11 % at 0 and 35-47 % at 0.3-0.45 (−73, −44, −19 % at 0.37). The linear depth stepper,
+    whose shoreline faces take the bed's depth, keeps 99.5 % at every offset (test_shoreline.py); a sub-cell
+    shoreline (Bollermann et al. 2013) is the known cure for the thin cell, not done."""
     got = {offset: _lamb("ShallowWaterStepper", offset=offset) for offset in (0.0, 0.3, 0.37, 0.45, 0.5, 0.7, 0.9)}
     for offset, (omega, amplitude) in got.items():
         assert abs(omega) < 0.025, got
         if 0.3 <= offset <= 0.45:
-            assert -0.55 < amplitude < -0.3, got  # the failure, measured
-        elif offset >= 0.5:
-            assert amplitude > -0.1, got
+            assert -0.55 < amplitude < -0.15, got  # the failure, measured
+        elif offset == 0.5:
+            assert -0.12 < amplitude < -0.05, got
+        elif offset > 0.5:
+            assert -0.03 < amplitude < 0.0, got
         else:
-            assert -0.15 < amplitude < -0.05, got
+            assert -0.05 < amplitude < 0.0, got
 
 
 def test_lambs_beach_on_one_row_by_the_profile_stepper():
@@ -792,18 +794,19 @@ def test_lambs_beach_on_one_row_by_the_profile_stepper():
 def test_lambs_beach_with_dry_land_by_the_nonlinear_steppers():
     """Lamb's standing wave on a 1:10 beach, the shoreline 0.37 of a cell past a face, 64 wet cells, 3 periods,
     1 mm (the linear depth stepper's own test, within 3e-4: test_shoreline.py). Measured, ω − 1 and the amplitude
-    left − 1: shallow water −0.68 %, −44 % (its limiter and the first-order cells beside the shoreline damp the
-    mode at this resolution); the split −0.78 %, −44 % (before it weighted its increment by the taper again and
-    destroyed the mode within a period: amplitude left 5e-4); the virtual pipes +39 % (their documented √2 speed
-    at area="depth"), −33 %. On a 1:20 beach (shoreline 0.1 past a face) the split −0.79 %, −16 %, shallow water
-    −0.88 %; on 1:5 (0.8) the split errs −2.7 % where shallow water errs +0.6 % (−4.4 % with the split's
-    earlier blend; docs/physics.md §1.15)."""
+    left − 1: shallow water −2.07 %, −30 % (its thin first wet cell: the boundary test above); the split −2.14 %,
+    −30 % (before it weighted its increment by the taper again and destroyed the mode within a period: amplitude
+    left 5e-4); the virtual pipes +39 % (their documented √2 speed at area="depth"), −33 %. On a 1:20 beach
+    (shoreline 0.1 past a face) the split −0.57 %, −4.3 %, shallow water −0.66 %, −4.1 %. With first-order
+    shoreline cells (before) these were −0.68 % and −44 % (shallow water), −0.78 % and −44 % (the split) at 1:10,
+    and −0.79 % / −16 % at 1:20: the linear shoreline cells trade ω at this thin-cell offset (0.7 → 2.1 %) for the
+    amplitude; on 1:5 (0.8) the split errs −2.6 % where shallow water errs +0.9 % (docs/physics.md §1.15)."""
     got = {name: _lamb(name) for name in ("ShallowWaterStepper", "SplitStepper", "PipesStepper")}
     for name in ("ShallowWaterStepper", "SplitStepper"):
         omega, amplitude = got[name]
-        assert abs(omega) < 0.01 and amplitude > -0.6, got
+        assert abs(omega) < 0.025 and amplitude > -0.4, got
     omega, amplitude = _lamb("SplitStepper", slope=0.05, offset=0.1)
-    assert abs(omega) < 0.01 and amplitude > -0.3, (omega, amplitude)
+    assert abs(omega) < 0.01 and amplitude > -0.1, (omega, amplitude)
     assert got["PipesStepper"][0] > 0.3, got  # theirs: √2 fast
 
 

@@ -271,8 +271,8 @@ def solitary_runup_run(height: float, cot_beta: float, per_depth: int = 20, orde
     dtype : {"float64", "float32"}
     model : {"shallow_water", "split", "pipes"}
         ``"shallow_water"`` (default; the offshore side open), ``"split"`` (its surface waves at the depths
-        0.25, 0.5 and 1 m, faded into the bulk between 0.5 and 0.2 m deep: run-up −4.9 % at d/10 and
-        −3.0 % at d/20, shallow water's −1.9 % and −6e-5 %; with its earlier blend −6.0 % at d/10, and
+        0.25, 0.5 and 1 m, faded into the bulk between 0.5 and 0.2 m deep: run-up −4.1 % at d/10 and
+        −2.7 % at d/20, shallow water's −1.0 % and +0.18 %; with its earlier blend −6.0 % at d/10, and
         −6.8 % with the default taper; a wall offshore, far enough not to return in time), ``"pipes"`` (area "depth"; the wave's velocity given as the pipes' outflows; a wall
         offshore likewise).
 

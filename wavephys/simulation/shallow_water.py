@@ -17,10 +17,10 @@ properties follow and are tested (tests/simulation/test_shallow_water.py):
   stages are forward-Euler steps of a positive scheme);
 * **conservative** — the water changes only by what crosses an open or inflow side.
 
-``order=2`` reconstructs h, η and the velocities linearly in each cell (minmod slopes; first
-order in a cell next to a dry one, so a shoreline at rest stays at rest) with a cell-centred
-bed source that keeps the balance (Audusse et al. 2004, §4), and steps with Heun's method (SSP
-RK2); ``order=1`` is piecewise constant with forward Euler.
+``order=2`` reconstructs h, η and the velocities linearly in each wet cell, the shoreline's too
+(minmod slopes; a lake at rest has η's slope 0, so a shoreline at rest stays at rest) with a
+cell-centred bed source that keeps the balance (Audusse et al. 2004, §4), and steps with Heun's
+method (SSP RK2); ``order=1`` is piecewise constant with forward Euler.
 
 What it neglects: dispersion (every wave runs at √(gh): right for kh ≲ 0.3), vertical
 accelerations, friction, viscosity, and breaking (a bore is a shock that conserves mass and
@@ -36,7 +36,6 @@ and Godunov-type schemes for hyperbolic conservation laws. *SIAM Review* 25(1), 
 
 from __future__ import annotations
 
-import functools
 from dataclasses import dataclass, field
 from typing import Any, Optional
 
@@ -546,7 +545,9 @@ def _face_value(a, b, c, side, order, dry, limited=True):
         return hb, eb - hb, ub, vb
     ha, ea, ua, va = prim(a)
     hc, ec, uc, vc = prim(c)
-    keep = (ha > dry) & (hb > dry) & (hc > dry)  # first order next to a dry cell: a shoreline at rest stays so
+    # linear in every wet cell, the shoreline's included (η's slope is 0 in a lake at rest, so it stays at rest);
+    # first order there let a backwash's sheet hold the run-up and drop at once (docs/physics.md §1.13)
+    keep = hb > dry
     half = 0.5 * side * jnp.where(keep, 1.0, 0.0)
     slope = _minmod if limited else _mean
     h = hb + half * slope(hb - ha, hc - hb)
@@ -665,6 +666,9 @@ def _advance(solver, bed, fields, t, dt, limited=True):
     step's linearization, 6 080 against 10 940) and compiles in 1.25 s against 1.74 (the split's 4.4 s against
     5.5; ``python -m bench shallow``, XLA's defaults, 2 cores), with the same arithmetic (the same results to
     the bit, measured) and the same speed (0.8 ms a step at 128², 2.8–3.0 ms at 256², either way)."""
+    # the loop's state keeps the fields' dtype: a float64 Δt or bed with float32 fields (x64 on) is taken at the
+    # fields' precision (written out, the step answered float64 fields)
+    dt, bed = jnp.asarray(dt, fields.dtype), jnp.asarray(bed).astype(fields.dtype)
     if solver.order == 1:
         return _dry_out(fields + dt * _rate(solver, bed, fields, t, limited), solver.dry)
 
