@@ -43,7 +43,7 @@ from optics.light.sky import preetham_sky
 from optics.rendering.filtering import (VARIANCE_FLOOR, covariance_given_back, covariance_of, facing_normal,
                                        fade_moments, footprint, sigma_slopes,
                                        slope_moments)
-from optics.rendering.scene import FAR_TILES, NEAR_TILES, Camera, Scene, sun_in_water, texture_sample
+from optics.rendering.scene import FAR_TILES, NEAR_TILES, Camera, Scene, _texture_sample, sun_in_water, texture_sample
 from wavephys.core.inputs import check_array, check_instance, check_int, check_scalar
 from wavephys.core.sampling import bilinear, texel_coordinates
 
@@ -65,9 +65,7 @@ def _sample(field, length: float, xy):
     was made, and the points are the tracer's own): a trace samples them thousands of times, and the checks
     (each texture finite, every call) took 40 % of a sample's time (0.16 ms against 0.09 ms for 1500 points on
     a 256² texture)."""
-    f = np.asarray(field, np.float64)
-    ny, nx = f.shape[:2]
-    return bilinear(f, texel_coordinates(xy[..., 0], length, nx), texel_coordinates(xy[..., 1], length, ny), "clamp")
+    return _texture_sample(np.asarray(field, np.float64), length, xy[..., 0], xy[..., 1])
 
 
 def water_level(scene: Scene, xy):

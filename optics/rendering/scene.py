@@ -62,8 +62,13 @@ def texture_sample(field, length: float, x, y):
     for name, v in (("x", x), ("y", y)):  # empty point sets are fine (nothing to sample)
         check_array(name, v) if np.size(v) else _real_kind(name, v, "an array of numbers")
     f = np.asarray(field, np.float64) if isinstance(field, np.ndarray) else field
+    return _texture_sample(f, length, x, y)
+
+
+def _texture_sample(field, length, x, y):
+    """:func:`texture_sample` without its checks (for callers that checked their textures once)."""
     ny, nx = np.shape(field)[:2]
-    return bilinear(f, texel_coordinates(x, length, nx), texel_coordinates(y, length, ny), "clamp")
+    return bilinear(field, texel_coordinates(x, length, nx), texel_coordinates(y, length, ny), "clamp")
 
 
 SKIES = ("gradient", "preetham")
