@@ -22,7 +22,7 @@ from functools import cached_property, lru_cache
 import numpy as np
 
 from wavephys.core.grid import Grid
-from wavephys.core.inputs import check_bool, check_choice, check_instance, check_int
+from wavephys.core.inputs import check_bool, check_choice, check_instance, check_int, describe
 from wavephys.core.water import Water
 from wavephys.planner.scene import Scene
 
@@ -162,6 +162,11 @@ class Choices:
     texture : str
         Format of the height texture handed to the renderer (:data:`TEXTURES`): the frames
         are stored in it and read back, so its rounding is part of the output.
+    added : tuple of (term, option) pairs
+        The settings of terms registered beside the built-in ones
+        (:meth:`wavephys.planner.terms.Terms.register`, an
+        :class:`~wavephys.planner.terms.AddedTerm` each), sorted by name: a term added to the
+        registry needs no field here. Read one with :meth:`get`, set one with :meth:`set`.
     """
 
     surface_tension: bool = True
@@ -179,8 +184,10 @@ class Choices:
     margin: str = "n/8"
     boundary: str = "walls"
     depth_model: str = "varying"
+    added: tuple = ()
 
     def __post_init__(self):
+        object.__setattr__(self, "added", _check_added(self.added))
         for k in ("surface_tension", "finite_depth", "second_order"):
             object.__setattr__(self, k, check_bool(k, getattr(self, k)))
         object.__setattr__(self, "coarsen", check_int("coarsen", self.coarsen, lo=1))
@@ -213,10 +220,61 @@ class Choices:
         """How many terms are dropped or cheapened against the full model (tie-breaker: with equal
         cost the planner takes the simpler model)."""
         full = Choices()
-        return sum(getattr(self, f.name) != getattr(full, f.name) for f in fields(self))
+        return (sum(getattr(self, f.name) != getattr(full, f.name) for f in fields(self) if f.name != "added")
+                + sum(option != term.exact for term, option in self.added))
+
+    def get(self, name: str):
+        """The setting of term ``name``: a field, or an added term's option (KeyError if neither)."""
+        if name in _FIELDS:
+            return getattr(self, name)
+        for term, option in self.added:
+            if term.name == name:
+                return option
+        raise KeyError(f"no term {name!r} in these choices: fields {', '.join(_FIELDS)}; added "
+                       f"{', '.join(t.name for t, _ in self.added) or 'none'}")
+
+    def set(self, name: str, value, term=None) -> "Choices":
+        """A copy with term ``name`` set to ``value``: a field, or an added term's option (``term``,
+        the :class:`~wavephys.planner.terms.AddedTerm` itself, when the choices do not hold it
+        yet)."""
+        if name in _FIELDS:
+            return replace(self, **{name: value})
+        held = {t.name: t for t, _ in self.added}
+        if term is None and name not in held:
+            raise KeyError(f"no term {name!r} in these choices: pass term= to add it")
+        term = term if term is not None else held[name]
+        return replace(self, added=tuple((t, o) for t, o in self.added if t.name != name) + ((term, value),))
 
     def as_dict(self) -> dict:
-        return {f.name: getattr(self, f.name) for f in fields(self)}
+        out = {f.name: getattr(self, f.name) for f in fields(self) if f.name != "added"}
+        out.update((term.name, option) for term, option in self.added)
+        return out
+
+
+_FIELDS = tuple(f.name for f in fields(Choices) if f.name != "added")
+"""The built-in terms' fields of :class:`Choices`."""
+
+
+def _check_added(added) -> tuple:
+    """``Choices.added`` checked: (term, option) pairs, one per name, no name a field; sorted by name."""
+    if not isinstance(added, tuple):
+        raise TypeError(f"added must be a tuple of (term, option) pairs, got {describe(added)}")
+    names = set()
+    for item in added:
+        if not (isinstance(item, tuple) and len(item) == 2 and isinstance(getattr(item[0], "name", None), str)
+                and hasattr(item[0], "exact")):
+            raise TypeError(f"added must hold (term, option) pairs with an AddedTerm first, got {describe(item)}")
+        name = item[0].name
+        if name in _FIELDS:
+            raise ValueError(f"added: term {name!r} is a field of Choices; set it there")
+        if name in names:
+            raise ValueError(f"added: term {name!r} is named twice")
+        names.add(name)
+        try:
+            hash(item[1])
+        except TypeError:
+            raise TypeError(f"added: the option of {name!r} must be hashable, got {describe(item[1])}") from None
+    return tuple(sorted(added, key=lambda item: item[0].name))
 
 
 def full_choices(scene: Scene | None = None) -> Choices:
@@ -444,7 +502,7 @@ class SceneModel:
         if c.surface != "spectral":
             parts = [f"surface {c.surface} on {self.scene.texels}² texels", "σ" if c.surface_tension else "no σ",
                      "tanh kh" if c.finite_depth else "deep", f"texture {c.texture}", f"Fresnel {c.fresnel}",
-                     f"absorption {c.absorption}"]
+                     f"absorption {c.absorption}"] + [f"{term.name} {option}" for term, option in c.added]
             return ", ".join(parts)
         parts = [f"grid {self.grid.n}² (dx {self.grid.dx:.3g} m)" + (
                      f", margin {self.margin}" if self.scene.margin or self.margin else "") + (
@@ -460,6 +518,7 @@ class SceneModel:
         if self.scene.caustics:
             parts.append("caustics by the Jacobian gather" if c.caustics == CAUSTICS_JACOBIAN else
                          f"caustics refine {c.caustics}" if c.caustics else "caustics off (flat-water light)")
+        parts += [f"{term.name} {option}" for term, option in c.added]
         return ", ".join(parts)
 
 

@@ -85,7 +85,11 @@ class Plan:
         Where the costs were measured (:func:`wavephys.planner.cost.describe_calibration`).
     cost_parts : dict
         Where ``cost`` goes, s: the run's fixed overhead, steps, ships, frames, blends,
-        refinement (or a cheap surface model's frames), shading, caustics, texture encoding.
+        refinement (or a cheap surface model's frames), shading, caustics, texture encoding, and
+        each registered term's cost under its name.
+    added_error : float
+        What the registered terms with ``unit = "m"`` add to the height bound, m (their colour
+        errors are in ``predicted_colour_error``).
     """
 
     scene: Scene
@@ -102,6 +106,7 @@ class Plan:
     texture_error: float = 0.0
     calibration: str = ""
     cost_parts: dict = field(default_factory=dict, compare=False)
+    added_error: float = 0.0
 
     def __getattribute__(self, name):
         value = object.__getattribute__(self, name)
@@ -112,14 +117,15 @@ class Plan:
 
     @property
     def predicted_error(self) -> float:
-        """The height bound, m: the configuration's (``bounds.total``) plus the texture's rounding."""
-        return self.bounds.total + self.texture_error
+        """The height bound, m: the configuration's (``bounds.total``) plus the texture's rounding and
+        the registered terms' (``added_error``)."""
+        return self.bounds.total + self.texture_error + self.added_error
 
     @property
     def predicted_rms(self) -> float:
         """A bound on the RMS height error over the visible square, m (``bounds.rms`` plus the
         texture's rounding, a max-norm bound)."""
-        return self.bounds.rms + self.texture_error
+        return self.bounds.rms + self.texture_error + self.added_error
 
     @property
     def saving(self) -> float:
@@ -243,7 +249,8 @@ class Plan:
                  f"model: {self.model.describe()}",
                  f"predicted error {self.predicted_error:.3g} m ({self.predicted_error / q:.3g} quanta; linear "
                  f"{self.bounds.linear:.2g}, second order {self.bounds.second_order:.2g}, float32 "
-                 f"{self.bounds.rounding:.2g}, texture {self.texture_error:.2g}), colour {self.predicted_colour_error / s.image_quantum:.3g} quanta",
+                 f"{self.bounds.rounding:.2g}, texture {self.texture_error:.2g}"
+                 f"{f', added terms {self.added_error:.2g}' if self.added_error else ''}), colour {self.predicted_colour_error / s.image_quantum:.3g} quanta",
                  f"predicted cost {self.cost:.3g} s against {self.full_cost:.3g} s for the full model "
                  f"(×{self.saving:.3g} cheaper)"]
         if self.cost_parts:
@@ -268,7 +275,8 @@ class Plan:
                                                                           steps=self.model.steps),
                     predicted_error=self.predicted_error,
                     bounds=dict(linear=self.bounds.linear, second_order=self.bounds.second_order,
-                                rounding=self.bounds.rounding, rms=self.bounds.rms, texture=self.texture_error),
+                                rounding=self.bounds.rounding, rms=self.bounds.rms, texture=self.texture_error,
+                                added=self.added_error),
                     predicted_colour_error=self.predicted_colour_error, cost=self.cost, full_cost=self.full_cost,
                     height_cost=self.height_cost, calibration=self.calibration, cost_parts=self.cost_parts,
                     terms=[dict(term=t.term, choice=t.choice, error=t.error, unit=t.unit, saving=t.saving,
@@ -302,7 +310,7 @@ def full_model(scene: Scene) -> SceneModel:
         With :func:`wavephys.planner.model.full_choices` of the scene.
     """
     check_instance("scene", scene, Scene, "wavephys.planner.Scene")
-    return SceneModel(scene, full_choices(scene))
+    return SceneModel(scene, replace(full_choices(scene), added=tuple((t, t.exact) for t in TERMS.added())))
 
 
 def candidates(scene: Scene, calibration: Optional[dict] = None) -> list:
@@ -467,13 +475,17 @@ def plan(scene: Scene, tolerance: float, colour_tolerance: Optional[float] = Non
                          f"{min(c.bounds.total for c in cands):.3g} m")
     if scene.caustics:  # the light moves with the heights, which no term bounds: keep the full model's heights
         ok = [c for c in ok if _same_heights(c)]
-    texture = TERMS["texture"]
     best = {}
-    for fmt in texture.options(scene):  # the cheapest model for each texture format
-        fits = [(c, e) for c in ok for e in (texture.error(scene, fmt, c.bounds),) if c.bounds.total + e <= tolerance]
-        found = _search(ctx, fits, fmt, colour_tolerance)
-        if found is not None:
-            best[fmt] = found
+    for added in _added_options(ctx):  # terms registered beside the built-ins: each combination of their options
+        h_add = sum(e for term, _, e, _ in added if term.unit == "m")
+        c_add = sum(e for term, _, e, _ in added if term.unit == "colour")
+        for fmt, (cand, tex_err, choices, colour_err, cost) in _best_by_format(ctx, ok, tolerance - h_add,
+                                                                               colour_tolerance - c_add).items():
+            choices = replace(choices, added=tuple((term, option) for term, option, _, _ in added))
+            found = (cand, tex_err, choices, colour_err + c_add, cost + sum(c for *_, c in added), h_add)
+            key = (round(found[4], 12), -choices.simpler())
+            if fmt not in best or key < (round(best[fmt][4], 12), -best[fmt][2].simpler()):
+                best[fmt] = found
     if not best:
         raise Infeasible(f"no optics form{' or caustics refinement' if scene.caustics else ''} meets the colour "
                          f"tolerance {colour_tolerance:.3g}")
@@ -488,11 +500,34 @@ def plan(scene: Scene, tolerance: float, colour_tolerance: Optional[float] = Non
     # a smaller texture may cost up to the slack more, but never more than the full model
     limit = max(min((1.0 + texture_slack) * cheapest, full), cheapest)
     fmt = min((f for f in best if best[f][4] <= limit), key=lambda f: (TEXTURE_BYTES[f], best[f][4]))
-    cand, tex_err, choices, colour_err, cost = best[fmt]
+    cand, tex_err, choices, colour_err, cost, added_err = best[fmt]
     terms = tuple(term.row(ctx, choices) for term in TERMS.values())
     return Plan(scene, tolerance, colour_tolerance, SceneModel(scene, choices), cand.bounds, colour_err, cost,
                 full, terms, cand.cost, lambda: tuple(_pareto([ctx.settle(c) for c in cands])), tex_err,
-                describe_calibration(ctx.calibration), cost_parts(ctx, choices))
+                describe_calibration(ctx.calibration), cost_parts(ctx, choices), added_err)
+
+
+def _best_by_format(ctx: PlanContext, ok: list, tolerance: float, colour_tolerance: float) -> dict:
+    """Texture format → the cheapest (candidate, texture error, choices, colour error, cost) among the
+    height candidates ``ok`` within ``tolerance`` (m) and ``colour_tolerance``."""
+    texture, best = TERMS["texture"], {}
+    if tolerance < 0 or colour_tolerance < 0:
+        return best
+    for fmt in texture.options(ctx.scene):  # the cheapest model for each texture format
+        fits = [(c, e) for c in ok for e in (texture.error(ctx.scene, fmt, c.bounds),) if c.bounds.total + e <= tolerance]
+        found = _search(ctx, fits, fmt, colour_tolerance)
+        if found is not None:
+            best[fmt] = found
+    return best
+
+
+def _added_options(ctx: PlanContext) -> list:
+    """Every combination of the registered terms' options (:meth:`Terms.register
+    <wavephys.planner.terms.Terms.register>`), as tuples of (term, option, error, cost); one empty
+    combination when none is registered."""
+    per_term = [[(term, o, term.checked("error", ctx, o), term.checked("cost", ctx, o))
+                 for o in term.checked_options(ctx.scene, ctx.calibration)] for term in TERMS.added()]
+    return list(itertools.product(*per_term))
 
 
 def cost_parts(ctx: PlanContext, choices: Choices) -> dict:
@@ -504,7 +539,8 @@ def cost_parts(ctx: PlanContext, choices: Choices) -> dict:
     heights["overhead"] = heights.pop("overhead")  # listed after the work
     return dict(heights, shading=colour_cost(scene, choices.fresnel, choices.absorption, cal),
                 caustics=caustics_cost(scene, choices.caustics, cal, ctx.gather_points),
-                texture=texture_cost(scene, choices.texture, cal))
+                texture=texture_cost(scene, choices.texture, cal),
+                **{term.name: term.checked("cost", ctx, option) for term, option in choices.added})
 
 
 def full_cost(ctx: PlanContext) -> float:
@@ -512,7 +548,7 @@ def full_cost(ctx: PlanContext) -> float:
     scene, cal = ctx.scene, ctx.calibration
     refine = FULL_REFINE if scene.caustics else 0
     return (ctx.full.cost + colour_cost(scene, "exact", "spectral", cal) + caustics_cost(scene, refine, cal)
-            + texture_cost(scene, "f32", cal))
+            + texture_cost(scene, "f32", cal) + sum(term.checked("cost", ctx, term.exact) for term in TERMS.added()))
 
 
 def _search(ctx: PlanContext, fits, fmt, colour_tolerance):

@@ -121,6 +121,8 @@ def run(scene: Scene, model: SceneModel) -> Output:
         model.check_ships()
     start = _time.perf_counter()
     frames = simulated_heights(model) if model.choices.surface == "spectral" else surface_frames(model)
+    for term, option in model.choices.added:  # terms registered beside the built-ins (planner.terms.AddedTerm)
+        frames = _hooked("heights", term, frames, term.change_heights(model, frames, option))
     stored = encode_texture(frames, model.choices.texture, model.output_grid)
     seconds = _time.perf_counter() - start
     heights = decode_texture(stored)  # what the renderer reads (decoded in its shader, not timed here)
@@ -402,7 +404,20 @@ def shade(scene: Scene, model: SceneModel, heights):
     colour = _shade_program(np.asarray(heights, f32), np.asarray(light, f32), np.asarray(table_d, f32),
                             np.asarray(table_rgb, f32), _half_wavenumbers(model.output_grid), np.asarray(to_eye, f32),
                             0.0 if deep else float(scene.depth), model.choices.fresnel, deep)
-    return np.asarray(colour, np.float64)
+    colour = np.asarray(colour, np.float64)
+    for term, option in model.choices.added:  # terms registered beside the built-ins (planner.terms.AddedTerm)
+        colour = _hooked("colour", term, colour, term.change_colour(model, colour, option))
+    return colour
+
+
+def _hooked(what: str, term, before: np.ndarray, after) -> np.ndarray:
+    """An added term's changed heights or colour, checked: same shape, finite."""
+    out = np.asarray(after, before.dtype)
+    if out.shape != before.shape or not np.all(np.isfinite(out)):
+        raise ValueError(f"term {term.name!r} changed the {what} to an array of shape {out.shape}"
+                         f"{'' if out.shape != before.shape else ' holding non-finite values'}; expected "
+                         f"{before.shape}, finite")
+    return out
 
 
 @functools.lru_cache(maxsize=64)

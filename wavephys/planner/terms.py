@@ -23,10 +23,15 @@ Three kinds, by how their errors combine (docs/planner.md):
 Everything a term reads about a scene is in one :class:`PlanContext`, built once per plan
 (the spectrum, the calibration, the candidates and their bounds, the colour errors).
 
-Adding a term: one subclass here with its registry entry, its field in
-:class:`wavephys.planner.model.Choices`, what it changes in
-:class:`~wavephys.planner.model.SceneModel` (or the shading), its error model and its
-test.
+* ``"added"``: terms registered beside the built-in ones (:meth:`Terms.register`), each one
+  :class:`AddedTerm`: their errors add to the heights' or the colour's bound, their costs to
+  the plan's, and their options change the run through their own hooks.
+
+Adding a term whose error adds: one :class:`AddedTerm` subclass anywhere, registered with
+``TERMS.register(term)`` (docs/planner.md §5). Adding a term of the spectral step: one
+subclass here with its registry entry, its field in :class:`wavephys.planner.model.Choices`,
+what it changes in :class:`~wavephys.planner.model.SceneModel`, its bound in
+:func:`wavephys.planner.predict.height_bounds`, its cost and its test.
 """
 
 from __future__ import annotations
@@ -39,6 +44,8 @@ from dataclasses import dataclass, replace
 from functools import cached_property
 from typing import ClassVar, Optional
 
+import numpy as np
+
 from wavephys.planner.caustics import MARGIN
 from wavephys.planner.colour import incidence_range
 from wavephys.planner.cost import caustics_cost, colour_cost, texture_cost
@@ -47,7 +54,7 @@ from wavephys.planner.predict import MARGIN_TEXELS, HeightBounds, default_height
 from wavephys.planner.scene import Scene
 from wavephys.planner.spectrum import scene_spectrum
 
-__all__ = ["PlanTerm", "PlanContext", "Candidate", "Term", "TERMS", "HEIGHT_TERMS", "COLOUR_TERMS",
+__all__ = ["PlanTerm", "AddedTerm", "PlanContext", "Candidate", "Term", "TERMS", "HEIGHT_TERMS", "COLOUR_TERMS",
            "fresnel_forms", "absorption_methods", "colour_total", "caustics_delta", "CAUSTICS_METHODS_NOTE",
            "CAUSTICS_PLANNED", "CAUSTICS_NOT_PLANNED"]
 
@@ -699,8 +706,95 @@ class Caustics(PlanTerm):
                 + (f"; {why}" if why else ""))
 
 
+# -- terms added to the registry -------------------------------------------------------------------
+
+class AddedTerm(PlanTerm):
+    """A term registered beside the built-in ones (:meth:`Terms.register`): everything about it is
+    in its one class. Its error adds to the heights' bound (``unit = "m"``) or the colour's
+    (``unit = "colour"``) by the triangle inequality, its cost adds to the plan's, and its
+    option changes the run through :meth:`change_heights` and :meth:`change_colour`
+    (:func:`wavephys.planner.runner.run`, :func:`~wavephys.planner.runner.shade`). Its setting
+    travels in :attr:`Choices.added <wavephys.planner.model.Choices>`, so
+    :class:`~wavephys.planner.model.Choices` needs no field for it.
+
+    Subclasses set :attr:`name`, :attr:`unit` and :attr:`exact` and implement :meth:`options`,
+    :meth:`error` and :meth:`cost`; :meth:`reason`, :meth:`change_heights` and
+    :meth:`change_colour` have defaults.
+
+    Attributes
+    ----------
+    name : str
+        A Python identifier, not a built-in term's (class attribute).
+    unit : str
+        ``"m"`` (its error adds to the heights') or ``"colour"`` (to the colour's).
+    exact : object
+        The full model's option: the first of :meth:`options`, with error 0.
+    """
+
+    kind: ClassVar[str] = "added"
+    exact: ClassVar[object]
+
+    def options(self, scene: Scene, calibration: Optional[dict] = None) -> tuple:
+        """The options the planner considers for ``scene``, :attr:`exact` first."""
+        raise NotImplementedError
+
+    def full(self, scene: Scene):
+        return self.exact
+
+    def error(self, ctx: PlanContext, option) -> float:
+        """What ``option`` adds to the heights' (m) or the colour's ([0, 1]) max-norm bound, ≥ 0."""
+        raise NotImplementedError
+
+    def cost(self, ctx: PlanContext, option) -> float:
+        """Seconds ``option`` adds to the plan (the run's frames and shading), ≥ 0."""
+        raise NotImplementedError
+
+    def change_heights(self, model, frames: np.ndarray, option) -> np.ndarray:
+        """The height frames (frames, n, n), m, as ``option`` changes them (default: unchanged)."""
+        return frames
+
+    def change_colour(self, model, colour: np.ndarray, option) -> np.ndarray:
+        """The shaded colour (n, n, 3), [0, 1], as ``option`` changes it (default: unchanged)."""
+        return colour
+
+    def bound(self, ctx, option):
+        return self.error(ctx, option)
+
+    def saving(self, ctx, option):
+        return self.cost(ctx, self.exact) - self.cost(ctx, option)
+
+    def reason(self, ctx, option, error):
+        unit = "m" if self.unit == "m" else "of the colour scale"
+        return f"{option}: adds ≤ {error:.2g} {unit}" if option != self.exact else f"{option}: the full model's"
+
+    def row(self, ctx, choices):
+        value = choices.get(self.name)
+        err = self.bound(ctx, value)
+        return Term(self.name, value, err, self.saving(ctx, value), self.reason(ctx, value, err), self.unit)
+
+    def checked_options(self, scene: Scene, calibration: dict) -> tuple:
+        """:meth:`options`, checked: a non-empty tuple starting with :attr:`exact`."""
+        opts = self.options(scene, calibration)
+        if not isinstance(opts, tuple) or not opts or opts[0] != self.exact:
+            raise ValueError(f"term {self.name!r}: options(scene) must be a non-empty tuple starting with its exact "
+                             f"option {self.exact!r}, got {opts!r}")
+        return opts
+
+    def checked(self, what: str, ctx: PlanContext, option) -> float:
+        """:meth:`error` or :meth:`cost` of ``option``, checked finite and ≥ 0 (the exact error 0)."""
+        value = float(getattr(self, what)(ctx, option))
+        if not (math.isfinite(value) and value >= 0.0) or (what == "error" and option == self.exact and value):
+            raise ValueError(f"term {self.name!r}: {what}({option!r}) must be finite and ≥ 0"
+                             f"{' (0 for the exact option)' if what == 'error' else ''}, got {value!r}")
+        return value
+
+
 class Terms(Mapping):
-    """The registry: term name → :class:`PlanTerm`, in the order model cards list them."""
+    """The registry: term name → :class:`PlanTerm`, in the order model cards list them.
+
+    The built-in terms are fixed; :meth:`register` adds an :class:`AddedTerm` (listed last) and
+    :meth:`unregister` takes it out again.
+    """
 
     def __init__(self, *terms: PlanTerm):
         self._terms = {t.name: t for t in terms}
@@ -708,6 +802,55 @@ class Terms(Mapping):
         missing = [t.name for t in terms if t.name not in fields]
         if missing:
             raise ValueError(f"terms {missing} have no field in Choices")
+        self._builtin = frozenset(self._terms)
+
+    def register(self, term: AddedTerm) -> AddedTerm:
+        """Add ``term`` to every plan from now on (returned, so this can decorate an instance's
+        creation).
+
+        Parameters
+        ----------
+        term : AddedTerm
+            An instance; its ``name`` a Python identifier no term has, its ``unit`` ``"m"`` or
+            ``"colour"``.
+
+        Returns
+        -------
+        AddedTerm
+
+        Raises
+        ------
+        TypeError
+            ``term`` is not an :class:`AddedTerm` instance, or lacks ``exact``.
+        ValueError
+            A name taken or not an identifier, or another unit.
+        """
+        if not isinstance(term, AddedTerm):
+            raise TypeError(f"term must be an AddedTerm instance (wavephys.planner.terms.AddedTerm), got "
+                            f"{type(term).__name__}")
+        name = getattr(term, "name", None)
+        if not isinstance(name, str) or not name.isidentifier():
+            raise ValueError(f"term.name must be a Python identifier, got {name!r}")
+        if name in self._terms or name in Choices.__dataclass_fields__:
+            raise ValueError(f"term.name {name!r} is taken: terms {', '.join(self._terms)}")
+        if term.unit not in ("m", "colour"):
+            raise ValueError(f"term.unit must be 'm' or 'colour', got {term.unit!r}")
+        if not hasattr(term, "exact"):
+            raise TypeError(f"term {name!r} must set exact, the full model's option")
+        self._terms[name] = term
+        return term
+
+    def unregister(self, name: str) -> None:
+        """Take the added term ``name`` out (a built-in term cannot be)."""
+        if name in self._builtin:
+            raise ValueError(f"{name!r} is a built-in term: only registered terms can be unregistered")
+        if name not in self._terms:
+            raise KeyError(f"no registered term {name!r}")
+        del self._terms[name]
+
+    def added(self) -> tuple:
+        """The registered :class:`AddedTerm` instances, in registration order."""
+        return tuple(t for n, t in self._terms.items() if n not in self._builtin)
 
     def __getitem__(self, name):
         return self._terms[name]
