@@ -479,6 +479,8 @@ OVERRIDES = {
                                         "seed": lambda: 0},
     "wavephys.planner.model.SceneModel": {"scene": _plan_scene, "choices": lambda: __import__(
         "wavephys.planner", fromlist=["Choices"]).Choices(), "dtype": lambda: "float32"},
+    "wavephys.planner.model.Choices.get": {"name": lambda: "fresnel"},
+    "wavephys.planner.model.Choices.set": {"name": lambda: "fresnel", "value": lambda: "schlick", "term": lambda: None},
     "wavephys.planner.plan.plan": {"scene": _plan_scene, "tolerance": lambda: 1e-3, "colour_tolerance": lambda: 0.01,
                                    "budget": lambda: 100.0, "texture_slack": lambda: 0.05},
     "wavephys.planner.plan.full_model": {"scene": _plan_scene}, "wavephys.planner.plan.candidates": {"scene": _plan_scene},

@@ -217,8 +217,14 @@ def test_choices_hold_added_terms_by_name():
     assert c.set("height_snap", "exact").get("height_snap") == "exact"
     assert c.simpler() == 1 and Choices().set("height_snap", "exact", term=term).simpler() == 0
     assert c.as_dict()["height_snap"] == "snapped"
-    with pytest.raises(KeyError, match="height_snap"):
+    with pytest.raises(ValueError, match="name 'height_snap'"):
         Choices().get("height_snap")
+    with pytest.raises(ValueError, match="value for 'coarsen'"):
+        c.set("coarsen", 3)
+    with pytest.raises(ValueError, match="term is named 'height_snap'"):
+        Choices().set("other", "exact", term=term)
+    with pytest.raises(TypeError, match="term must be an AddedTerm"):
+        Choices().set("height_snap", "exact", term=object())
     with pytest.raises(ValueError, match="field of Choices"):
         Choices(added=((type("T", (HeightSnap,), {"name": "coarsen"})(), "exact"),))
     with pytest.raises(ValueError, match="named twice"):

@@ -224,26 +224,37 @@ class Choices:
                 + sum(option != term.exact for term, option in self.added))
 
     def get(self, name: str):
-        """The setting of term ``name``: a field, or an added term's option (KeyError if neither)."""
+        """The setting of term ``name``: a field, or an added term's option."""
+        if not isinstance(name, str):
+            raise TypeError(f"name must be a term's name (str), got {describe(name)}")
         if name in _FIELDS:
             return getattr(self, name)
         for term, option in self.added:
             if term.name == name:
                 return option
-        raise KeyError(f"no term {name!r} in these choices: fields {', '.join(_FIELDS)}; added "
-                       f"{', '.join(t.name for t, _ in self.added) or 'none'}")
+        raise ValueError(f"name {name!r} is no term of these choices: fields {', '.join(_FIELDS)}; added "
+                         f"{', '.join(t.name for t, _ in self.added) or 'none'}")
 
     def set(self, name: str, value, term=None) -> "Choices":
         """A copy with term ``name`` set to ``value``: a field, or an added term's option (``term``,
         the :class:`~wavephys.planner.terms.AddedTerm` itself, when the choices do not hold it
-        yet)."""
-        if name in _FIELDS:
-            return replace(self, **{name: value})
+        yet; it is ignored for a field)."""
+        if not isinstance(name, str):
+            raise TypeError(f"name must be a term's name (str), got {describe(name)}")
+        if term is not None and not _is_term(term):
+            raise TypeError(f"term must be an AddedTerm (wavephys.planner.terms), got {describe(term)}")
+        if term is not None and name not in _FIELDS and term.name != name:
+            raise ValueError(f"term is named {term.name!r}, not name {name!r}")
         held = {t.name: t for t, _ in self.added}
-        if term is None and name not in held:
-            raise KeyError(f"no term {name!r} in these choices: pass term= to add it")
-        term = term if term is not None else held[name]
-        return replace(self, added=tuple((t, o) for t, o in self.added if t.name != name) + ((term, value),))
+        if name not in _FIELDS and term is None and name not in held:
+            raise ValueError(f"name {name!r} is no term of these choices: pass term= to add it")
+        try:
+            if name in _FIELDS:
+                return replace(self, **{name: value})
+            term = term if term is not None else held[name]
+            return replace(self, added=tuple((t, o) for t, o in self.added if t.name != name) + ((term, value),))
+        except (TypeError, ValueError) as e:
+            raise type(e)(f"value for {name!r}: {e}") from None
 
     def as_dict(self) -> dict:
         out = {f.name: getattr(self, f.name) for f in fields(self) if f.name != "added"}
@@ -255,14 +266,19 @@ _FIELDS = tuple(f.name for f in fields(Choices) if f.name != "added")
 """The built-in terms' fields of :class:`Choices`."""
 
 
+def _is_term(term) -> bool:
+    """``term`` looks like an :class:`~wavephys.planner.terms.AddedTerm` (this module sits below it)."""
+    return (isinstance(getattr(term, "name", None), str) and hasattr(term, "exact")
+            and callable(getattr(term, "change_heights", None)) and callable(getattr(term, "change_colour", None)))
+
+
 def _check_added(added) -> tuple:
     """``Choices.added`` checked: (term, option) pairs, one per name, no name a field; sorted by name."""
     if not isinstance(added, tuple):
         raise TypeError(f"added must be a tuple of (term, option) pairs, got {describe(added)}")
     names = set()
     for item in added:
-        if not (isinstance(item, tuple) and len(item) == 2 and isinstance(getattr(item[0], "name", None), str)
-                and hasattr(item[0], "exact")):
+        if not (isinstance(item, tuple) and len(item) == 2 and _is_term(item[0])):
             raise TypeError(f"added must hold (term, option) pairs with an AddedTerm first, got {describe(item)}")
         name = item[0].name
         if name in _FIELDS:
