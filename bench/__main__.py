@@ -1,4 +1,4 @@
-"""``python -m bench {propagation,boundaries,walls,shallow,optics,jacobian,ship,wake,harness,halffloat,render,filtering,surfaces,scale,calibrate,planner,savings} [--json PATH] [--quick]``.
+"""``python -m bench {propagation,boundaries,walls,shallow,optics,jacobian,ship,wake,harness,halffloat,render,filtering,meshes,surfaces,scale,calibrate,planner,savings} [--json PATH] [--quick]``.
 
 Each writes its rows as JSON and its charts as PNG next to it (default
 ``bench/results/``) and prints a table.
@@ -278,6 +278,31 @@ def run_filtering(args) -> None:
     _write(rows, filtering.figures(rows), Path(args.json or "bench/results/filtering.json"))
 
 
+def run_meshes(args) -> None:
+    from bench import meshes
+    from wavephys.core.files import atomic_path
+
+    if args.quick:
+        rows = meshes.mesh_rows(("storm", "shore"), n=64, width=160, height=120, repeats=1, progress=_say)
+    else:
+        rows = meshes.mesh_rows(progress=_say)
+    print(f"{'scene':<9}{'technique':<10}{'setting':<12}{'vertices':>10}{'mesh ms':>9}{'march ms':>9}{'band r/H':>12}"
+          f"{'PSNR dB':>9}{'p99':>9}{'bare':>6}{'height m':>10}")
+    for r in rows:
+        if r["water"]:
+            print(f"{r['scene']:<9}{r['technique']:<10}{r['setting']:<12}{r['vertices']:>10}"
+                  f"{r['mesh_seconds'] * 1e3:>9.0f}{r['march_seconds'] * 1e3:>9.0f}"
+                  f"{meshes._band(r['band']):>12}{r['psnr']:>9.1f}{r['p99']:>9.2g}{r['bare']:>6}{r['height_max']:>10.3g}")
+    out = Path(args.json or "bench/results/meshes.json")
+    _write(rows, {}, out)  # the rows first: a chart that fails loses nothing
+    if not args.quick:  # the docs table comes from the full run only
+        doc = Path("docs/meshes.md")
+        with atomic_path(doc) as tmp:
+            tmp.write_text(meshes.markdown(rows, "python -m bench meshes"))
+        print(f"wrote {doc}")
+    _write(rows, meshes.figures(rows), out)
+
+
 def run_surfaces(args) -> None:
     from bench import surfaces
 
@@ -397,6 +422,7 @@ def main(argv=None) -> int:
                             ("halffloat", run_halffloat, "16-bit float encoding: numpy against to_float16, heights of every size"),
                             ("render", run_render, "renderer: frame times, texture cost, GPU vs reference"),
                             ("filtering", run_filtering, "distance filtering of normals against a supersampled truth, per distance band"),
+                            ("meshes", run_meshes, "the water as a mesh (uniform, clipmap, projected grid) against the march, per distance band; writes docs/meshes.md"),
                             ("surfaces", run_surfaces, "noise, Gerstner, choppy: cost per frame vs physics error"),
                             ("scale", run_scale, "sharded step: overhead, memory per device, bytes per step"),
                             ("calibrate", run_calibrate, "measure the planner's cost model (writes its calibration)"),

@@ -521,6 +521,23 @@ OVERRIDES = {
     "optics.light.fresnel.approximation_errors": {"method": lambda: "schlick", "samples": lambda: 64},
     "optics.rendering.scene.Scene": {"ground": lambda: np.full((N, N), -1.0), "water": _field, "length": lambda: 4.0},
     "optics.rendering.renderer.save_png": {"path": lambda: TMP / "frame.png"},
+    "optics.rendering.meshes.water_mesh": {"technique": lambda: "uniform"},
+    "optics.rendering.meshes.mesh_errors": {"mesh": lambda: _water_mesh(), "renderer": lambda: instance(_renderer_class()),
+                                            "width": lambda: 16, "height": lambda: 12, "repeats": lambda: 1,
+                                            "bands": lambda: (0.0, 4.0, 1e9), "heights": lambda: True},
+    "optics.rendering.meshes.mesh_seconds": {"mesh": lambda: _water_mesh(), "renderer": lambda: instance(_renderer_class()),
+                                             "repeats": lambda: 1},
+    "optics.rendering.meshes.render_mesh": {"mesh": lambda: _water_mesh(), "renderer": lambda: instance(_renderer_class())},
+    "optics.rendering.meshes.mesh_coverage": {"mesh": lambda: _water_mesh(), "renderer": lambda: instance(_renderer_class())},
+    "optics.rendering.meshes.mesh_heights": {"mesh": lambda: _water_mesh()},
+    "optics.rendering.meshes.height_errors": {"mesh": lambda: _water_mesh(), "bands": lambda: (0.0, 4.0, 1e9),
+                                              "aspect": lambda: 4 / 3},
+    "optics.rendering.meshes.water_pixels": {"width": lambda: 16, "height": lambda: 12, "steps": lambda: 16,
+                                             "refine": lambda: 2},
+    "optics.rendering.meshes.WaterMesh": {
+        "positions": lambda: np.array([[0.0, 0.0], [1.0, 0.0], [1.0, 1.0]], np.float32),
+        "parents": lambda: np.zeros((3, 4), np.float32), "morph": lambda: np.zeros(3, np.float32),
+        "triangles": lambda: np.array([[0, 1, 2]], np.uint32), "technique": lambda: "uniform", "spacing": lambda: 1.0},
     "optics.rendering.textures.save_height_png": {"path": lambda: TMP / "height.png"},
     "optics.rendering.textures.save_npz": {"path": lambda: TMP / "textures.npz", "a": lambda: np.ones(3)},
     "optics.rendering.textures.load_npz": {"path": _npz},
@@ -754,6 +771,12 @@ FREE_TEXT = {("wavephys.core.frames.read_map", "name"),  # the caller's argument
 NAN_RESULT_OK = {"wavephys.models.finite_difference.fd_angular_frequency"}  # no real ω where unstable  # a Check row whose measurement gave NaN is a failed row, by design
 
 
+def _water_mesh():
+    from optics.rendering.meshes import uniform_mesh
+
+    return uniform_mesh(_scene())
+
+
 def _renderer_class():
     from optics.rendering import Renderer
 
@@ -796,6 +819,9 @@ def instance(cls):
         from optics.light.fresnel import IndexRange
 
         makers[IndexRange] = lambda: IndexRange(1.33, 1.35)
+        from optics.rendering.meshes import WaterMesh, uniform_mesh
+
+        makers[WaterMesh] = lambda: uniform_mesh(_scene())
         for base, make in makers.items():
             if issubclass(cls, base):
                 _INSTANCES[cls] = make()

@@ -51,3 +51,22 @@ def test_spray_example_runs_as_its_docstring_says(tmp_path, capsys):
     assert Image.open(out).size == (960, 540)
     assert "0.05 mm, euler: dt" in printed and "euler_stable_dt" in printed
     assert printed.count("exponential: largest error") == 3 and printed.count("euler: largest error") == 2
+
+
+def test_water_meshes_example_runs_as_its_docstring_says(tmp_path, capsys):
+    """examples/water_meshes.py, as a user runs it (a small scene): the strip of four pictures over their errors,
+    and each technique's cost and bands printed."""
+    import importlib.util
+
+    from PIL import Image
+
+    spec = importlib.util.spec_from_file_location("water_meshes", Path(__file__).parents[1] / "examples" / "water_meshes.py")
+    example = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(example)
+    out = tmp_path / "meshes.png"
+    example.main(["--scene", "calm", "--out", str(out), "--width", "64", "--height", "48", "--texels", "64"])
+    printed = capsys.readouterr().out
+    assert Image.open(out).size == (4 * 64, 2 * 48)
+    for technique in ("uniform", "clipmap", "projected"):
+        assert f"{technique}: " in printed
+    assert printed.count("height error ≤") >= 3 and "bare pixels" in printed

@@ -60,6 +60,26 @@ in vec2 position;
 void main() { gl_Position = vec4(position, 0.0, 1.0); }
 """
 
+WATER_HEIGHT = """
+vec4 bilerp(sampler2D t, ivec2 size, vec2 xy) { return bilinear_at(t, size, xy, extent, false); }
+vec4 bilerp_wrap(sampler2D t, ivec2 size, vec2 xy) { return bilinear_at(t, size, xy, extent, true); }
+float fade(vec2 xy) {  // distance filtering of tiled fields
+    float r = length(xy - eye.xy) / extent;
+    float t = clamp((r - near_tiles) / (far_tiles - near_tiles), 0.0, 1.0);
+    return 1.0 - t * t * (3.0 - 2.0 * t);
+}
+float water_h(vec2 xy) {
+    if (surroundings == 0) return bilerp(water_tex, water_size, xy).r;
+    float h = surroundings == 2 ? bilerp_wrap(water_tex, water_size, xy).r : bilerp(water_tex, water_size, xy).r;
+    return water_mean + (h - water_mean) * fade(xy);
+}
+"""
+"""GLSL: the water's height as drawn, ``water_h(xy)`` (clamped, or tiled and faded with distance from
+the eye), and the bilinear lookups ``bilerp``, ``bilerp_wrap`` it uses; shared by the fragment shaders
+and the mesh path's vertex shader (:mod:`optics.rendering.meshes`). Needs ``water_tex``,
+``water_size``, ``extent``, ``eye``, ``surroundings``, ``water_mean``, ``near_tiles``, ``far_tiles``
+and :data:`optics.gpu.GLSL_SAMPLING`."""
+
 FRAGMENT = """
 #version 330
 uniform sampler2D ground_tex;  uniform ivec2 ground_size;
@@ -98,19 +118,8 @@ out vec4 frag;
 %OPTICS%
 float eps;
 
-vec4 bilerp(sampler2D t, ivec2 size, vec2 xy) { return bilinear_at(t, size, xy, extent, false); }
-vec4 bilerp_wrap(sampler2D t, ivec2 size, vec2 xy) { return bilinear_at(t, size, xy, extent, true); }
-float fade(vec2 xy) {  // distance filtering of tiled fields
-    float r = length(xy - eye.xy) / extent;
-    float t = clamp((r - near_tiles) / (far_tiles - near_tiles), 0.0, 1.0);
-    return 1.0 - t * t * (3.0 - 2.0 * t);
-}
+%WATER_HEIGHT%
 float ground_h(vec2 xy) { return bilerp(ground_tex, ground_size, xy).r; }
-float water_h(vec2 xy) {
-    if (surroundings == 0) return bilerp(water_tex, water_size, xy).r;
-    float h = surroundings == 2 ? bilerp_wrap(water_tex, water_size, xy).r : bilerp(water_tex, water_size, xy).r;
-    return water_mean + (h - water_mean) * fade(xy);
-}
 float foam_at(vec2 xy) {
     if (surroundings == 0) return bilerp(foam_tex, foam_size, xy).r;
     float f = surroundings == 2 ? bilerp_wrap(foam_tex, foam_size, xy).r : bilerp(foam_tex, foam_size, xy).r;
@@ -363,10 +372,46 @@ vec3 far_field(vec3 o, vec3 d) {  // primary rays past the marched region: flat 
     return r * refl + (1.0 - r) * trans;
 }
 
+// the water's colour at p, seen from above along d at distance t (the ray-marcher's and the mesh path's)
+vec3 shade_water(vec3 p, vec3 d, float t) {
+    vec3 c;
+    vec3 n = water_normal(p.xy);
+    vec2 m = vec2(0.0);
+    vec3 cov = vec3(0.0);
+    if (e_filtering) {
+        filtered_slopes(p, d, t, m, cov);
+        n = normalize(vec3(-m.x, -m.y, 1.0));
+        float tip = dot(d, n) + FACING;
+        if (tip > 0.0) n = normalize(n - tip * d);  // a mean normal facing away: tipped
+    }
+    float r = reflectance(max(-dot(d, n), 0.0), n_air, n_water);
+    vec3 tdir = e_refraction ? refract_dir(d, n, n_air / n_water) : d;
+    vec3 trans = secondary(p, tdir, true);
+    vec4 o = cov.x + cov.y > VARIANCE_FLOOR ? over_slopes(p, d, m, cov, trans, e_reflection) : vec4(0.0);
+    if (o.w > 0.0) {
+        c = o.rgb;
+    } else {
+        vec3 rdir = reflect(d, n);
+        vec3 refl = e_reflection ? secondary(p, rdir, false) : environment(rdir);
+        c = r * refl + (1.0 - r) * trans;
+    }
+    if (e_foam && use_foam) {
+        float f = foam_at(p.xy);
+        c = mix(c, foam_albedo * (ambient + sun_color * max(dot(n, sun), 0.0)), f);
+    }
+    return c;
+}
+
+vec3 view_ray() {  // the pixel's primary direction
+    vec2 ndc = 2.0 * gl_FragCoord.xy / resolution - 1.0;
+    return normalize(cam_f + ndc.x * tan_half * (resolution.x / resolution.y) * cam_r + ndc.y * tan_half * cam_u);
+}
+
+%MAIN%"""
+MARCH_MAIN = """
 void main() {
     eps = 1e-4 * extent;
-    vec2 ndc = 2.0 * gl_FragCoord.xy / resolution - 1.0;
-    vec3 d = normalize(cam_f + ndc.x * tan_half * (resolution.x / resolution.y) * cam_r + ndc.y * tan_half * cam_u);
+    vec3 d = view_ray();
     int which;
     float t = march(eye, d, under ? 1 : 0, which);
     vec3 c;
@@ -377,32 +422,10 @@ void main() {
         if (under) c *= transmittance(t);
     } else {
         vec3 p = eye + t * d;
-        vec3 n = water_normal(p.xy);
         if (!under) {
-            vec2 m = vec2(0.0);
-            vec3 cov = vec3(0.0);
-            if (e_filtering) {
-                filtered_slopes(p, d, t, m, cov);
-                n = normalize(vec3(-m.x, -m.y, 1.0));
-                float tip = dot(d, n) + FACING;
-                if (tip > 0.0) n = normalize(n - tip * d);  // a mean normal facing away: tipped
-            }
-            float r = reflectance(max(-dot(d, n), 0.0), n_air, n_water);
-            vec3 tdir = e_refraction ? refract_dir(d, n, n_air / n_water) : d;
-            vec3 trans = secondary(p, tdir, true);
-            vec4 o = cov.x + cov.y > VARIANCE_FLOOR ? over_slopes(p, d, m, cov, trans, e_reflection) : vec4(0.0);
-            if (o.w > 0.0) {
-                c = o.rgb;
-            } else {
-                vec3 rdir = reflect(d, n);
-                vec3 refl = e_reflection ? secondary(p, rdir, false) : environment(rdir);
-                c = r * refl + (1.0 - r) * trans;
-            }
-            if (e_foam && use_foam) {
-                float f = foam_at(p.xy);
-                c = mix(c, foam_albedo * (ambient + sun_color * max(dot(n, sun), 0.0)), f);
-            }
+            c = shade_water(p, d, t);
         } else {
+            vec3 n = water_normal(p.xy);
             float r = reflectance(max(dot(d, n), 0.0), n_water, n_air);
             vec3 rdir = reflect(d, n);
             vec3 refl = e_reflection ? secondary(p, rdir, true) : deep_color;
@@ -417,8 +440,14 @@ void main() {
     frag = vec4(c, 1.0);
 }
 """
-FRAGMENT = (FRAGMENT.replace("%OPTICS%", GLSL_SAMPLING + GLSL_OPTICS).replace("%MAX_TAPS%", str(MAX_TAPS))
-            .replace("%VARIANCE_FLOOR%", repr(VARIANCE_FLOOR)).replace("%FACING%", repr(FACING)))
+SHADING = (FRAGMENT.replace("%OPTICS%", GLSL_SAMPLING + GLSL_OPTICS).replace("%WATER_HEIGHT%", WATER_HEIGHT)
+           .replace("%MAX_TAPS%", str(MAX_TAPS))
+           .replace("%VARIANCE_FLOOR%", repr(VARIANCE_FLOOR)).replace("%FACING%", repr(FACING)))
+"""The fragment shaders' shared GLSL (the fields, the march, the shading of ground and water), with
+``%MAIN%`` where a shader's ``main`` goes: the ray-marcher's (:data:`MARCH_MAIN`) or the mesh
+path's (:mod:`optics.rendering.meshes`)."""
+FRAGMENT = SHADING.replace("%MAIN%", MARCH_MAIN)
+"""The ray-marcher's fragment shader."""
 
 
 class Renderer:
@@ -514,7 +543,8 @@ class Renderer:
         self._textures[name] = tex
         return tex
 
-    def _bind(self, scene: Scene):
+    def _bind(self, scene: Scene, programs=None):
+        programs = (self.program,) if programs is None else programs
         albedo = scene.albedo if scene.albedo is not None else scene.default_albedo
         caustics = scene.caustics if scene.caustics is not None else np.ones((2, 2), np.float32)
         foam = scene.foam if scene.foam is not None else np.zeros((2, 2), np.float32)
@@ -526,21 +556,25 @@ class Renderer:
                                             ("absorption", table))):
             tex = self._upload(name, arr)
             tex.use(unit)
-            if f"{name}_tex" in self.program:  # else optimized away by the compiler
-                self.program[f"{name}_tex"] = unit
-                self.program[f"{name}_size"] = tex.size
+            for program in programs:
+                if f"{name}_tex" in program:  # else optimized away by the compiler
+                    program[f"{name}_tex"] = unit
+                if f"{name}_size" in program:
+                    program[f"{name}_size"] = tex.size
         levels = (slope_moments(scene.water, scene.length, wrap=scene.surroundings == "tile")
                   if scene.effects.filtering else [np.zeros((1, 1, 5), np.float32)])
         unit += 1
         for name, channels in (("slope", slice(0, 4)), ("slope2", slice(4, 5))):
             tex = self._upload_levels(name, [level[..., channels] for level in levels])
             tex.use(unit)
-            if f"{name}_tex" in self.program:
-                self.program[f"{name}_tex"] = unit
+            for program in programs:
+                if f"{name}_tex" in program:
+                    program[f"{name}_tex"] = unit
             unit += 1
-        if "slope_size" in self.program:
-            self.program["slope_size"] = (levels[0].shape[1], levels[0].shape[0])
-            self.program["slope_levels"] = len(levels)
+        for program in programs:
+            if "slope_size" in program:
+                program["slope_size"] = (levels[0].shape[1], levels[0].shape[0])
+                program["slope_levels"] = len(levels)
 
     def _upload_levels(self, name, levels):
         """Upload a mip pyramid (level k: (ny >> k, nx >> k, c) float32), reusing the slot ``name``."""
@@ -560,8 +594,8 @@ class Renderer:
             old.write(np.ascontiguousarray(level, np.float32).tobytes(), level=k)
         return old
 
-    def _uniforms(self, scene: Scene):
-        p, eff, cam = self.program, scene.effects, scene.camera
+    def _uniforms(self, scene: Scene, program=None, **extra):
+        p, eff, cam = (self.program if program is None else program), scene.effects, scene.camera
         f, r, u = cam.basis()
         zlo, zhi = scene.bounds()
         eye = np.asarray(cam.eye, float)
@@ -595,7 +629,7 @@ class Renderer:
                       absorption_table=eff.absorption_form != "rgb", absorption_scale=TABLE_SCALE,
                       e_filtering=eff.filtering, pixel_angle=2.0 * math.tan(math.radians(cam.fov) / 2) / self.height,
                       slope_cov_all=(covariance_given_back(scene.water, scene.length, scene.surroundings)
-                                     if eff.filtering else (0.0, 0.0, 0.0)))
+                                     if eff.filtering else (0.0, 0.0, 0.0)), **extra)
         for name, v in values.items():
             if name not in p:
                 continue  # optimized away by the compiler

@@ -1,0 +1,188 @@
+"""The mesh path (optics.rendering.meshes): the water as a displaced mesh, laid three ways, against
+the ray-marcher's exact surface, over generated seas."""
+
+import math
+
+import numpy as np
+import pytest
+
+from optics.rendering.meshes import (BANDS, MAX_VERTICES, WaterMesh, clipmap_mesh, height_errors, mesh_coverage,
+                                     mesh_errors, mesh_heights, mesh_region, projected_grid, render_mesh,
+                                     uniform_mesh, water_mesh, water_pixels)
+from optics.rendering.renderer import Renderer
+from optics.rendering.scene import Camera, Scene, look_at
+
+W, H = 64, 48
+N, L = 64, 16.0
+
+
+def _sea(seed, amp=0.08, surroundings="none", eye=(0.0, -9.0, 3.0), up=(0.0, 0.0, 1.0), n=N):
+    """Six plane waves of random direction, wavelength L/1 to L/5 and phase (a family per seed)."""
+    rng = np.random.default_rng(seed)
+    x = (np.arange(n) + 0.5) * L / n - L / 2
+    X, Y = np.meshgrid(x, x)
+    h = np.zeros((n, n))
+    for _ in range(6):
+        k = 2 * np.pi / L * rng.integers(1, 6, 2) * rng.choice([-1, 1], 2)
+        h += amp / 6 * np.cos(k[0] * X + k[1] * Y + rng.uniform(0, 2 * np.pi))
+    cam = look_at(eye, (0.0, 0.0, 0.0), 50.0)
+    return Scene(np.full((n, n), -2.0), h.astype(np.float32), L, camera=Camera(cam.eye, cam.target, up, cam.fov),
+                 surroundings=surroundings)
+
+
+@pytest.fixture(scope="module")
+def renderer():
+    with Renderer(W, H) as r:
+        yield r
+
+
+@pytest.mark.parametrize("seed", [0, 1, 2])
+def test_a_uniform_mesh_converges_to_the_exact_surface_at_second_order(seed):
+    """Linear triangles over the bilinear texture: the height error falls 4x per halving of the
+    spacing (the bilinear twist over a cell shrinks with its area), in every band."""
+    scene = _sea(seed)
+    texel = L / N
+    errs = [[b["max"] for b in height_errors(scene, uniform_mesh(scene, texel / 2**k)) if b["points"]]
+            for k in range(3)]
+    for coarse, fine in zip(errs, errs[1:]):
+        for a, b in zip(coarse, fine):
+            assert 3.6 < a / b < 4.4, (a, b)
+    assert max(errs[0]) < 0.05 * 0.08  # at texel spacing the mesh is within 5 % of the waves' amplitude
+
+
+def test_the_mesh_path_draws_what_the_march_draws_as_the_mesh_refines(renderer):
+    scene = _sea(3)
+    psnrs = []
+    for k in range(3):
+        res = mesh_errors(scene, uniform_mesh(scene, L / N / 2**k), W, H, renderer=renderer, repeats=1,
+                          heights=False)
+        psnrs.append(res["psnr"])
+        assert res["bare"] == 0
+    assert psnrs[0] > 80 and psnrs[1] > psnrs[0] + 8 and psnrs[2] > psnrs[1] + 8, psnrs
+
+
+def _edges(tris):
+    e = np.sort(np.concatenate([tris[:, [0, 1]], tris[:, [1, 2]], tris[:, [2, 0]]]), axis=1)
+    _, counts = np.unique(e, axis=0, return_counts=True)
+    return counts
+
+
+@pytest.mark.parametrize("cells, levels", [(4, 3), (8, 2), (16, 4)])
+def test_clipmap_rings_are_watertight_and_tile_the_region(cells, levels):
+    """Every edge inside the rings is shared by two triangles (the zero-area triangles close each
+    ring's T-junctions), the rest is the outer square's border, and the triangles' area is the rings'."""
+    scene = _sea(0)
+    mesh = clipmap_mesh(scene, 0.5, cells=cells, levels=levels)
+    counts = _edges(mesh.triangles.astype(np.int64))
+    outer = 2 * cells * 4  # the last level's border: 2·cells edges a side
+    assert np.all(counts <= 2) and int(np.sum(counts == 1)) == outer
+    p = mesh.positions[mesh.triangles].astype(np.float64)
+    a, b = p[:, 1] - p[:, 0], p[:, 2] - p[:, 0]
+    signed = 0.5 * (a[:, 0] * b[:, 1] - a[:, 1] * b[:, 0])
+    side = 2 * cells * 0.5 * 2 ** (levels - 1)
+    assert signed.sum() == pytest.approx(side**2, rel=1e-9)
+    assert np.all(signed >= 0)  # counter-clockwise from above, none overlapping
+
+
+def test_clipmap_levels_meet_on_the_coarser_surface():
+    """At a level's outer edge every vertex lies on the next level's surface (blend 1): the heights
+    of the edge's odd vertices are the means of their even neighbours'."""
+    scene = _sea(1)
+    mesh = clipmap_mesh(scene, 0.5, cells=8, levels=3)
+    z = mesh_heights(scene, mesh)
+    edge = mesh.morph == 1
+    assert edge.sum() > 0
+    from optics.rendering.reference import water_level
+
+    par = mesh.parents[edge].astype(np.float64)
+    coarse = 0.5 * (water_level(scene, par[:, :2]) + water_level(scene, par[:, 2:]))
+    assert np.allclose(z[edge], coarse, rtol=0, atol=1e-12)
+
+
+def test_a_clipmap_draws_its_finest_level_as_a_uniform_mesh_does():
+    """Inside level 0, away from its blended band, a clipmap is a uniform mesh of its finest spacing."""
+    scene = _sea(2)
+    s = L / N
+    clip = height_errors(scene, clipmap_mesh(scene, s, cells=64), bands=(0.0, 2.0))
+    uni = height_errors(scene, uniform_mesh(scene, s), bands=(0.0, 2.0))
+    assert clip[0]["max"] == pytest.approx(uni[0]["max"], rel=1e-6)
+
+
+def test_the_projected_grid_spreads_its_rows_as_r_squared_over_h():
+    """Johanson's grid from an eye H above the water: a row step of δ rad lands δ·r²/H apart along
+    the view at r ≫ H (shared/SPEC.md §2.8), measured on the grid's centre column."""
+    eye_h = 3.0
+    scene = _sea(0, surroundings="tile", eye=(0.0, -20.0, eye_h))
+    rows, margin = 256, 0.0
+    mesh = projected_grid(scene, 2, rows, aspect=W / H, margin=margin)
+    cam = scene.camera
+    f, _, _ = cam.basis()
+    tan_half = math.tan(math.radians(cam.fov) / 2)
+    col = np.array([p for p in mesh.positions.astype(np.float64) if abs(p[0] - cam.eye[0]) < 1e-3])
+    r = np.sort(np.hypot(col[:, 0] - cam.eye[0], col[:, 1] - cam.eye[1]))
+    r = r[r < mesh_region(scene)[2] * 0.999]
+    mid, dr = 0.5 * (r[1:] + r[:-1]), np.diff(r)
+    sy = np.arange(rows + 1) * 2 / rows - 1  # the rows' screen heights; the angle per row at height sy:
+    # dθ = tan_half·(2/rows)/(1 + (sy·tan_half)²); the grid has no roll, so each row is one distance
+    angles = np.arctan(sy * tan_half) + math.asin(-f[2])
+    delta = np.diff(angles)
+    below = np.sin(0.5 * (angles[1:] + angles[:-1])) > 0  # rows that see the water
+    far = mid > 5 * eye_h
+    got = dr[far]
+    want = (delta[below][::-1][:len(dr)] * mid**2 / eye_h)[far]
+    assert np.allclose(got, want, rtol=0.06), np.max(np.abs(got / want - 1))
+
+
+def test_high_waves_near_the_eye_leave_the_projected_grid_short_of_the_screen(renderer):
+    """The grid is laid on the mean level and lifted by the waves: crests near the eye lift its
+    nearest rows off the screen's bottom edge, which stays bare; a margin of screen around the grid
+    covers it. Calm water is covered with no margin."""
+    eye = (0.0, -9.0, 1.2)
+    calm, rough = (_sea(4, amp=a, eye=eye, surroundings="tile") for a in (0.02, 0.9))
+
+    def bare(scene, margin):
+        seen = water_pixels(scene, W, H)
+        return seen & ~mesh_coverage(renderer, scene, projected_grid(scene, 64, 64, aspect=W / H, margin=margin))
+
+    assert bare(calm, 0.0).sum() == 0
+    assert bare(rough, 0.0)[-1].sum() > W // 4  # the bottom row
+    assert bare(rough, 1.0).sum() == 0
+
+
+def test_a_rolled_camera_is_still_covered_by_the_projected_grid(renderer):
+    """Camera roll (a tilted up vector): the screen's grid turns with it and still meets the water."""
+    scene = _sea(5, amp=0.02, up=(0.5, 0.0, 1.0))
+    res = mesh_errors(scene, projected_grid(scene, 64, 96, aspect=W / H), W, H, renderer=renderer, repeats=1,
+                      heights=False)
+    assert res["bare"] == 0 and res["psnr"] > 60
+
+
+def test_the_mesh_image_changes_where_the_mesh_is_coarse(renderer):
+    """A coarse clipmap and a coarse projected grid are measurably off where they are coarse."""
+    scene = _sea(6, surroundings="tile")
+    img = render_mesh(renderer, scene, clipmap_mesh(scene, 2.0, cells=4))
+    assert img.shape == (H, W, 3) and np.isfinite(img).all()
+    res = mesh_errors(scene, clipmap_mesh(scene, 2.0, cells=4), W, H, renderer=renderer, repeats=1)
+    assert res["psnr"] < 60 and max(b["height_max"] for b in res["bands"] if b["pixels"]) > 0.01
+
+
+def test_bad_input_is_refused_by_name():
+    scene = _sea(0)
+    for call, word in ((lambda: uniform_mesh(scene, 0.0), "spacing"),
+                       (lambda: uniform_mesh(scene, 1e-5), "MAX_VERTICES"),
+                       (lambda: clipmap_mesh(scene, cells=5), "cells"),
+                       (lambda: clipmap_mesh(scene, band=0.5), "band"),
+                       (lambda: clipmap_mesh(scene, levels=0), "levels"),
+                       (lambda: projected_grid(scene, 0), "columns"),
+                       (lambda: projected_grid(scene, aspect=-1.0), "aspect"),
+                       (lambda: water_mesh(scene, "octree"), "technique"),
+                       (lambda: mesh_errors(scene, uniform_mesh(scene), bands=(4.0, 1.0)), "bands"),
+                       (lambda: projected_grid(_sea(0, eye=(0.0, -9.0, -1.0))), "below")):
+        with pytest.raises(ValueError, match=word):
+            call()
+    with pytest.raises(TypeError, match="technique"):
+        water_mesh(scene, 3)
+    with pytest.raises(TypeError, match="mesh"):
+        mesh_heights(scene, "mesh")
+    assert MAX_VERTICES == 1 << 24 and BANDS[0] == 0.0
+    assert isinstance(uniform_mesh(scene), WaterMesh)
