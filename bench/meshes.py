@@ -64,6 +64,7 @@ def mesh_rows(names=SCENES, n: int = 128, width: int = 320, height: int = 240, s
                 for b in res["bands"]:
                     rows.append(dict(scene=name, technique=technique, setting=label, n=n, width=width, height=height,
                                      vertices=res["vertices"], triangles=res["triangles"],
+                                     texel_reads=res["texel_reads"], passes=res["passes"],
                                      mesh_seconds=res["mesh_seconds"], march_seconds=res["march_seconds"],
                                      image_psnr=res["psnr"], image_bare=res["bare"], eye_height=eye_h,
                                      band=(b["lo"] / eye_h, b["hi"] / eye_h), **{k: b[k] for k in (
@@ -141,14 +142,15 @@ def markdown(rows, command: str) -> str:
                          f"{rec['worst_psnr']:.1f} dB)" if rec["technique"] else "none measured")
         lines.append(f"| {_band(band)} | " + " | ".join(cells) + " |")
     lines += ["", "## Every measurement", "",
-              "| scene | technique | setting | vertices | mesh ms | march ms | band | water px | PSNR dB | p99 | bare "
-              "| height max m |",
-              "| --- | --- | --- | ---: | ---: | ---: | --- | ---: | ---: | ---: | ---: | ---: |"]
+              "| scene | technique | setting | vertices | texel reads | mesh ms | march ms | band | water px | PSNR dB "
+              "| p99 | bare | height max m |",
+              "| --- | --- | --- | ---: | ---: | ---: | ---: | --- | ---: | ---: | ---: | ---: | ---: |"]
     for r in rows:
         if not r["water"]:
             continue
         hm = f"{r['height_max']:.3g}" if r["height_max"] == r["height_max"] else "–"
-        lines.append(f"| {r['scene']} | {r['technique']} | {r['setting']} | {r['vertices']:,} | "
+        reads = f"{r['texel_reads']:,}" if "texel_reads" in r else "–"
+        lines.append(f"| {r['scene']} | {r['technique']} | {r['setting']} | {r['vertices']:,} | {reads} | "
                      f"{r['mesh_seconds'] * 1e3:.0f} | {r['march_seconds'] * 1e3:.0f} | {_band(r['band'])} | "
                      f"{r['water']} | {r['psnr']:.1f} | {r['p99']:.2g} | {r['bare']} | {hm} |")
     lines += ["", "Times are llvmpipe's on this machine (a CPU rasterizer: the shading, the same in both paths, "

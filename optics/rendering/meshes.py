@@ -111,6 +111,12 @@ class WaterMesh:
         """The number of triangles (zero-area ones included)."""
         return int(self.triangles.shape[0])
 
+    @property
+    def texel_reads(self) -> int:
+        """Height texels the vertex shader reads a frame: 4 a bilinear sample, 3 samples at a
+        blended vertex (its own and its parents')."""
+        return int(4 * (self.vertices + 2 * np.count_nonzero(self.morph)))
+
 
 # -- where the water is -------------------------------------------------------------------------------
 
@@ -576,9 +582,10 @@ def mesh_errors(scene: Scene, mesh: WaterMesh, width: int = 160, height: int = 1
         where the march sees the water (:func:`water_pixels`), ``bare`` the pixels where the march sees
         water and the mesh draws nothing (:func:`water_pixels`, :func:`mesh_coverage`), and with
         ``heights`` the height error's ``height_max``, ``height_rms``, m); ``psnr`` and ``bare`` over
-        the whole image; ``vertices``,
-        ``triangles``; ``mesh_seconds`` and ``march_seconds`` (median draw, this machine);
-        ``image`` and ``reference`` (the two pictures).
+        the whole image; ``vertices``, ``triangles``, ``texel_reads`` (the vertex shader's,
+        :attr:`WaterMesh.texel_reads`), ``passes`` (2: the background and the mesh);
+        ``mesh_seconds`` and ``march_seconds`` (median draw, this machine); ``image`` and
+        ``reference`` (the two pictures).
     """
     from optics.rendering.reference import psnr
     from optics.rendering.renderer import Renderer
@@ -620,7 +627,7 @@ def mesh_errors(scene: Scene, mesh: WaterMesh, width: int = 160, height: int = 1
         for row, h in zip(rows, height_errors(scene, mesh, bands=edges, aspect=width / height)):
             row.update(height_max=h["max"], height_rms=h["rms"])
     return dict(bands=rows, psnr=psnr(image, reference), bare=int(bare.sum()), vertices=mesh.vertices,
-                triangles=mesh.triangle_count,
+                triangles=mesh.triangle_count, texel_reads=mesh.texel_reads, passes=2,
                 mesh_seconds=mesh_s, march_seconds=march_s, image=image, reference=reference)
 
 

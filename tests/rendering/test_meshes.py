@@ -163,7 +163,9 @@ def test_the_mesh_image_changes_where_the_mesh_is_coarse(renderer):
     img = render_mesh(renderer, scene, clipmap_mesh(scene, 2.0, cells=4))
     assert img.shape == (H, W, 3) and np.isfinite(img).all()
     res = mesh_errors(scene, clipmap_mesh(scene, 2.0, cells=4), W, H, renderer=renderer, repeats=1)
-    assert res["psnr"] < 60 and max(b["height_max"] for b in res["bands"] if b["pixels"]) > 0.01
+    assert res["psnr"] < 60 and max(b["height_max"] for b in res["bands"] if b["water"]) > 0.01
+    mesh = clipmap_mesh(scene, 2.0, cells=4)
+    assert res["passes"] == 2 and res["texel_reads"] == 4 * (mesh.vertices + 2 * int((mesh.morph > 0).sum()))
 
 
 def test_bad_input_is_refused_by_name():
