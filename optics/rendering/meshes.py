@@ -702,6 +702,11 @@ its depth, as an engine's terrain; the far field; the sky)."""
 
 # -- drawing ------------------------------------------------------------------------------------------
 
+def _check_live(renderer) -> None:
+    if renderer.ctx is None:
+        raise RuntimeError("this Renderer has been released (renderer)")
+
+
 def _programs(renderer):
     """The mesh path's two programs on ``renderer``'s context (compiled once per renderer)."""
     from optics.gpu import GLSL_SAMPLING
@@ -789,6 +794,7 @@ def mesh_coverage(renderer, scene: Scene, mesh: WaterMesh) -> np.ndarray:
     check_instance("renderer", renderer, Renderer, "optics.rendering.Renderer")
     check_instance("scene", scene, Scene, "optics.rendering.Scene")
     check_instance("mesh", mesh, WaterMesh, "optics.rendering.meshes.WaterMesh")
+    _check_live(renderer)
     _check_above(scene)
     with renderer.ctx:
         fbo = _draw(renderer, scene, mesh, marker=True)
@@ -820,8 +826,7 @@ def render_mesh(renderer, scene: Scene, mesh: WaterMesh) -> np.ndarray:
     check_instance("renderer", renderer, Renderer, "optics.rendering.Renderer")
     check_instance("scene", scene, Scene, "optics.rendering.Scene")
     check_instance("mesh", mesh, WaterMesh, "optics.rendering.meshes.WaterMesh")
-    if renderer.ctx is None:
-        raise RuntimeError("this Renderer has been released")
+    _check_live(renderer)
     _check_above(scene)
     with renderer.ctx:
         fbo = _draw(renderer, scene, mesh)
@@ -855,6 +860,7 @@ def mesh_seconds(renderer, scene: Scene, mesh: WaterMesh, repeats: int = 5) -> f
     check_instance("renderer", renderer, Renderer, "optics.rendering.Renderer")
     check_instance("scene", scene, Scene, "optics.rendering.Scene")
     check_instance("mesh", mesh, WaterMesh, "optics.rendering.meshes.WaterMesh")
+    _check_live(renderer)
     _check_above(scene)
     times = []
     for _ in range(check_int("repeats", repeats, lo=1) + 1):

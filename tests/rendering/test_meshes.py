@@ -7,7 +7,8 @@ import numpy as np
 import pytest
 
 from optics.rendering.meshes import (BANDS, MAX_VERTICES, WaterMesh, clipmap_mesh, height_errors, mesh_coverage,
-                                     mesh_errors, mesh_heights, mesh_region, projected_grid, render_mesh,
+                                     mesh_errors, mesh_heights, mesh_region, mesh_seconds, projected_grid,
+                                     render_mesh,
                                      uniform_mesh, water_mesh, water_pixels)
 from optics.rendering.renderer import Renderer
 from optics.rendering.scene import Camera, Scene, look_at
@@ -84,19 +85,69 @@ def test_clipmap_rings_are_watertight_and_tile_the_region(cells, levels):
     assert np.all(signed >= 0)  # counter-clockwise from above, none overlapping
 
 
-def test_clipmap_levels_meet_on_the_coarser_surface():
-    """At a level's outer edge every vertex lies on the next level's surface (blend 1): the heights
-    of the edge's odd vertices are the means of their even neighbours'."""
-    scene = _sea(1)
-    mesh = clipmap_mesh(scene, 0.5, cells=8, levels=3)
-    z = mesh_heights(scene, mesh)
-    edge = mesh.morph == 1
-    assert edge.sum() > 0
+def _coarse_surface(scene, xy, s):
+    """The linear surface on the lattice of spacing s through a texel centre (cells cut along their
+    (i, j)-(i+1, j+1) diagonal) at points xy: written here from the lattice alone."""
     from optics.rendering.reference import water_level
 
-    par = mesh.parents[edge].astype(np.float64)
-    coarse = 0.5 * (water_level(scene, par[:, :2]) + water_level(scene, par[:, 2:]))
-    assert np.allclose(z[edge], coarse, rtol=0, atol=1e-12)
+    origin = -0.5 * scene.length + 0.5 * scene.length / N
+    u, v = (xy[:, 0] - origin) / s, (xy[:, 1] - origin) / s
+    i, j = np.floor(u), np.floor(v)
+    fu, fv = u - i, v - j
+    corner = lambda di, dj: water_level(scene, np.stack([origin + (i + di) * s, origin + (j + dj) * s], -1))
+    h00, h11 = corner(0, 0), corner(1, 1)
+    below = fu >= fv  # the triangle (i, j), (i+1, j), (i+1, j+1)
+    return np.where(below, h00 + fu * (corner(1, 0) - h00) + fv * (h11 - corner(1, 0)),
+                    h00 + fv * (corner(0, 1) - h00) + fu * (h11 - corner(0, 1)))
+
+
+@pytest.mark.parametrize("seed", [1, 2])
+def test_clipmap_levels_meet_on_the_coarser_surface(seed):
+    """At level 0's outer edge every vertex lies on level 1's surface (blend 1), the linear surface of
+    the lattice twice as coarse (computed here from that lattice, not from the mesh's parents); inside
+    the band the height is between its own and that surface's."""
+    scene = _sea(seed)
+    s0 = L / N
+    mesh = clipmap_mesh(scene, s0, cells=8, levels=3)
+    z = mesh_heights(scene, mesh)
+    xy = mesh.positions.astype(np.float64)
+    ring0 = mesh.morph == 1
+    centre = xy[ring0 & (np.abs(xy - xy[ring0].mean(axis=0)).max(axis=1) < 8 * s0 * 1.01)].mean(axis=0)
+    level0 = np.abs(np.abs(xy - centre).max(axis=1) - 8 * s0) < 1e-9  # level 0's edge, 2·cells cells a side
+    assert level0.sum() == 4 * 16
+    assert np.allclose(z[level0], _coarse_surface(scene, xy[level0], 2 * s0), rtol=0, atol=1e-12)
+    from optics.rendering.reference import water_level
+
+    mid = (mesh.morph > 0) & (mesh.morph < 1)
+    inner = mid & (np.abs(xy - centre).max(axis=1) < 8 * s0)  # level 0's band
+    own, coarse = water_level(scene, xy[inner]), _coarse_surface(scene, xy[inner], 2 * s0)
+    w = mesh.morph[inner]
+    assert inner.sum() > 0 and np.allclose(z[inner], own + w * (coarse - own), rtol=0, atol=1e-12)
+
+
+def test_land_in_front_of_the_water_hides_it_as_in_the_march(renderer):
+    """A bank rising out of the water between the eye and the sea: the background pass's depth hides
+    the mesh behind it as the march does, and the heights are measured only where water stands."""
+    scene = _sea(7)
+    y = (np.arange(N) + 0.5) * L / N - L / 2
+    ground = np.where((y > -3.0) & (y < -1.0), 0.6, -2.0)[:, None] * np.ones((1, N))
+    bank = Scene(ground.astype(np.float32), scene.water, L, camera=scene.camera)
+    res = mesh_errors(bank, uniform_mesh(bank, L / N / 4), W, H, renderer=renderer, repeats=1)
+    assert res["psnr"] > 90 and res["bare"] == 0
+    plain = height_errors(scene, uniform_mesh(scene, L / N))
+    banked = height_errors(bank, uniform_mesh(bank, L / N))
+    assert sum(b["points"] for b in banked) < sum(b["points"] for b in plain)
+
+
+def test_a_released_renderer_is_named():
+    scene = _sea(0)
+    mesh = uniform_mesh(scene)
+    r = Renderer(16, 12)
+    r.release()
+    for call in (lambda: render_mesh(r, scene, mesh), lambda: mesh_coverage(r, scene, mesh),
+                 lambda: mesh_seconds(r, scene, mesh, 1)):
+        with pytest.raises(RuntimeError, match="released"):
+            call()
 
 
 def test_a_clipmap_draws_its_finest_level_as_a_uniform_mesh_does():

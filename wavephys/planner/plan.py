@@ -86,7 +86,7 @@ class Plan:
     cost_parts : dict
         Where ``cost`` goes, s: the run's fixed overhead, steps, ships, frames, blends,
         refinement (or a cheap surface model's frames), shading, caustics, texture encoding, and
-        each registered term's cost under its name.
+        each registered term's cost under ``"added <name>"``.
     added_error : float
         What the registered terms with ``unit = "m"`` add to the height bound, m (their colour
         errors are in ``predicted_colour_error``).
@@ -524,9 +524,15 @@ def _best_by_format(ctx: PlanContext, ok: list, tolerance: float, colour_toleran
 def _added_options(ctx: PlanContext) -> list:
     """Every combination of the registered terms' options (:meth:`Terms.register
     <wavephys.planner.terms.Terms.register>`), as tuples of (term, option, error, cost); one empty
-    combination when none is registered."""
-    per_term = [[(term, o, term.checked("error", ctx, o), term.checked("cost", ctx, o))
-                 for o in term.checked_options(ctx.scene, ctx.calibration)] for term in TERMS.added()]
+    combination when none is registered. A scene that shows caustics keeps every height term at its
+    exact option, as it keeps the built-in ones: the light moves with the heights, which no term
+    bounds."""
+    per_term = []
+    for term in TERMS.added():
+        options = term.checked_options(ctx.scene, ctx.calibration)
+        if ctx.scene.caustics and term.unit == "m":
+            options = options[:1]
+        per_term.append([(term, o, term.checked("error", ctx, o), term.checked("cost", ctx, o)) for o in options])
     return list(itertools.product(*per_term))
 
 
@@ -540,7 +546,7 @@ def cost_parts(ctx: PlanContext, choices: Choices) -> dict:
     return dict(heights, shading=colour_cost(scene, choices.fresnel, choices.absorption, cal),
                 caustics=caustics_cost(scene, choices.caustics, cal, ctx.gather_points),
                 texture=texture_cost(scene, choices.texture, cal),
-                **{term.name: term.checked("cost", ctx, option) for term, option in choices.added})
+                **{f"added {term.name}": term.checked("cost", ctx, option) for term, option in choices.added})
 
 
 def full_cost(ctx: PlanContext) -> float:

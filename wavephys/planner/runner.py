@@ -412,7 +412,11 @@ def shade(scene: Scene, model: SceneModel, heights):
 
 def _hooked(what: str, term, before: np.ndarray, after) -> np.ndarray:
     """An added term's changed heights or colour, checked: same shape, finite."""
-    out = np.asarray(after, before.dtype)
+    try:
+        out = np.asarray(after, before.dtype)
+    except (TypeError, ValueError):
+        raise TypeError(f"term {term.name!r} changed the {what} to {type(after).__name__}, not an array of "
+                        f"numbers") from None
     if out.shape != before.shape or not np.all(np.isfinite(out)):
         raise ValueError(f"term {term.name!r} changed the {what} to an array of shape {out.shape}"
                          f"{'' if out.shape != before.shape else ' holding non-finite values'}; expected "

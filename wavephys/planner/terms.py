@@ -712,7 +712,8 @@ class AddedTerm(PlanTerm):
     """A term registered beside the built-in ones (:meth:`Terms.register`): everything about it is
     in its one class. Its error adds to the heights' bound (``unit = "m"``) or the colour's
     (``unit = "colour"``) by the triangle inequality, its cost adds to the plan's, and its
-    option changes the run through :meth:`change_heights` and :meth:`change_colour`
+    option changes the run through :meth:`change_heights` and :meth:`change_colour` (the terms'
+    hooks run in the order of their names), checked when run
     (:func:`wavephys.planner.runner.run`, :func:`~wavephys.planner.runner.shade`). Its setting
     travels in :attr:`Choices.added <wavephys.planner.model.Choices>`, so
     :class:`~wavephys.planner.model.Choices` needs no field for it.
@@ -746,7 +747,8 @@ class AddedTerm(PlanTerm):
         raise NotImplementedError
 
     def cost(self, ctx: PlanContext, option) -> float:
-        """Seconds ``option`` adds to the plan (the run's frames and shading), ≥ 0."""
+        """Seconds ``option`` adds to the plan's run (over all its frames, as every cost of the
+        plan is counted), ≥ 0."""
         raise NotImplementedError
 
     def change_heights(self, model, frames: np.ndarray, option) -> np.ndarray:
