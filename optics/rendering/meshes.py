@@ -789,18 +789,7 @@ def mesh_coverage(renderer, scene: Scene, mesh: WaterMesh) -> np.ndarray:
     numpy.ndarray (height, width) bool
         Row 0 at the top.
     """
-    from optics.rendering.renderer import Renderer
-
-    check_instance("renderer", renderer, Renderer, "optics.rendering.Renderer")
-    check_instance("scene", scene, Scene, "optics.rendering.Scene")
-    check_instance("mesh", mesh, WaterMesh, "optics.rendering.meshes.WaterMesh")
-    _check_live(renderer)
-    _check_above(scene)
-    with renderer.ctx:
-        fbo = _draw(renderer, scene, mesh, marker=True)
-        data = fbo.read(components=1, dtype="f4")
-    img = np.frombuffer(data, np.float32).reshape(renderer.height, renderer.width)
-    return np.ascontiguousarray(img[::-1] >= 0.0)
+    return _read(renderer, scene, mesh, marker=True)[..., 0] >= 0.0
 
 
 def render_mesh(renderer, scene: Scene, mesh: WaterMesh) -> np.ndarray:
@@ -821,6 +810,11 @@ def render_mesh(renderer, scene: Scene, mesh: WaterMesh) -> np.ndarray:
     -------
     numpy.ndarray (height, width, 3) float32
     """
+    return _read(renderer, scene, mesh)
+
+
+def _check_call(renderer, scene, mesh) -> None:
+    """The drawing calls' arguments checked, by name."""
     from optics.rendering.renderer import Renderer
 
     check_instance("renderer", renderer, Renderer, "optics.rendering.Renderer")
@@ -828,9 +822,13 @@ def render_mesh(renderer, scene: Scene, mesh: WaterMesh) -> np.ndarray:
     check_instance("mesh", mesh, WaterMesh, "optics.rendering.meshes.WaterMesh")
     _check_live(renderer)
     _check_above(scene)
+
+
+def _read(renderer, scene, mesh, marker: bool = False) -> np.ndarray:
+    """One frame of the mesh path read back: (height, width, 3) float32, row 0 at the top."""
+    _check_call(renderer, scene, mesh)
     with renderer.ctx:
-        fbo = _draw(renderer, scene, mesh)
-        data = fbo.read(components=3, dtype="f4")
+        data = _draw(renderer, scene, mesh, marker).read(components=3, dtype="f4")
     img = np.frombuffer(data, np.float32).reshape(renderer.height, renderer.width, 3)
     return np.ascontiguousarray(img[::-1])
 
@@ -855,13 +853,7 @@ def mesh_seconds(renderer, scene: Scene, mesh: WaterMesh, repeats: int = 5) -> f
     """
     import time
 
-    from optics.rendering.renderer import Renderer
-
-    check_instance("renderer", renderer, Renderer, "optics.rendering.Renderer")
-    check_instance("scene", scene, Scene, "optics.rendering.Scene")
-    check_instance("mesh", mesh, WaterMesh, "optics.rendering.meshes.WaterMesh")
-    _check_live(renderer)
-    _check_above(scene)
+    _check_call(renderer, scene, mesh)
     times = []
     for _ in range(check_int("repeats", repeats, lo=1) + 1):
         t = time.perf_counter()

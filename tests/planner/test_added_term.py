@@ -184,25 +184,10 @@ def test_a_term_that_breaks_its_contract_is_refused_by_name(term, words):
 def test_registering_bad_terms_is_refused_by_name():
     with pytest.raises(TypeError, match="AddedTerm"):
         TERMS.register(object())
-
-    class Taken(HeightSnap):
-        name = "fresnel"
-
-    with pytest.raises(ValueError, match="'fresnel' is taken"):
-        TERMS.register(Taken())
-
-    class Kilos(HeightSnap):
-        name = "kilos"
-        unit = "kg"
-
-    with pytest.raises(ValueError, match="term.unit"):
-        TERMS.register(Kilos())
-
-    class Spaced(HeightSnap):
-        name = "two words"
-
-    with pytest.raises(ValueError, match="identifier"):
-        TERMS.register(Spaced())
+    for attrs, words in (({"name": "fresnel"}, "'fresnel' is taken"), ({"name": "kilos", "unit": "kg"}, "term.unit"),
+                         ({"name": "two words"}, "identifier")):
+        with pytest.raises(ValueError, match=words):
+            TERMS.register(type("Bad", (HeightSnap,), attrs)())
     with pytest.raises(ValueError, match="built-in"):
         TERMS.unregister("caustics")
     with pytest.raises(KeyError, match="no registered term"):
