@@ -184,6 +184,26 @@ def test_the_projected_grid_spreads_its_rows_as_r_squared_over_h():
     assert np.allclose(got, want, rtol=0.06), np.max(np.abs(got / want - 1))
 
 
+@pytest.mark.parametrize("wavelength, rows", [(4.0, 120), (8.0, 120), (4.0, 240)])
+def test_the_projected_grid_fails_where_its_rows_pass_half_a_wavelength(wavelength, rows):
+    """Grazing views: crests across the view, a wave of length λ is sampled below its Nyquist rate where the
+    grid's rows are more than λ/2 apart, δ·r²/H > λ/2, past r_max = √(λH/2δ). Inside 0.4 r_max the mesh
+    holds the wave within a tenth of its amplitude; from 1.1 to 2 r_max its RMS error is over 0.4 of it
+    (measured 0.66-0.80 for λ = 4 m, 120 rows). The boundary moves with √λ and √rows as the law says."""
+    n, side, amp, eye_h = 256, 64.0, 0.1, 3.0
+    x = (np.arange(n) + 0.5) * side / n - side / 2
+    _, Y = np.meshgrid(x, x)
+    water = (amp * np.cos(2 * np.pi * Y / wavelength)).astype(np.float32)
+    scene = Scene(np.full((n, n), -5.0), water, side, camera=look_at((0.0, 0.0, eye_h), (0.0, 30.0, 0.0), 50.0),
+                  surroundings="tile")
+    delta = 2 * math.tan(math.radians(25)) / rows  # rad a row at the screen's centre
+    r_max = math.sqrt(wavelength * eye_h / (2 * delta))
+    near, beyond = height_errors(scene, projected_grid(scene, 32, rows, aspect=4 / 3, margin=0.0),
+                                 bands=(0.0, 0.4 * r_max / eye_h, 1.1 * r_max / eye_h, 2 * r_max / eye_h))[::2]
+    assert near["points"] > 1000 and near["max"] < 0.1 * amp
+    assert beyond["points"] > 1000 and beyond["rms"] > 0.4 * amp
+
+
 def test_high_waves_near_the_eye_leave_the_projected_grid_short_of_the_screen(renderer):
     """The grid is laid on the mean level and lifted by the waves: crests near the eye lift its
     nearest rows off the screen's bottom edge, which stays bare; a margin of screen around the grid
