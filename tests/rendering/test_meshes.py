@@ -204,6 +204,24 @@ def test_the_projected_grid_fails_where_its_rows_pass_half_a_wavelength(waveleng
     assert beyond["points"] > 1000 and beyond["rms"] > 0.4 * amp
 
 
+@pytest.mark.parametrize("wavelength, cells", [(4.0, 8), (4.0, 16), (8.0, 8), (2.0, 16)])
+def test_a_clipmap_holds_a_wave_out_to_cells_times_half_its_length(wavelength, cells):
+    """Level k of a clipmap of m cells has spacing s₀2ᵏ and reaches m·s₀2ᵏ: the last level that samples a
+    wave of length λ at least twice a wavelength (spacing λ/2) ends at r_b = m·λ/2, and past it the wave
+    is missed. Measured: RMS 0.07-0.25 of the amplitude inside 0.75 r_b, 0.86-1.14 from r_b to 2 r_b."""
+    n, side, amp, eye_h = 256, 64.0, 0.1, 3.0
+    x = (np.arange(n) + 0.5) * side / n - side / 2
+    _, Y = np.meshgrid(x, x)
+    water = (amp * np.cos(2 * np.pi * Y / wavelength)).astype(np.float32)
+    scene = Scene(np.full((n, n), -5.0), water, side, camera=look_at((0.0, 0.0, eye_h), (0.0, 30.0, 0.0), 50.0),
+                  surroundings="tile")
+    r_b = cells * wavelength / 2
+    inside, _, beyond = height_errors(scene, clipmap_mesh(scene, cells=cells),
+                                      bands=(0.0, 0.75 * r_b / eye_h, r_b / eye_h, 2 * r_b / eye_h))
+    assert inside["points"] > 500 and inside["rms"] < 0.3 * amp
+    assert beyond["points"] > 500 and beyond["rms"] > 0.8 * amp
+
+
 def test_high_waves_near_the_eye_leave_the_projected_grid_short_of_the_screen(renderer):
     """The grid is laid on the mean level and lifted by the waves: crests near the eye lift its
     nearest rows off the screen's bottom edge, which stays bare; a margin of screen around the grid
