@@ -530,6 +530,8 @@ OVERRIDES = {
     "optics.rendering.meshes.render_mesh": {"mesh": lambda: _water_mesh(), "renderer": lambda: instance(_renderer_class())},
     "optics.rendering.meshes.mesh_coverage": {"mesh": lambda: _water_mesh(), "renderer": lambda: instance(_renderer_class())},
     "optics.rendering.meshes.mesh_heights": {"mesh": lambda: _water_mesh()},
+    "optics.rendering.meshes.displaced_mesh": {"mesh": lambda: _water_mesh(),
+                                               "displacement": lambda: np.zeros((2, N, N))},
     "optics.rendering.meshes.height_errors": {"mesh": lambda: _water_mesh(), "bands": lambda: (0.0, 4.0, 1e9),
                                               "aspect": lambda: 4 / 3},
     "optics.rendering.meshes.water_pixels": {"width": lambda: 16, "height": lambda: 12, "steps": lambda: 16,

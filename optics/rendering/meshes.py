@@ -40,6 +40,7 @@ from optics.rendering.scene import FAR_TILES, Scene
 from wavephys.core.inputs import check_bool, check_instance, check_int, check_scalar, describe
 
 __all__ = ["WaterMesh", "MESH_TECHNIQUES", "uniform_mesh", "clipmap_mesh", "projected_grid", "water_mesh",
+           "displaced_mesh",
            "mesh_region", "mesh_heights", "height_errors", "mesh_errors", "render_mesh", "mesh_seconds",
            "mesh_coverage", "water_pixels", "BANDS",
            "MESH_VERTEX", "MESH_MAIN", "BACKGROUND_MAIN", "MAX_VERTICES"]
@@ -376,6 +377,55 @@ def projected_grid(scene: Scene, columns: int = 128, rows: int = 256, *, aspect:
     near = np.linalg.norm(xy[1:nx + 1] - xy[:nx], axis=1)
     spacing = float(np.min(near[near > 0])) if np.any(near > 0) else float(reach)
     return _mesh("projected", xy, np.concatenate([xy, xy], -1), np.zeros(len(xy)), tris, spacing)
+
+
+def displaced_mesh(scene: Scene, mesh: WaterMesh, displacement) -> WaterMesh:
+    """``mesh`` moved by a choppy surface's horizontal displacement, as engines move their vertices.
+
+    An engine with a choppy sea (:func:`wavephys.surfaces.choppy.displacement`) keeps its vertices on
+    the rest lattice and moves each by the displacement Δ(p) at its rest point p, lifting it to the
+    height there; the exact surface is the height field resampled at the displaced points
+    (:func:`wavephys.surfaces.resample.resample_heights`), which is what the scene's ``water`` holds
+    and the march draws. This moves every vertex (and the parents it blends to) from p to p + f·Δ(p)
+    (Δ sampled as the water is: clamped, or tiled, and faded by the same factor f with distance);
+    drawn, each takes the scene's height at its moved point, the rest point's height z(p) up to the
+    resampling's error. What the image then shows against the march is the engine's error: the
+    surface sampled at the displaced, uneven points (crowded on crests, sparse in troughs) instead
+    of a regular lattice.
+
+    Parameters
+    ----------
+    scene : Scene
+        Its ``water`` the resampled heights of the displaced surface.
+    mesh : WaterMesh
+        Laid at rest (any technique).
+    displacement : array_like (2, ny, nx) or (3, ny, nx)
+        (Δx, Δy[, z]), m, at the water texture's texel centres (only Δx, Δy are read), finite.
+
+    Returns
+    -------
+    WaterMesh
+    """
+    from optics.rendering.reference import _surface_sample
+    from wavephys.core.inputs import check_array
+
+    check_instance("scene", scene, Scene, "optics.rendering.Scene")
+    check_instance("mesh", mesh, WaterMesh, "optics.rendering.meshes.WaterMesh")
+    d = check_array("displacement", displacement, ndim=3)
+    if d.shape[0] not in (2, 3) or d.shape[1:] != np.shape(scene.water):
+        raise ValueError(f"displacement must have shape (2 or 3, {', '.join(map(str, np.shape(scene.water)))}) "
+                         f"(the water texture's texels), got {d.shape}")
+    if not np.all(np.isfinite(d[:2])):
+        raise ValueError("displacement must be finite")
+
+    def moved(xy):
+        xy = np.asarray(xy, np.float64)
+        return xy + np.stack([_surface_sample(scene, d[c], xy) for c in (0, 1)], -1)
+
+    par = mesh.parents.astype(np.float64)
+    parents = np.concatenate([moved(par[:, :2]), moved(par[:, 2:])], -1)
+    return WaterMesh(moved(mesh.positions).astype(np.float32), parents.astype(np.float32), mesh.morph,
+                     mesh.triangles, mesh.technique, mesh.spacing)
 
 
 def water_mesh(scene: Scene, technique: str, **options) -> WaterMesh:

@@ -6,7 +6,8 @@ import math
 import numpy as np
 import pytest
 
-from optics.rendering.meshes import (BANDS, MAX_VERTICES, WaterMesh, clipmap_mesh, height_errors, mesh_coverage,
+from optics.rendering.meshes import (BANDS, MAX_VERTICES, WaterMesh, clipmap_mesh, displaced_mesh, height_errors,
+                                     mesh_coverage,
                                      mesh_errors, mesh_heights, mesh_region, mesh_seconds, projected_grid,
                                      render_mesh,
                                      uniform_mesh, water_mesh, water_pixels)
@@ -184,18 +185,23 @@ def test_the_projected_grid_spreads_its_rows_as_r_squared_over_h():
     assert np.allclose(got, want, rtol=0.06), np.max(np.abs(got / want - 1))
 
 
+def _crests_across(wavelength, amp, eye_h, n=256, side=64.0):
+    """One wave of length λ tiled to the horizon, its crests across the view of an eye eye_h above it."""
+    x = (np.arange(n) + 0.5) * side / n - side / 2
+    _, Y = np.meshgrid(x, x)
+    water = (amp * np.cos(2 * np.pi * Y / wavelength)).astype(np.float32)
+    return Scene(np.full((n, n), -5.0), water, side, camera=look_at((0.0, 0.0, eye_h), (0.0, 30.0, 0.0), 50.0),
+                 surroundings="tile")
+
+
 @pytest.mark.parametrize("wavelength, rows", [(4.0, 120), (8.0, 120), (4.0, 240)])
 def test_the_projected_grid_fails_where_its_rows_pass_half_a_wavelength(wavelength, rows):
     """Grazing views: crests across the view, a wave of length λ is sampled below its Nyquist rate where the
     grid's rows are more than λ/2 apart, δ·r²/H > λ/2, past r_max = √(λH/2δ). Inside 0.4 r_max the mesh
     holds the wave within a tenth of its amplitude; from 1.1 to 2 r_max its RMS error is over 0.4 of it
     (measured 0.66-0.80 for λ = 4 m, 120 rows). The boundary moves with √λ and √rows as the law says."""
-    n, side, amp, eye_h = 256, 64.0, 0.1, 3.0
-    x = (np.arange(n) + 0.5) * side / n - side / 2
-    _, Y = np.meshgrid(x, x)
-    water = (amp * np.cos(2 * np.pi * Y / wavelength)).astype(np.float32)
-    scene = Scene(np.full((n, n), -5.0), water, side, camera=look_at((0.0, 0.0, eye_h), (0.0, 30.0, 0.0), 50.0),
-                  surroundings="tile")
+    amp, eye_h = 0.1, 3.0
+    scene = _crests_across(wavelength, amp, eye_h)
     delta = 2 * math.tan(math.radians(25)) / rows  # rad a row at the screen's centre
     r_max = math.sqrt(wavelength * eye_h / (2 * delta))
     near, beyond = height_errors(scene, projected_grid(scene, 32, rows, aspect=4 / 3, margin=0.0),
@@ -209,12 +215,8 @@ def test_a_clipmap_holds_a_wave_out_to_cells_times_half_its_length(wavelength, c
     """Level k of a clipmap of m cells has spacing s₀2ᵏ and reaches m·s₀2ᵏ: the last level that samples a
     wave of length λ at least twice a wavelength (spacing λ/2) ends at r_b = m·λ/2, and past it the wave
     is missed. Measured: RMS 0.07-0.25 of the amplitude inside 0.75 r_b, 0.86-1.14 from r_b to 2 r_b."""
-    n, side, amp, eye_h = 256, 64.0, 0.1, 3.0
-    x = (np.arange(n) + 0.5) * side / n - side / 2
-    _, Y = np.meshgrid(x, x)
-    water = (amp * np.cos(2 * np.pi * Y / wavelength)).astype(np.float32)
-    scene = Scene(np.full((n, n), -5.0), water, side, camera=look_at((0.0, 0.0, eye_h), (0.0, 30.0, 0.0), 50.0),
-                  surroundings="tile")
+    amp, eye_h = 0.1, 3.0
+    scene = _crests_across(wavelength, amp, eye_h)
     r_b = cells * wavelength / 2
     inside, _, beyond = height_errors(scene, clipmap_mesh(scene, cells=cells),
                                       bands=(0.0, 0.75 * r_b / eye_h, r_b / eye_h, 2 * r_b / eye_h))
@@ -257,6 +259,45 @@ def test_the_mesh_image_changes_where_the_mesh_is_coarse(renderer):
     assert res["passes"] == 2 and res["texel_reads"] == 4 * (mesh.vertices + 2 * int((mesh.morph > 0).sum()))
 
 
+def _choppy(seed, choppiness=0.6):
+    """A choppy sea on the texels: rest heights z, displacement Δ, and the scene of the resampled heights."""
+    import jax.numpy as jnp
+
+    from wavephys import Grid
+    from wavephys.surfaces.choppy import displacement
+    from wavephys.surfaces.resample import resample_heights
+
+    z = _sea(seed, amp=0.5).water.astype(np.float64)
+    grid = Grid(N, L)
+    d = np.asarray(displacement(jnp.asarray(z), grid, choppiness), np.float64)
+    h = np.asarray(resample_heights(d, z, grid), np.float32)
+    return z, d, _sea(seed, amp=0.5).__class__(np.full((N, N), -2.0), h, L, camera=_sea(seed).camera)
+
+
+@pytest.mark.parametrize("seed", [0, 1])
+def test_a_displaced_mesh_puts_each_vertex_where_its_rest_point_went(seed):
+    """An engine's choppy vertex: rest point p moved to p + Δ(p) at height z(p). Drawn over the resampled
+    heights, each moved vertex takes the height there, z(p) up to the resampling's error; moved the wrong
+    way (p − Δ) it would not. As the spacing halves, the surface's error falls."""
+    z, d, scene = _choppy(seed)
+    mesh = displaced_mesh(scene, uniform_mesh(scene, L / N), d)
+    rest = uniform_mesh(scene, L / N)
+    inside = np.all(np.abs(rest.positions) < L / 2, axis=1)  # rest points on texel centres inside the square
+    ij = np.rint((rest.positions[inside].astype(np.float64) + L / 2) / (L / N) - 0.5).astype(int)
+    zi = z[ij[:, 1], ij[:, 0]]  # the rest heights z(p)
+    span = float(z.max() - z.min())
+
+    def rms(m):
+        return float(np.sqrt(np.mean((mesh_heights(scene, m)[inside] - zi) ** 2)))
+
+    assert rms(mesh) < 0.01 * span  # measured 0.6 % (the texture's bilinear reading of steep crests)
+    assert rms(displaced_mesh(scene, rest, -d)) > 5 * rms(mesh)  # measured ×12
+    errs = [max(b["max"] for b in height_errors(scene, displaced_mesh(scene, uniform_mesh(scene, L / N / 2**k), d))
+                if b["points"]) for k in range(3)]
+    # first order: moved vertices straddle the bilinear texture's texel edges (measured ×1.6-1.75 a halving)
+    assert errs[0] / errs[1] > 1.5 and errs[1] / errs[2] > 1.5, errs
+
+
 def test_bad_input_is_refused_by_name():
     scene = _sea(0)
     for call, word in ((lambda: uniform_mesh(scene, 0.0), "spacing"),
@@ -273,6 +314,10 @@ def test_bad_input_is_refused_by_name():
             call()
     with pytest.raises(TypeError, match="technique"):
         water_mesh(scene, 3)
+    with pytest.raises(ValueError, match="displacement"):
+        displaced_mesh(scene, uniform_mesh(scene), np.zeros((2, 8, 8)))
+    with pytest.raises(ValueError, match="displacement"):
+        displaced_mesh(scene, uniform_mesh(scene), np.full((2, N, N), np.nan))
     with pytest.raises(TypeError, match="mesh"):
         mesh_heights(scene, "mesh")
     assert MAX_VERTICES == 1 << 24 and BANDS[0] == 0.0
