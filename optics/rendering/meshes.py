@@ -406,7 +406,7 @@ def displaced_mesh(scene: Scene, mesh: WaterMesh, displacement) -> WaterMesh:
     -------
     WaterMesh
     """
-    from optics.rendering.reference import _surface_sample
+    from optics.rendering.reference import _fade, _surface_sample
     from wavephys.core.inputs import check_array
 
     check_instance("scene", scene, Scene, "optics.rendering.Scene")
@@ -418,9 +418,11 @@ def displaced_mesh(scene: Scene, mesh: WaterMesh, displacement) -> WaterMesh:
     if not np.all(np.isfinite(d[:2])):
         raise ValueError("displacement must be finite")
 
-    def moved(xy):
+    def moved(xy):  # p + f·Δ(p): the faded sample f·Δ + (1 − f)·mean less the (1 − f)·mean (Δ fades to 0)
         xy = np.asarray(xy, np.float64)
-        return xy + np.stack([_surface_sample(scene, d[c], xy) for c in (0, 1)], -1)
+        f = _fade(scene, xy)
+        return xy + np.stack([_surface_sample(scene, d[c], xy) - (1 - f) * float(np.mean(d[c], dtype=np.float64))
+                              for c in (0, 1)], -1)
 
     par = mesh.parents.astype(np.float64)
     parents = np.concatenate([moved(par[:, :2]), moved(par[:, 2:])], -1)
