@@ -70,7 +70,7 @@ class Candidate:
     bounds : HeightBounds
         Its predicted error bounds, m.
     cost : float
-        Its predicted cost, s a frame.
+        Its predicted cost, s over the whole run (every frame; as every cost of the plan).
     pending : bool
         Whether its bounds still lack the cutoff's change with the grid and Δt.
     """
@@ -97,7 +97,7 @@ class Term:
     error : float
         What that choice alone adds to the error, in ``unit``.
     saving : float
-        What it saves against the term's most exact choice, s a frame.
+        What it saves against the term's most exact choice, s over the whole run.
     reason : str
         Why, in words.
     unit : str
